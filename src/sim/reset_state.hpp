@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// The state a simulation is put in at reset.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+
+#include "model/joint_order.hpp"
+
+namespace upkie_rl {
+
+/// Initial state of the robot. Defaults: base at 0.6 m, upright, at rest, straight legs.
+struct ResetState {
+  /// Position of the base link origin in the world frame [m].
+  Eigen::Vector3d position_base_in_world{0.0, 0.0, 0.6};
+  /// Orientation of the base link in the world frame.
+  Eigen::Quaterniond orientation_base_in_world = Eigen::Quaterniond::Identity();
+  /// Linear velocity of the base link origin, world frame [m/s].
+  Eigen::Vector3d linear_velocity_base_to_world_in_world = Eigen::Vector3d::Zero();
+  /// Angular velocity of the base, base frame [rad/s].
+  Eigen::Vector3d angular_velocity_base_in_base = Eigen::Vector3d::Zero();
+  /// Joint angles in the standard order [rad].
+  std::array<double, kNumServos> joint_configuration{};
+};
+
+}  // namespace upkie_rl
