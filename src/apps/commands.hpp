@@ -1,0 +1,11 @@
+#pragma once
+/// @file
+/// The subcommands of `upkie-rl`, one file each. Each function adds its subcommand to the
+/// app; the subcommand runs in its callback and reports failures by throwing
+/// std::exception, which main() prints as "upkie-rl: error: ..." with exit code 1.
+
+#include <CLI/CLI.hpp>
+
+namespace upkie_rl::apps {
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,25 @@
+/// @file
+/// Entry point of the `upkie-rl` command-line tool.
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "apps/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "upkie-rl: simulate, train, evaluate and deploy balance controllers for Upkie, "
+      "the open-source wheeled biped."};
+  app.require_subcommand(1);
+  app.fallthrough(false);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  } catch (const std::exception& error) {
+    std::cerr << "upkie-rl: error: " << error.what() << std::endl;
+    return 1;
+  }
+  return 0;
+}
