@@ -2,16 +2,9 @@
 /// @file
 /// Settings of the Bullet simulation backend.
 
-namespace upkie_rl {
+#include "model/inertia_source.hpp"
 
-/// Where link inertias come from.
-enum class InertiaSource {
-  /// Bullet's rule: box formula on the collision shape's bounding box (what PyBullet
-  /// simulates, the default to match the reference).
-  kBulletBoxRule,
-  /// The tensors written in the URDF.
-  kUrdf,
-};
+namespace upkie_rl {
 
 /// Settings of BulletSimulation. Defaults reproduce the reference PyBullet setup.
 struct BulletConfig {
