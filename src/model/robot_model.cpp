@@ -261,7 +261,7 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
   const auto poses = model.link_poses_at_zero();
 
   // Wheel radius and track from the largest cylinder rigidly attached to each wheel.
-  auto tire_centre = [&](std::size_t servo, double* radius) {
+  auto tire_centre = [&](std::size_t servo, double* radius, int* tire) {
     const Joint& wheel_joint = model.joints_[model.servo_joints_[servo]];
     double best_radius = 0.0;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -270,6 +270,7 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
       for (const auto& shape : link.collisions) {
         if (shape.kind == CollisionShape::Kind::kCylinder && shape.radius > best_radius) {
           best_radius = shape.radius;
+          *tire = link_index;
           centre = (poses[link_index] * shape.pose_in_link).translation();
         }
       }
@@ -290,8 +291,8 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
   };
   double left_radius = 0.0;
   double right_radius = 0.0;
-  const Eigen::Vector3d left_centre = tire_centre(kLeftWheel, &left_radius);
-  const Eigen::Vector3d right_centre = tire_centre(kRightWheel, &right_radius);
+  const Eigen::Vector3d left_centre = tire_centre(kLeftWheel, &left_radius, &model.tire_links_[0]);
+  const Eigen::Vector3d right_centre = tire_centre(kRightWheel, &right_radius, &model.tire_links_[1]);
   model.wheel_radius_ = left_radius;
   model.track_ = (left_centre - right_centre).norm();
 

@@ -110,6 +110,9 @@ class RobotModel {
   double total_mass() const;
   /// Wheel radius [m], read from the left tire's collision cylinder.
   double wheel_radius() const { return wheel_radius_; }
+  /// Link holding the tire (largest cylinder rigidly attached) of wheel servo `wheel`
+  /// (kLeftWheel or kRightWheel).
+  int tire_link(std::size_t wheel) const { return wheel == kLeftWheel ? tire_links_[0] : tire_links_[1]; }
   /// Lateral distance between the two tire centres [m].
   double track() const { return track_; }
   /// Rotation from the base frame to the IMU frame, R_base_to_imu (maps IMU-frame vectors
@@ -132,6 +135,7 @@ class RobotModel {
   std::vector<Joint> joints_;
   int root_link_ = -1;
   std::array<int, kNumServos> servo_joints_{};
+  std::array<int, 2> tire_links_{};
   double wheel_radius_ = 0.0;
   double track_ = 0.0;
   Eigen::Matrix3d rotation_base_to_imu_ = Eigen::Matrix3d::Identity();

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <limits>
+#include <stdexcept>
 
 #include "model/joint_order.hpp"
 
@@ -29,5 +30,17 @@ struct ServoCommand {
 
 /// Commands for the six servos in the standard joint order (see joint_order.hpp).
 using ServoAction = std::array<ServoCommand, kNumServos>;
+
+/// Raised when a command is not acceptable (a NaN or infinite velocity, torque or gain).
+class InvalidCommandError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Checks that every value that must be finite is: velocity, feedforward_torque, kp_scale,
+/// kd_scale and maximum_torque (+inf allowed: "no clamp beyond the effort limit"). A NaN
+/// position is the documented "no position loop"; an infinite position is refused.
+/// @throws InvalidCommandError naming the joint and the field.
+void validate_servo_action(const ServoAction& action);
 
 }  // namespace upkie_rl

@@ -11,12 +11,6 @@
 
 namespace upkie_rl {
 
-/// Raised when a command is not acceptable (a NaN or infinite velocity, torque or gain).
-class InvalidCommandError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
-
 /// Raised when the simulated state stops being finite; the simulation must be reset.
 class SimulationDivergedError : public std::runtime_error {
  public:
@@ -44,9 +38,5 @@ class Simulation {
   /// Duration of one agent step [s].
   virtual double agent_timestep() const = 0;
 };
-
-/// Checks that the command values that must be finite are; names the joint and field.
-/// @throws InvalidCommandError otherwise.
-void validate_servo_action(const ServoAction& action);
 
 }  // namespace upkie_rl

@@ -1,0 +1,451 @@
+#include "sim/bullet_simulation.hpp"
+
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace upkie_rl {
+namespace {
+
+/// Servo temperature and bus voltage reported by the simulation.
+constexpr double kSimulatedTemperature = 42.0;  // [deg C]
+constexpr double kSimulatedVoltage = 18.0;      // [V]
+
+/// A tire closer to the floor than this counts as touching it [m].
+constexpr double kFloorContactDistance = 1e-3;
+
+/// Sides of the convex hull Bullet's URDF importer builds for a cylinder.
+constexpr int kCylinderHullSides = 32;
+
+/// Linear and angular damping of every link (btMultiBody default, kept by PyBullet).
+constexpr double kLinkDamping = 0.04;
+
+btVector3 to_bullet(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Vector3d to_eigen(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+btQuaternion to_bullet(const Eigen::Quaterniond& q) { return {q.x(), q.y(), q.z(), q.w()}; }
+Eigen::Quaterniond to_eigen(const btQuaternion& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+btTransform to_bullet(const Eigen::Isometry3d& pose) {
+  return btTransform(to_bullet(Eigen::Quaterniond(pose.linear())), to_bullet(pose.translation()));
+}
+
+/// R_ars_to_world = diag(1, -1, -1): the IMU filter's frame is x forward, y right, z down.
+const Eigen::Matrix3d kRotationArsToWorld = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+
+std::unique_ptr<btCollisionShape> make_shape(const CollisionShape& shape) {
+  if (shape.kind == CollisionShape::Kind::kBox) {
+    auto box = std::make_unique<btBoxShape>(to_bullet(Eigen::Vector3d(shape.box_size / 2.0)));
+    box->setMargin(kCollisionMargin);
+    return box;
+  }
+  // As Bullet's URDF importer does: a 32-gon prism hull with a 1 mm margin.
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (int i = 0; i < kCylinderHullSides; ++i) {
+    const double angle = 2.0 * M_PI * i / kCylinderHullSides;
+    const double x = shape.radius * std::sin(angle);
+    const double y = shape.radius * std::cos(angle);
+    hull->addPoint(btVector3(x, y, shape.length / 2.0), false);
+    hull->addPoint(btVector3(x, y, -shape.length / 2.0), false);
+  }
+  hull->setMargin(kCollisionMargin);
+  hull->recalcLocalAabb();
+  return hull;
+}
+
+}  // namespace
+
+/// Everything Bullet owns for one episode. Rebuilt at each reset.
+struct BulletWorld {
+  btDefaultCollisionConfiguration collision_configuration;
+  btCollisionDispatcher dispatcher{&collision_configuration};
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &collision_configuration};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::unique_ptr<btMultiBody> multibody;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+  std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> joint_limits;
+  std::unique_ptr<btDefaultMotionState> ground_motion_state;
+  std::unique_ptr<btRigidBody> ground;
+  std::array<int, kNumServos> servo_link{};  ///< Multibody link index of each servo.
+  std::array<const btCollisionObject*, 2> tires{};
+  /// Pose of the root body's principal (COM) frame in the base link frame.
+  Eigen::Isometry3d base_com_in_base = Eigen::Isometry3d::Identity();
+
+  BulletWorld() = default;
+  BulletWorld(const BulletWorld&) = delete;
+  BulletWorld& operator=(const BulletWorld&) = delete;
+
+  ~BulletWorld() {
+    // The world refers to everything below: take it all out before it is destroyed.
+    for (auto& limit : joint_limits) world.removeMultiBodyConstraint(limit.get());
+    for (auto& collider : colliders) world.removeCollisionObject(collider.get());
+    if (multibody) world.removeMultiBody(multibody.get());
+    if (ground) world.removeRigidBody(ground.get());
+  }
+};
+
+namespace {
+
+void configure_solver(btMultiBodyDynamicsWorld& world, double gravity) {
+  world.setGravity(btVector3(0.0, 0.0, -gravity));
+  // Bullet physics-server defaults, which PyBullet and the reference simulation use.
+  btContactSolverInfo& info = world.getSolverInfo();
+  info.m_numIterations = 50;
+  info.m_erp2 = 0.08;
+  info.m_frictionERP = 0.2;
+  info.m_linearSlop = 1e-5;
+  info.m_warmstartingFactor = 0.1;
+  info.m_leastSquaresResidualThreshold = 1e-7;
+  info.m_splitImpulse = 1;
+  info.m_restitution = 0.0;
+  info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
+}
+
+void add_ground(BulletWorld& bullet) {
+  // A fixed box 200 x 200 x 10 m with its top face at z = 0, lateral friction 1.
+  auto box = std::make_unique<btBoxShape>(btVector3(100.0, 100.0, 5.0));
+  box->setMargin(kCollisionMargin);
+  btTransform pose;
+  pose.setIdentity();
+  pose.setOrigin(btVector3(0.0, 0.0, -5.0));
+  bullet.ground_motion_state = std::make_unique<btDefaultMotionState>(pose);
+  btRigidBody::btRigidBodyConstructionInfo info(0.0, bullet.ground_motion_state.get(), box.get());
+  info.m_friction = 1.0;
+  info.m_restitution = 0.0;
+  bullet.ground = std::make_unique<btRigidBody>(info);
+  bullet.world.addRigidBody(bullet.ground.get(), btBroadphaseProxy::StaticFilter,
+                            btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+  bullet.shapes.push_back(std::move(box));
+}
+
+/// Contact parameters of a body: those of a soft (tire) shape if it has one, since the
+/// shapes merged with a tire (hub, rotor) are smaller and never touch the floor.
+ContactParameters body_contact(const RigidBody& body) {
+  for (const auto& collision : body.collisions) {
+    if (collision.contact.is_soft()) return collision.contact;
+  }
+  return body.collisions.empty() ? ContactParameters{} : body.collisions.front().contact;
+}
+
+void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel& model) {
+  const auto& bodies = tree.bodies();
+  const RigidBody& root = bodies.front();
+  const int num_links = static_cast<int>(bodies.size()) - 1;
+  bullet.multibody = std::make_unique<btMultiBody>(
+      num_links, root.mass, to_bullet(root.principal_inertia), /*fixedBase=*/false,
+      /*canSleep=*/false);
+  btMultiBody& multibody = *bullet.multibody;
+  bullet.base_com_in_base = root.principal_frame;
+
+  // Body b > 0 is multibody link b - 1; link frames are the bodies' principal frames.
+  for (int b = 1; b <= num_links; ++b) {
+    const RigidBody& body = bodies[b];
+    const Eigen::Isometry3d& parent_com = bodies[body.parent_body].principal_frame;
+    const Eigen::Isometry3d& com = body.principal_frame;
+    const Eigen::Isometry3d joint_in_parent_com = parent_com.inverse() * body.joint_pose_in_parent;
+    const Eigen::Matrix3d rotation_parent_com_to_com =
+        (joint_in_parent_com.linear() * com.linear()).transpose();
+    const btQuaternion rot_parent_to_this =
+        to_bullet(Eigen::Quaterniond(rotation_parent_com_to_com));
+    const btVector3 parent_com_to_pivot = to_bullet(joint_in_parent_com.translation());
+    const btVector3 pivot_to_com = to_bullet(Eigen::Vector3d(com.linear().transpose() * com.translation()));
+    const int parent_link = body.parent_body - 1;
+    const Joint& joint = model.joints()[body.joint];
+    if (joint.type == Joint::Type::kFixed) {
+      multibody.setupFixed(b - 1, body.mass, to_bullet(body.principal_inertia), parent_link,
+                           rot_parent_to_this, parent_com_to_pivot, pivot_to_com, true);
+    } else {
+      const Eigen::Vector3d axis_in_com = com.linear().transpose() * body.joint_axis;
+      multibody.setupRevolute(b - 1, body.mass, to_bullet(body.principal_inertia), parent_link,
+                              rot_parent_to_this, to_bullet(axis_in_com), parent_com_to_pivot,
+                              pivot_to_com, true);
+    }
+  }
+  multibody.finalizeMultiDof();
+  multibody.setHasSelfCollision(false);
+  multibody.setCanSleep(false);
+  multibody.setLinearDamping(kLinkDamping);
+  multibody.setAngularDamping(kLinkDamping);
+  multibody.useGlobalVelocities(false);
+  bullet.world.addMultiBody(&multibody);
+
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    bullet.servo_link[servo] = tree.servo_body(servo) - 1;
+  }
+
+  // Collision shapes: one compound per body, children placed in its principal frame.
+  for (int b = 0; b <= num_links; ++b) {
+    const RigidBody& body = bodies[b];
+    if (body.collisions.empty()) continue;
+    auto compound = std::make_unique<btCompoundShape>();
+    for (const auto& collision : body.collisions) {
+      auto child = make_shape(collision.shape);
+      compound->addChildShape(
+          to_bullet(Eigen::Isometry3d(body.principal_frame.inverse() * collision.shape.pose_in_link)),
+          child.get());
+      bullet.shapes.push_back(std::move(child));
+    }
+    auto collider = std::make_unique<btMultiBodyLinkCollider>(&multibody, b - 1);
+    collider->setCollisionShape(compound.get());
+    const ContactParameters contact = body_contact(body);
+    collider->setFriction(contact.lateral_friction);
+    collider->setRollingFriction(contact.rolling_friction);
+    collider->setRestitution(0.0);
+    if (contact.is_soft()) {
+      collider->setContactStiffnessAndDamping(contact.stiffness, contact.damping);
+    }
+    bullet.world.addCollisionObject(collider.get(), btBroadphaseProxy::DefaultFilter,
+                                    btBroadphaseProxy::AllFilter);
+    if (b == 0) {
+      multibody.setBaseCollider(collider.get());
+    } else {
+      multibody.getLink(b - 1).m_collider = collider.get();
+    }
+    for (std::size_t wheel : {kLeftWheel, kRightWheel}) {
+      if (tree.body_of_link(model.tire_link(wheel)) == b) {
+        bullet.tires[wheel == kLeftWheel ? 0 : 1] = collider.get();
+      }
+    }
+    bullet.colliders.push_back(std::move(collider));
+    bullet.shapes.push_back(std::move(compound));
+  }
+
+  // Hip and knee position limits as joint-limit constraints; no default joint motors.
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    const JointLimits& limits = model.servo_limits(servo);
+    if (!limits.has_position_limits()) continue;
+    auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(
+        &multibody, bullet.servo_link[servo], limits.lower, limits.upper);
+    bullet.world.addMultiBodyConstraint(limit.get());
+    bullet.joint_limits.push_back(std::move(limit));
+  }
+}
+
+bool is_finite(const ResetState& state) {
+  bool finite = state.position_base_in_world.allFinite() &&
+                state.orientation_base_in_world.coeffs().allFinite() &&
+                state.linear_velocity_base_to_world_in_world.allFinite() &&
+                state.angular_velocity_base_in_base.allFinite();
+  for (double angle : state.joint_configuration) finite = finite && std::isfinite(angle);
+  return finite;
+}
+
+}  // namespace
+
+BulletSimulation::BulletSimulation(std::shared_ptr<const RobotModel> model,
+                                   const BulletConfig& config)
+    : model_(std::move(model)),
+      config_(config),
+      tree_(*model_, config.inertia_source, config.merge_fixed_links) {
+  if (!(config_.physics_timestep > 0.0) || !std::isfinite(config_.physics_timestep)) {
+    throw std::invalid_argument("BulletConfig: physics_timestep must be positive, got " +
+                                std::to_string(config_.physics_timestep));
+  }
+  if (config_.nb_substeps < 1) {
+    throw std::invalid_argument("BulletConfig: nb_substeps must be at least 1, got " +
+                                std::to_string(config_.nb_substeps));
+  }
+  reset(ResetState{});
+}
+
+BulletSimulation::~BulletSimulation() = default;
+
+const Observation& BulletSimulation::reset(const ResetState& state) {
+  if (!is_finite(state)) {
+    throw std::invalid_argument("reset state must be finite (position, orientation, velocities "
+                                "and joint angles)");
+  }
+  if (state.orientation_base_in_world.norm() < 1e-9) {
+    throw std::invalid_argument("reset state: orientation quaternion must not be zero");
+  }
+  world_.reset();  // the old world goes first: the new one must not share its memory pools
+  world_ = std::make_unique<BulletWorld>();
+  configure_solver(world_->world, config_.gravity);
+  if (config_.floor) add_ground(*world_);
+  add_robot(*world_, tree_, *model_);
+
+  btMultiBody& multibody = *world_->multibody;
+  const Eigen::Quaterniond orientation = state.orientation_base_in_world.normalized();
+  Eigen::Isometry3d base_in_world = Eigen::Isometry3d::Identity();
+  base_in_world.linear() = orientation.toRotationMatrix();
+  base_in_world.translation() = state.position_base_in_world;
+  const Eigen::Isometry3d com_in_world = base_in_world * world_->base_com_in_base;
+  const Eigen::Vector3d angular_velocity_world =
+      base_in_world.linear() * state.angular_velocity_base_in_base;
+  const Eigen::Vector3d com_velocity =
+      state.linear_velocity_base_to_world_in_world +
+      angular_velocity_world.cross(com_in_world.translation() - base_in_world.translation());
+  multibody.setBasePos(to_bullet(com_in_world.translation()));
+  multibody.setWorldToBaseRot(to_bullet(Eigen::Quaterniond(com_in_world.linear()).inverse()));
+  multibody.setBaseVel(to_bullet(com_velocity));
+  multibody.setBaseOmega(to_bullet(angular_velocity_world));
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    multibody.setJointPos(world_->servo_link[servo], state.joint_configuration[servo]);
+    multibody.setJointVel(world_->servo_link[servo], 0.0);
+  }
+  btAlignedObjectArray<btQuaternion> scratch_rotations;
+  btAlignedObjectArray<btVector3> scratch_vectors;
+  multibody.forwardKinematics(scratch_rotations, scratch_vectors);
+  multibody.updateCollisionObjectWorldTransforms(scratch_rotations, scratch_vectors);
+
+  reset_state_ = state;
+  reset_joint_angles_ = state.joint_configuration;
+  applied_torques_.fill(0.0);
+  diverged_ = false;
+  observation_ = Observation{};
+  previous_imu_velocity_ = Eigen::Vector3d::Zero();
+  read_observation();
+  // Zero acceleration at reset: the finite difference starts from the reset velocity.
+  observation_.imu.raw_linear_acceleration -= observation_.imu.linear_acceleration;
+  observation_.imu.linear_acceleration.setZero();
+  return observation_;
+}
+
+const Observation& BulletSimulation::step(const ServoAction& action) {
+  validate_servo_action(action);
+  return advance(action, /*braked=*/false);
+}
+
+const Observation& BulletSimulation::step_braked() {
+  static const ServoAction kNoAction{};
+  return advance(kNoAction, /*braked=*/true);
+}
+
+const Observation& BulletSimulation::advance(const ServoAction& action, bool braked) {
+  if (diverged_) {
+    throw SimulationDivergedError("the simulation diverged earlier; reset it before stepping");
+  }
+  for (int substep = 0; substep < config_.nb_substeps; ++substep) {
+    apply_servo_torques(action, braked);
+    world_->world.stepSimulation(config_.physics_timestep, 0, config_.physics_timestep);
+    ++physics_steps_;
+  }
+  observation_.time += config_.physics_timestep * config_.nb_substeps;
+  read_observation();
+  return observation_;
+}
+
+void BulletSimulation::apply_servo_torques(const ServoAction& action, bool braked) {
+  btMultiBody& multibody = *world_->multibody;
+  const ServoGains gains{config_.kp, config_.kd};
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    const int link = world_->servo_link[servo];
+    const double position = multibody.getJointPos(link);
+    const double velocity = multibody.getJointVel(link);
+    double torque = 0.0;
+    if (braked) {
+      torque = std::clamp(-gains.kd * velocity, -kBrakeTorque, kBrakeTorque);
+    } else {
+      torque = servo_torque(action[servo], position, velocity, gains,
+                            model_->servo_limits(servo).effort);
+    }
+    multibody.addJointTorque(link, torque);
+    applied_torques_[servo] = torque;
+  }
+}
+
+void BulletSimulation::read_observation() {
+  const btMultiBody& multibody = *world_->multibody;
+  const double wheel_radius = model_->wheel_radius();
+
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    const int link = world_->servo_link[servo];
+    ServoObservation& servo_observation = observation_.servo[servo];
+    servo_observation.position = multibody.getJointPos(link);
+    servo_observation.velocity = multibody.getJointVel(link);
+    servo_observation.torque = applied_torques_[servo];
+    servo_observation.temperature = kSimulatedTemperature;
+    servo_observation.voltage = kSimulatedVoltage;
+  }
+
+  // Base link pose and velocity from the root body's COM frame.
+  const Eigen::Quaterniond com_orientation = to_eigen(multibody.getWorldToBaseRot()).inverse();
+  Eigen::Isometry3d com_in_world = Eigen::Isometry3d::Identity();
+  com_in_world.linear() = com_orientation.toRotationMatrix();
+  com_in_world.translation() = to_eigen(multibody.getBasePos());
+  const Eigen::Isometry3d base_in_world = com_in_world * world_->base_com_in_base.inverse();
+  const Eigen::Matrix3d rotation_base_to_world = base_in_world.linear();
+  const Eigen::Vector3d angular_velocity_world = to_eigen(multibody.getBaseOmega());
+  const Eigen::Vector3d base_velocity =
+      to_eigen(multibody.getBaseVel()) +
+      angular_velocity_world.cross(base_in_world.translation() - com_in_world.translation());
+  const Eigen::Quaterniond base_orientation(rotation_base_to_world);
+
+  bool finite = base_in_world.matrix().allFinite() && base_velocity.allFinite() &&
+                angular_velocity_world.allFinite();
+  for (const auto& servo : observation_.servo) {
+    finite = finite && std::isfinite(servo.position) && std::isfinite(servo.velocity);
+  }
+  if (!finite) {
+    diverged_ = true;
+    throw SimulationDivergedError("the simulated state became non-finite at t = " +
+                                  std::to_string(observation_.time) + " s; reset the simulation");
+  }
+
+  observation_.has_sim = true;
+  observation_.sim_base.position = base_in_world.translation();
+  observation_.sim_base.orientation = base_orientation;
+  observation_.sim_base.linear_velocity = base_velocity;
+  observation_.sim_base.angular_velocity = rotation_base_to_world.transpose() * angular_velocity_world;
+
+  // Pitch as the reference PyBullet backend computes it: ZYX pitch of the base quaternion.
+  const Eigen::Quaterniond& q = base_orientation;
+  const double sin_pitch = std::clamp(2.0 * (q.w() * q.y() - q.z() * q.x()), -1.0, 1.0);
+  observation_.base_orientation.pitch = std::asin(sin_pitch);
+  observation_.base_orientation.angular_velocity = observation_.sim_base.angular_velocity;
+  observation_.base_orientation.rotation_base_to_world = rotation_base_to_world;
+
+  // IMU: orientation in the attitude reference frame, rates and accelerations in its frame.
+  const Eigen::Matrix3d rotation_imu_to_world = rotation_base_to_world * model_->rotation_base_to_imu();
+  observation_.imu.orientation =
+      Eigen::Quaterniond(kRotationArsToWorld.transpose() * rotation_imu_to_world).normalized();
+  observation_.imu.angular_velocity = rotation_imu_to_world.transpose() * angular_velocity_world;
+  const Eigen::Vector3d imu_velocity =
+      base_velocity +
+      angular_velocity_world.cross(rotation_base_to_world * model_->imu_position_in_base());
+  const Eigen::Vector3d imu_acceleration_world =
+      (imu_velocity - previous_imu_velocity_) / config_.physics_timestep;
+  previous_imu_velocity_ = imu_velocity;
+  const Eigen::Vector3d gravity_world(0.0, 0.0, -config_.gravity);
+  observation_.imu.linear_acceleration = rotation_imu_to_world.transpose() * imu_acceleration_world;
+  observation_.imu.raw_linear_acceleration =
+      rotation_imu_to_world.transpose() * (imu_acceleration_world - gravity_world);
+
+  // Wheel odometry of a left-wheeled robot, zero at reset.
+  const auto& servo = observation_.servo;
+  const double left_angle = servo[kLeftWheel].position - reset_joint_angles_[kLeftWheel];
+  const double right_angle = servo[kRightWheel].position - reset_joint_angles_[kRightWheel];
+  observation_.wheel_odometry.position = 0.5 * (left_angle - right_angle) * wheel_radius;
+  observation_.wheel_odometry.velocity =
+      0.5 * (servo[kLeftWheel].velocity - servo[kRightWheel].velocity) * wheel_radius;
+
+  // Floor contact: any tire point closer to the ground than kFloorContactDistance.
+  bool contact = false;
+  if (world_->ground) {
+    const int num_manifolds = world_->dispatcher.getNumManifolds();
+    for (int m = 0; m < num_manifolds && !contact; ++m) {
+      const btPersistentManifold* manifold = world_->dispatcher.getManifoldByIndexInternal(m);
+      const btCollisionObject* body0 = manifold->getBody0();
+      const btCollisionObject* body1 = manifold->getBody1();
+      const btCollisionObject* other =
+          body0 == world_->ground.get() ? body1 : (body1 == world_->ground.get() ? body0 : nullptr);
+      if (other == nullptr || (other != world_->tires[0] && other != world_->tires[1])) continue;
+      for (int p = 0; p < manifold->getNumContacts(); ++p) {
+        if (manifold->getContactPoint(p).getDistance() < kFloorContactDistance) {
+          contact = true;
+          break;
+        }
+      }
+    }
+  }
+  observation_.floor_contact.contact = contact;
+}
+
+}  // namespace upkie_rl
