@@ -3,6 +3,7 @@
 /// The Gymnasium-style environment interface on flat float vectors: what vector envs and
 /// the trainer step. Environments know nothing about threads.
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -20,6 +21,12 @@ struct StepResult {
 };
 
 /// An environment stepped with a flat float action and giving a flat float observation.
+///
+/// Gymnasium's `reset(seed, options) -> (observation, info)` maps to reset() then
+/// full_observation() (the info); options are given once, at construction (see
+/// envs/registry.hpp). `step(action) -> (observation, reward, terminated, truncated, info)`
+/// maps to step() (observation written in place, the rest in StepResult) then
+/// full_observation().
 class Env {
  public:
   virtual ~Env() = default;
@@ -28,17 +35,34 @@ class Env {
   virtual const BoxSpace& action_space() const = 0;
 
   /// Starts an episode and writes its first observation into `observation`
-  /// (size observation_space().size()). A seed re-seeds the environment's generator.
+  /// (size observation_space().size()). A seed re-seeds the environment's generator;
+  /// without one the generator continues (an environment never seeded starts at seed 0).
   virtual void reset(std::optional<std::uint64_t> seed, std::span<float> observation) = 0;
 
   /// Applies `action` (size action_space().size()) for one step and writes the next
   /// observation. Actions outside the bounds are clamped; a NaN or infinite component
-  /// raises std::invalid_argument naming it.
+  /// raises std::invalid_argument naming it (except where an environment documents NaN as
+  /// a legal value, like a servo position).
   virtual StepResult step(std::span<const float> action, std::span<float> observation) = 0;
 
   /// The full observation of the last reset or step (the dictionary `info` carries), or
   /// nullptr when the backend has none.
   virtual const Observation* full_observation() const = 0;
+
+  /// Writes the action that does nothing special (the zero controller): zero by default,
+  /// clamped into the bounds; the servos environment gives its neutral servo commands.
+  virtual void neutral_action(std::span<float> action) const {
+    const BoxSpace& space = action_space();
+    for (std::size_t i = 0; i < space.size(); ++i) {
+      action[i] = std::clamp(0.0f, space.low[i], space.high[i]);
+    }
+  }
+
+  /// Duration of one step [s].
+  virtual double timestep() const = 0;
+
+  /// Physics steps simulated per environment step (0 for backends without physics).
+  virtual int physics_steps_per_step() const = 0;
 };
 
 }  // namespace upkie_rl

@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// OptionTable: turns key=value environment options into typed fields, once, at
+/// construction (nothing is parsed per step).
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "envs/env_options.hpp"
+
+namespace upkie_rl {
+
+/// A table of named options, each bound to a typed field it writes.
+class OptionTable {
+ public:
+  /// A real-valued option, accepted when finite and within [min, max].
+  void add_double(std::string name, double* target, double min, double max, std::string help);
+  /// An integer option within [min, max].
+  void add_int(std::string name, int* target, int min, int max, std::string help);
+  /// An option taking one of `choices`; `set` receives the index of the chosen one.
+  void add_choice(std::string name, std::vector<std::string> choices,
+                  std::function<void(std::size_t)> set, std::string help);
+
+  /// Writes every option into its field, in order (a repeated key: the last one wins).
+  /// @throws std::invalid_argument naming an unknown key (listing the valid ones) or a
+  ///         badly typed or out-of-range value (saying what is expected).
+  void apply(const EnvOptions& options, const std::string& context) const;
+
+  /// "name: help (default ...)" lines, for listings.
+  std::vector<std::string> describe() const;
+
+  /// The names of the options, in the order added.
+  std::vector<std::string> names() const;
+
+ private:
+  struct Entry {
+    std::string name;
+    std::string help;
+    std::string current;  // Default value, for listings.
+    std::function<void(const std::string& value, const std::string& where)> parse;
+  };
+  const Entry* find(const std::string& name) const;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,77 @@
+#include "envs/pendulum_env.hpp"
+
+#include <algorithm>
+#include <numbers>
+#include <stdexcept>
+
+namespace upkie_rl {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kMaxPitchRate = 1000.0f;  // Observation bound of θ̇ [rad/s] (seed eq. 4).
+
+GroundVelocityCommanderConfig commander_config(const PendulumConfig& config) {
+  GroundVelocityCommanderConfig commander;
+  commander.leg_gain_scale = config.leg_gain_scale;
+  return commander;
+}
+
+}  // namespace
+
+PendulumEnv::PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig& config)
+    : servos_(std::move(servos)),
+      config_(config),
+      commander_(servos_ ? servos_->model() : throw std::invalid_argument("PendulumEnv: null servos"),
+                 servos_->timestep(), commander_config(config)),
+      reward_(config.reward) {
+  if (!(config_.max_ground_velocity > 0.0)) {
+    throw std::invalid_argument("PendulumEnv: max_ground_velocity must be positive");
+  }
+  const auto a_max = static_cast<float>(config_.max_ground_velocity);
+  const auto pi = std::numbers::pi_v<float>;
+  observation_space_.add("theta", -pi, pi);
+  observation_space_.add("p", -kInf, kInf);
+  observation_space_.add("theta_dot", -kMaxPitchRate, kMaxPitchRate);
+  observation_space_.add("p_dot", -a_max, a_max);
+  action_space_.add("ground_velocity", -a_max, a_max);
+}
+
+void PendulumEnv::write_observation(const Observation& full, std::span<float> observation) const {
+  if (observation.size() != 4) {
+    throw std::invalid_argument("PendulumEnv: observation buffer has " +
+                                std::to_string(observation.size()) + " components, expected 4");
+  }
+  observation[0] = static_cast<float>(full.base_orientation.pitch);
+  observation[1] = static_cast<float>(full.wheel_odometry.position);
+  observation[2] = static_cast<float>(full.base_orientation.angular_velocity.y());
+  observation[3] = static_cast<float>(full.wheel_odometry.velocity);
+}
+
+void PendulumEnv::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
+  const Observation& full = servos_->reset_servos(seed);
+  commander_.reset(full);
+  reward_.reset();
+  initial_position_ = full.wheel_odometry.position;
+  termination_reason_ = BalanceTermination::Reason::kNone;
+  write_observation(full, observation);
+}
+
+StepResult PendulumEnv::step(std::span<const float> action, std::span<float> observation) {
+  float ground_velocity = 0.0f;
+  clamp_to_space(action_space_, action, std::span<float>(&ground_velocity, 1));
+  const Observation& full = servos_->step_servos(commander_.command(ground_velocity, 0.0));
+  write_observation(full, observation);
+  const double pitch = full.base_orientation.pitch;
+  const double pitch_rate = full.base_orientation.angular_velocity.y();
+  const double position = full.wheel_odometry.position;
+  const double velocity = full.wheel_odometry.velocity;
+  StepResult result;
+  result.reward = reward_(pitch, pitch_rate, velocity, ground_velocity);
+  termination_reason_ =
+      config_.termination.check(pitch, position - initial_position_, pitch_rate, velocity);
+  result.terminated = termination_reason_ != BalanceTermination::Reason::kNone;
+  return result;
+}
+
+}  // namespace upkie_rl

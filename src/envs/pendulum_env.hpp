@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// PendulumEnv: Upkie as a wheeled inverted pendulum, the seed's task (section 1).
+
+#include <memory>
+
+#include "envs/balance_reward.hpp"
+#include "envs/balance_termination.hpp"
+#include "envs/ground_velocity_commander.hpp"
+#include "envs/servos_env.hpp"
+
+namespace upkie_rl {
+
+/// Settings of PendulumEnv (the seed's defaults).
+struct PendulumConfig {
+  double max_ground_velocity = 1.0;  ///< a_max, the action bound [m/s].
+  double leg_gain_scale = 1.0;       ///< Gain scales of the held legs.
+  BalanceRewardWeights reward = BalanceRewardWeights::pendulum();
+  BalanceTermination termination;
+};
+
+/// Observation o = [θ, p, θ̇, ṗ] (pitch [rad], wheel odometry position [m], pitch rate
+/// [rad/s], ground velocity [m/s]), action a = [ṗ*] in [-a_max, a_max] [m/s] (clamped).
+/// Reward: seed eq. 9; terminations: seed section 1.5, checked after every step (p0 is the
+/// position at reset). Truncation at 300 steps is the TimeLimit the registry adds.
+class PendulumEnv final : public Env {
+ public:
+  PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig& config = {});
+
+  /// The condition that ended the last step's episode (kNone while running).
+  BalanceTermination::Reason termination_reason() const { return termination_reason_; }
+  ServosEnv& servos() { return *servos_; }
+  const PendulumConfig& config() const { return config_; }
+
+  const BoxSpace& observation_space() const override { return observation_space_; }
+  const BoxSpace& action_space() const override { return action_space_; }
+  void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
+  StepResult step(std::span<const float> action, std::span<float> observation) override;
+  const Observation* full_observation() const override { return servos_->full_observation(); }
+  double timestep() const override { return servos_->timestep(); }
+  int physics_steps_per_step() const override { return servos_->physics_steps_per_step(); }
+
+ private:
+  void write_observation(const Observation& full, std::span<float> observation) const;
+
+  std::unique_ptr<ServosEnv> servos_;
+  PendulumConfig config_;
+  BoxSpace observation_space_;
+  BoxSpace action_space_;
+  GroundVelocityCommander commander_;
+  BalanceReward reward_;
+  double initial_position_ = 0.0;
+  BalanceTermination::Reason termination_reason_ = BalanceTermination::Reason::kNone;
+};
+
+}  // namespace upkie_rl

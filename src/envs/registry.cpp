@@ -1,0 +1,258 @@
+#include "envs/registry.hpp"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string_view>
+
+#include "envs/gyropod_env.hpp"
+#include "envs/option_table.hpp"
+#include "envs/pendulum_env.hpp"
+#include "envs/servos_env.hpp"
+#include "envs/servos_task_env.hpp"
+#include "envs/time_limit.hpp"
+#include "model/inertia_source.hpp"
+#include "sim/mock_simulation.hpp"
+
+#if __has_include("sim/bullet_simulation.hpp")
+#include "sim/bullet_simulation.hpp"
+#define UPKIE_RL_HAS_BULLET 1
+#else
+#define UPKIE_RL_HAS_BULLET 0
+#endif
+
+namespace upkie_rl {
+
+namespace {
+
+enum class Backend { kBullet, kMock };
+enum class Kind { kServos, kPendulum, kGyropod, kServosTask };
+
+struct BackendName {
+  std::string_view name;
+  Backend backend;
+};
+struct KindName {
+  std::string_view name;
+  Kind kind;
+};
+
+// The Spine backend is not registered: no spine Simulation exists yet (see the report).
+constexpr std::array<BackendName, UPKIE_RL_HAS_BULLET ? 2 : 1> kBackends = {{
+#if UPKIE_RL_HAS_BULLET
+    {"Bullet", Backend::kBullet},
+#endif
+    {"Mock", Backend::kMock},
+}};
+constexpr std::array<KindName, 4> kKinds = {{{"Servos", Kind::kServos},
+                                             {"Pendulum", Kind::kPendulum},
+                                             {"Gyropod", Kind::kGyropod},
+                                             {"ServosTask", Kind::kServosTask}}};
+
+struct EnvId {
+  Backend backend;
+  Kind kind;
+};
+
+std::string registered_list() {
+  std::string list;
+  for (const std::string& id : registered_env_ids()) list += (list.empty() ? "" : ", ") + id;
+  return list;
+}
+
+EnvId parse_id(const std::string& id) {
+  constexpr std::string_view prefix = "Upkie-";
+  const std::string_view view(id);
+  const std::size_t dash = view.find('-', prefix.size());
+  if (view.substr(0, prefix.size()) == prefix && dash != std::string_view::npos) {
+    std::string_view backend = view.substr(prefix.size(), dash - prefix.size());
+    const std::string_view kind = view.substr(dash + 1);
+    if (backend == "PyBullet") backend = "Bullet";
+    for (const BackendName& b : kBackends) {
+      if (b.name != backend) continue;
+      for (const KindName& k : kKinds) {
+        if (k.name == kind) return EnvId{b.backend, k.kind};
+      }
+    }
+  }
+  throw std::invalid_argument("environment id \"" + id + "\" not found; registered ids: " +
+                              registered_list() + " (Upkie-PyBullet-* is an alias of Upkie-Bullet-*)");
+}
+
+/// Everything the options of an id set, with the defaults of each kind.
+struct EnvSettings {
+  double frequency = 200.0;  // [Hz]
+  int nb_substeps = 0;       // 0: round(1000 / frequency), physics at about 1 kHz.
+  InertiaSource inertia_source = InertiaSource::kBulletBoxRule;
+  InitRandomization init_rand;
+  int max_episode_steps = 0;  // 0: no time limit.
+  PendulumConfig pendulum;
+  GyropodConfig gyropod;
+  ServosTaskConfig task;
+};
+
+constexpr double kHuge = 1e9;
+
+void add_balance_options(OptionTable& table, BalanceRewardWeights& reward,
+                         BalanceTermination& termination) {
+  table.add_double("fall_pitch", &termination.fall_pitch, 0.0, kHuge,
+                   "terminate when |pitch| exceeds it [rad]");
+  table.add_double("max_position_drift", &termination.max_position_drift, 0.0, kHuge,
+                   "terminate when |p - p0| exceeds it [m]");
+  table.add_double("max_angular_velocity", &termination.max_angular_velocity, 0.0, kHuge,
+                   "terminate when |pitch rate| exceeds it [rad/s]");
+  table.add_double("max_linear_velocity", &termination.max_linear_velocity, 0.0, kHuge,
+                   "terminate when |ground velocity| exceeds it [m/s]");
+  table.add_double("w_theta", &reward.w_theta, -kHuge, kHuge, "reward weight of pitch^2");
+  table.add_double("w_theta_dot", &reward.w_theta_dot, -kHuge, kHuge,
+                   "reward weight of pitch rate^2");
+  table.add_double("w_p_dot", &reward.w_p_dot, -kHuge, kHuge,
+                   "reward weight of ground velocity^2");
+  table.add_double("w_a", &reward.w_a, -kHuge, kHuge, "reward weight of action^2");
+  table.add_double("w_s", &reward.w_s, -kHuge, kHuge, "reward weight of (action change)^2");
+  table.add_double("w_accel", &reward.w_accel, -kHuge, kHuge,
+                   "reward weight of (second action difference)^2");
+}
+
+/// The options of `kind`, bound to `settings`, whose defaults it sets first.
+OptionTable option_table(Kind kind, EnvSettings& settings) {
+  const bool timed = kind == Kind::kPendulum || kind == Kind::kServosTask;
+  settings.max_episode_steps = timed ? 300 : 0;
+  OptionTable table;
+  table.add_double("frequency", &settings.frequency, 1.0, 10000.0, "agent rate [Hz]");
+  table.add_int("nb_substeps", &settings.nb_substeps, 0, 10000,
+                "physics steps per agent step, 0 for round(1000/frequency)");
+  table.add_choice(
+      "inertia", {"box", "urdf"},
+      [&settings](std::size_t choice) {
+        settings.inertia_source = choice == 0 ? InertiaSource::kBulletBoxRule : InertiaSource::kUrdf;
+      },
+      "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
+  table.add_int("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
+                "truncate episodes after this many steps, 0 for never");
+  InitRandomization& init = settings.init_rand;
+  table.add_double("init_rand_roll", &init.roll, 0.0, 3.2, "initial roll drawn in +-it [rad]");
+  table.add_double("init_rand_pitch", &init.pitch, 0.0, 3.2, "initial pitch drawn in +-it [rad]");
+  table.add_double("init_rand_x", &init.x, 0.0, kHuge, "initial x drawn in +-it [m]");
+  table.add_double("init_rand_z", &init.z, 0.0, kHuge, "initial height raised by [0, it] [m]");
+  table.add_double("init_rand_omega_x", &init.omega_x, 0.0, kHuge,
+                   "initial roll rate drawn in +-it [rad/s]");
+  table.add_double("init_rand_omega_y", &init.omega_y, 0.0, kHuge,
+                   "initial pitch rate drawn in +-it [rad/s]");
+  table.add_double("init_rand_v_x", &init.v_x, 0.0, kHuge, "initial x velocity in +-it [m/s]");
+  table.add_double("init_rand_v_y", &init.v_y, 0.0, kHuge, "initial y velocity in +-it [m/s]");
+  table.add_double("init_rand_v_z", &init.v_z, 0.0, kHuge, "initial z velocity in +-it [m/s]");
+  switch (kind) {
+    case Kind::kServos:
+      break;
+    case Kind::kPendulum: {
+      PendulumConfig& pendulum = settings.pendulum;
+      table.add_double("max_ground_velocity", &pendulum.max_ground_velocity, 1e-6, kHuge,
+                       "action bound a_max [m/s]");
+      table.add_double("leg_gain_scale", &pendulum.leg_gain_scale, 0.0, ServosEnv::kMaxGainScale,
+                       "gain scales of the held legs");
+      add_balance_options(table, pendulum.reward, pendulum.termination);
+      break;
+    }
+    case Kind::kGyropod: {
+      GyropodConfig& gyropod = settings.gyropod;
+      table.add_double("max_ground_velocity", &gyropod.max_ground_velocity, 1e-6, kHuge,
+                       "ground velocity bound [m/s]");
+      table.add_double("max_yaw_velocity", &gyropod.max_yaw_velocity, 1e-6, kHuge,
+                       "yaw velocity bound [rad/s]");
+      table.add_double("fall_pitch", &gyropod.fall_pitch, 0.0, kHuge,
+                       "terminate when |pitch| exceeds it [rad]");
+      table.add_double("leg_gain_scale", &gyropod.leg_gain_scale, 0.0, ServosEnv::kMaxGainScale,
+                       "gain scales of the held legs");
+      break;
+    }
+    case Kind::kServosTask:
+      add_balance_options(table, settings.task.reward, settings.task.termination);
+      break;
+  }
+  return table;
+}
+
+std::unique_ptr<Simulation> make_simulation(Backend backend, const EnvSettings& settings,
+                                            const std::shared_ptr<const RobotModel>& model,
+                                            int& physics_steps_per_step) {
+  const int nb_substeps = settings.nb_substeps > 0
+                              ? settings.nb_substeps
+                              : std::max(1, static_cast<int>(std::lround(1000.0 / settings.frequency)));
+  switch (backend) {
+#if UPKIE_RL_HAS_BULLET
+    case Backend::kBullet: {
+      BulletConfig config;
+      config.nb_substeps = nb_substeps;
+      config.physics_timestep = 1.0 / (settings.frequency * nb_substeps);
+      config.inertia_source = settings.inertia_source;
+      physics_steps_per_step = nb_substeps;
+      return std::make_unique<BulletSimulation>(model, config);
+    }
+#endif
+    case Backend::kMock:
+    default:
+      physics_steps_per_step = 0;
+      return std::make_unique<MockSimulation>(model, 1.0 / settings.frequency);
+  }
+}
+
+std::unique_ptr<Env> build(const EnvId& id, const EnvSettings& settings) {
+  std::shared_ptr<const RobotModel> model = RobotModel::default_model();
+  int physics_steps_per_step = 0;
+  std::unique_ptr<Simulation> simulation =
+      make_simulation(id.backend, settings, model, physics_steps_per_step);
+  auto servos = std::make_unique<ServosEnv>(std::move(simulation), std::move(model),
+                                            settings.init_rand, physics_steps_per_step);
+  std::unique_ptr<Env> env;
+  switch (id.kind) {
+    case Kind::kServos:
+      env = std::move(servos);
+      break;
+    case Kind::kPendulum:
+      env = std::make_unique<PendulumEnv>(std::move(servos), settings.pendulum);
+      break;
+    case Kind::kGyropod:
+      env = std::make_unique<GyropodEnv>(std::move(servos), settings.gyropod);
+      break;
+    case Kind::kServosTask:
+      env = std::make_unique<ServosTaskEnv>(std::move(servos), settings.task);
+      break;
+  }
+  if (settings.max_episode_steps > 0) {
+    env = std::make_unique<TimeLimit>(std::move(env), settings.max_episode_steps);
+  }
+  return env;
+}
+
+}  // namespace
+
+std::vector<std::string> registered_env_ids() {
+  std::vector<std::string> ids;
+  for (const BackendName& backend : kBackends) {
+    for (const KindName& kind : kKinds) {
+      ids.push_back("Upkie-" + std::string(backend.name) + "-" + std::string(kind.name));
+    }
+  }
+  return ids;
+}
+
+EnvFactory make_env_factory(const std::string& id, const EnvOptions& options) {
+  const EnvId parsed = parse_id(id);
+  EnvSettings settings;
+  option_table(parsed.kind, settings).apply(options, id);
+  // Fail here, not in the factory, on the model or a settings error.
+  RobotModel::default_model();
+  return [parsed, settings]() { return build(parsed, settings); };
+}
+
+std::unique_ptr<Env> make_env(const std::string& id, const EnvOptions& options) {
+  return make_env_factory(id, options)();
+}
+
+std::vector<std::string> env_option_help(const std::string& id) {
+  EnvSettings settings;
+  return option_table(parse_id(id).kind, settings).describe();
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// The registry of environment ids: `Upkie-{Bullet,Mock,Spine}-{Servos,Pendulum,Gyropod,
+/// ServosTask}`, with `Upkie-PyBullet-*` accepted as an alias of `Upkie-Bullet-*`.
+///
+/// Kinds: Servos (ServosEnv), Pendulum (PendulumEnv + TimeLimit 300), Gyropod (GyropodEnv),
+/// ServosTask (the seed's full-servos task chain: ServosTaskEnv + TimeLimit 300).
+/// Options (key=value, see env_option_help()) are parsed into typed settings once, when the
+/// environment or factory is made.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "envs/env.hpp"
+#include "envs/env_options.hpp"
+
+namespace upkie_rl {
+
+/// Makes one environment.
+/// @throws std::invalid_argument naming an unknown id (listing the registered ones), an
+///         unknown option (listing the valid ones) or a badly typed or out-of-range value.
+std::unique_ptr<Env> make_env(const std::string& id, const EnvOptions& options = {});
+
+/// Canonical ids that make_env accepts (aliases not listed).
+std::vector<std::string> registered_env_ids();
+
+/// Makes environments of one id; the options are checked and parsed once, here.
+using EnvFactory = std::function<std::unique_ptr<Env>()>;
+EnvFactory make_env_factory(const std::string& id, const EnvOptions& options = {});
+
+/// "name: help (default value)" for each option `id` accepts.
+/// @throws std::invalid_argument on an unknown id.
+std::vector<std::string> env_option_help(const std::string& id);
+
+}  // namespace upkie_rl

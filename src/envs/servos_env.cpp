@@ -1,0 +1,149 @@
+#include "envs/servos_env.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace upkie_rl {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr std::size_t kActionKeys = kServoActionKeys.size();
+constexpr std::size_t kObservationKeys = kServoObservationKeys.size();
+
+// Observation bounds of servo temperature [deg C] and voltage [V].
+constexpr float kMaxTemperature = 100.0f;
+constexpr float kMaxVoltage = 64.0f;
+
+}  // namespace
+
+ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
+                     std::shared_ptr<const RobotModel> model,
+                     const InitRandomization& init_randomization, int physics_steps_per_step)
+    : simulation_(std::move(simulation)),
+      model_(std::move(model)),
+      init_randomization_(init_randomization),
+      physics_steps_per_step_(physics_steps_per_step) {
+  if (!simulation_) throw std::invalid_argument("ServosEnv: the simulation is null");
+  if (!model_) throw std::invalid_argument("ServosEnv: the robot model is null");
+  const float gain = static_cast<float>(kMaxGainScale);
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const JointLimits& limits = model_->servo_limits(i);
+    const float lower = limits.has_position_limits() ? static_cast<float>(limits.lower) : -kInf;
+    const float upper = limits.has_position_limits() ? static_cast<float>(limits.upper) : kInf;
+    const auto velocity = static_cast<float>(limits.velocity);
+    const auto effort = static_cast<float>(limits.effort);
+    BoxSpace action;
+    action.add(kServoActionKeys[0], lower, upper);
+    action.add(kServoActionKeys[1], -velocity, velocity);
+    action.add(kServoActionKeys[2], -effort, effort);
+    action.add(kServoActionKeys[3], 0.0f, gain);
+    action.add(kServoActionKeys[4], 0.0f, gain);
+    action.add(kServoActionKeys[5], 0.0f, effort);
+    BoxSpace observation;
+    observation.add(kServoObservationKeys[0], lower, upper);
+    observation.add(kServoObservationKeys[1], -velocity, velocity);
+    observation.add(kServoObservationKeys[2], -effort, effort);
+    observation.add(kServoObservationKeys[3], 0.0f, kMaxTemperature);
+    observation.add(kServoObservationKeys[4], 0.0f, kMaxVoltage);
+    const std::string joint(kServoNames[i]);
+    action_dict_space_.entries.emplace_back(joint, std::move(action));
+    observation_dict_space_.entries.emplace_back(joint, std::move(observation));
+    position_indices_[i] = i * kActionKeys;
+  }
+  action_space_ = action_dict_space_.flatten();
+  observation_space_ = observation_dict_space_.flatten();
+}
+
+const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
+  if (seed) generator_.seed(*seed);
+  return simulation_->reset(init_randomization_.sample(generator_));
+}
+
+void ServosEnv::clamp_servo_action(const ServoAction& action, ServoAction& clamped) const {
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const JointLimits& limits = model_->servo_limits(i);
+    const ServoCommand& in = action[i];
+    ServoCommand& out = clamped[i];
+    if (std::isinf(in.position)) {
+      throw InvalidCommandError(std::string(kServoNames[i]) +
+                                ".position is infinite (NaN disables the position loop)");
+    }
+    // std::clamp keeps NaN, which is how a NaN position (and a NaN elsewhere, for the
+    // backend to reject with the joint's name) passes through.
+    out.position = limits.has_position_limits()
+                       ? std::clamp(in.position, limits.lower, limits.upper)
+                       : in.position;
+    out.velocity = std::clamp(in.velocity, -limits.velocity, limits.velocity);
+    out.feedforward_torque = std::clamp(in.feedforward_torque, -limits.effort, limits.effort);
+    out.kp_scale = std::clamp(in.kp_scale, 0.0, kMaxGainScale);
+    out.kd_scale = std::clamp(in.kd_scale, 0.0, kMaxGainScale);
+    out.maximum_torque = std::clamp(in.maximum_torque, 0.0, limits.effort);
+  }
+}
+
+const Observation& ServosEnv::step_servos(const ServoAction& action) {
+  clamp_servo_action(action, clamped_buffer_);
+  return simulation_->step(clamped_buffer_);
+}
+
+ServoAction ServosEnv::neutral_servo_action() const {
+  ServoAction action{};
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    action[i].position = std::numeric_limits<double>::quiet_NaN();
+    action[i].velocity = 0.0;
+    action[i].feedforward_torque = 0.0;
+    action[i].kp_scale = 1.0;
+    action[i].kd_scale = 1.0;
+    action[i].maximum_torque = model_->servo_limits(i).effort;
+  }
+  return action;
+}
+
+void ServosEnv::neutral_action(std::span<float> action) const {
+  const ServoAction neutral = neutral_servo_action();
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    float* row = action.data() + i * kActionKeys;
+    row[0] = static_cast<float>(neutral[i].position);
+    row[1] = static_cast<float>(neutral[i].velocity);
+    row[2] = static_cast<float>(neutral[i].feedforward_torque);
+    row[3] = static_cast<float>(neutral[i].kp_scale);
+    row[4] = static_cast<float>(neutral[i].kd_scale);
+    row[5] = static_cast<float>(neutral[i].maximum_torque);
+  }
+}
+
+void ServosEnv::write_observation(const Observation& full, std::span<float> observation) const {
+  if (observation.size() != observation_space_.size()) {
+    throw std::invalid_argument("ServosEnv: observation buffer has " +
+                                std::to_string(observation.size()) + " components, expected " +
+                                std::to_string(observation_space_.size()));
+  }
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const ServoObservation& servo = full.servo[i];
+    float* row = observation.data() + i * kObservationKeys;
+    row[0] = static_cast<float>(servo.position);
+    row[1] = static_cast<float>(servo.velocity);
+    row[2] = static_cast<float>(servo.torque);
+    row[3] = static_cast<float>(servo.temperature);
+    row[4] = static_cast<float>(servo.voltage);
+  }
+}
+
+void ServosEnv::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
+  write_observation(reset_servos(seed), observation);
+}
+
+StepResult ServosEnv::step(std::span<const float> action, std::span<float> observation) {
+  clamp_to_space(action_space_, action, flat_buffer_, position_indices_);
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const float* row = flat_buffer_.data() + i * kActionKeys;
+    action_buffer_[i] = ServoCommand{row[0], row[1], row[2], row[3], row[4], row[5]};
+  }
+  write_observation(step_servos(action_buffer_), observation);
+  return StepResult{};
+}
+
+}  // namespace upkie_rl

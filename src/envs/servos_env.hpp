@@ -1,0 +1,96 @@
+#pragma once
+/// @file
+/// ServosEnv: the base environment of Upkie, commanding the six servos directly.
+
+#include <array>
+#include <memory>
+#include <random>
+
+#include "envs/dict_space.hpp"
+#include "envs/env.hpp"
+#include "envs/init_randomization.hpp"
+#include "model/robot_model.hpp"
+#include "sim/simulation.hpp"
+
+namespace upkie_rl {
+
+/// Keys of one servo's action, in the flat order.
+inline constexpr std::array<const char*, 6> kServoActionKeys = {
+    "position", "velocity", "feedforward_torque", "kp_scale", "kd_scale", "maximum_torque"};
+/// Keys of one servo's observation, in the flat order.
+inline constexpr std::array<const char*, 5> kServoObservationKeys = {
+    "position", "velocity", "torque", "temperature", "voltage"};
+
+/// The servos environment (environments.md section 2): typed ServoAction in, Observation
+/// out, reward 0, never terminates.
+///
+/// Every command value is clamped to its bounds before it reaches the backend: position to
+/// the joint limits (a NaN position passes: no position loop), velocity to the velocity
+/// limit, feedforward torque to the effort, kp_scale and kd_scale to [0, kMaxGainScale],
+/// maximum_torque to [0, effort].
+///
+/// As a flat Env: the action is 6 joints x 6 keys (kServoActionKeys), the observation 6
+/// joints x 5 keys (kServoObservationKeys), components named like `left_hip.position`;
+/// NaN is legal in the position components only.
+class ServosEnv final : public Env {
+ public:
+  /// Upper bound of kp_scale and kd_scale.
+  static constexpr double kMaxGainScale = 5.0;
+
+  /// @param simulation Backend, owned.
+  /// @param model Robot description (joint limits).
+  /// @param init_randomization Ranges of the initial state drawn at each reset.
+  /// @param physics_steps_per_step Physics steps the backend runs per step (reporting only).
+  ServosEnv(std::unique_ptr<Simulation> simulation, std::shared_ptr<const RobotModel> model,
+            const InitRandomization& init_randomization = {}, int physics_steps_per_step = 0);
+
+  /// Starts an episode; a seed re-seeds the generator the initial state is drawn from.
+  const Observation& reset_servos(std::optional<std::uint64_t> seed);
+
+  /// Clamps `action` to the bounds and holds it for one step.
+  /// @throws InvalidCommandError on a NaN velocity, torque or gain, or an infinite position.
+  const Observation& step_servos(const ServoAction& action);
+
+  /// The clamped version of `action` (what step_servos sends).
+  void clamp_servo_action(const ServoAction& action, ServoAction& clamped) const;
+
+  /// Position NaN, velocity 0, feedforward 0, gain scales 1, maximum torque = effort.
+  ServoAction neutral_servo_action() const;
+
+  /// The action space as one Box per joint (keys kServoActionKeys).
+  const DictSpace& action_dict_space() const { return action_dict_space_; }
+  /// The observation space as one Box per joint (keys kServoObservationKeys).
+  const DictSpace& observation_dict_space() const { return observation_dict_space_; }
+
+  const RobotModel& model() const { return *model_; }
+  const std::shared_ptr<const RobotModel>& model_ptr() const { return model_; }
+
+  // Env
+  const BoxSpace& observation_space() const override { return observation_space_; }
+  const BoxSpace& action_space() const override { return action_space_; }
+  void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
+  StepResult step(std::span<const float> action, std::span<float> observation) override;
+  const Observation* full_observation() const override { return &simulation_->observation(); }
+  void neutral_action(std::span<float> action) const override;
+  double timestep() const override { return simulation_->agent_timestep(); }
+  int physics_steps_per_step() const override { return physics_steps_per_step_; }
+
+ private:
+  void write_observation(const Observation& full, std::span<float> observation) const;
+
+  std::unique_ptr<Simulation> simulation_;
+  std::shared_ptr<const RobotModel> model_;
+  InitRandomization init_randomization_;
+  int physics_steps_per_step_;
+  std::mt19937_64 generator_{0};
+  DictSpace action_dict_space_;
+  DictSpace observation_dict_space_;
+  BoxSpace action_space_;
+  BoxSpace observation_space_;
+  std::array<std::size_t, kNumServos> position_indices_{};  // Where NaN is legal.
+  ServoAction action_buffer_{};
+  ServoAction clamped_buffer_{};
+  std::array<float, kNumServos * 6> flat_buffer_{};
+};
+
+}  // namespace upkie_rl

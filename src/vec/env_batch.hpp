@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// EnvBatch: n environments and their VectorStep buffers, stepped by index range. The one
+/// place the auto-reset semantics live; SyncVectorEnv steps the whole range, the thread pool
+/// gives each worker a fixed part, so both give the same results.
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "envs/env.hpp"
+#include "vec/vector_env.hpp"
+
+namespace upkie_rl {
+
+class EnvBatch {
+ public:
+  /// @throws std::invalid_argument on an empty list, a null env, or envs whose spaces differ
+  ///         in size.
+  explicit EnvBatch(std::vector<std::unique_ptr<Env>> envs);
+
+  std::size_t size() const { return envs_.size(); }
+  std::size_t observation_size() const { return observation_size_; }
+  std::size_t action_size() const { return action_size_; }
+  const BoxSpace& observation_space() const { return envs_.front()->observation_space(); }
+  const BoxSpace& action_space() const { return envs_.front()->action_space(); }
+  Env& env(std::size_t i) { return *envs_[i]; }
+  const Env& env(std::size_t i) const { return *envs_[i]; }
+
+  /// Resets envs [begin, end), env i with seed + i, into result().observations.
+  void reset(std::size_t begin, std::size_t end, std::uint64_t seed);
+  /// Records that every env was reset (step() is refused before), once all ranges are done.
+  void mark_reset() { was_reset_ = true; }
+
+  /// Steps envs [begin, end) with their rows of `actions`; an env whose episode ends keeps
+  /// its last observation in final_observations, its raw return and length in
+  /// episode_returns / episode_lengths, and is reset (unseeded: its generator continues).
+  void step(std::size_t begin, std::size_t end, std::span<const float> actions);
+
+  /// Throws unless `actions` has size() x action_size() components and reset() was called.
+  void check_step(std::span<const float> actions) const;
+
+  const VectorStep& result() const { return result_; }
+
+ private:
+  std::vector<std::unique_ptr<Env>> envs_;
+  std::size_t observation_size_;
+  std::size_t action_size_;
+  VectorStep result_;
+  std::vector<double> running_returns_;
+  std::vector<std::int64_t> running_lengths_;
+  bool was_reset_ = false;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,97 @@
+#include "vec/running_mean_std.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace upkie_rl {
+
+RunningMeanStd::RunningMeanStd(std::size_t size, double initial_count)
+    : mean_(size, 0.0),
+      var_(size, 1.0),
+      count_(initial_count),
+      batch_mean_(size, 0.0),
+      batch_var_(size, 0.0) {
+  if (size == 0) throw std::invalid_argument("RunningMeanStd: size must be positive");
+}
+
+template <typename T>
+void RunningMeanStd::update_rows(std::span<const T> batch) {
+  const std::size_t n = size();
+  if (batch.empty() || batch.size() % n != 0) {
+    throw std::invalid_argument("RunningMeanStd: batch of " + std::to_string(batch.size()) +
+                                " values is not a whole number of rows of " + std::to_string(n));
+  }
+  const std::size_t rows = batch.size() / n;
+  std::fill(batch_mean_.begin(), batch_mean_.end(), 0.0);
+  std::fill(batch_var_.begin(), batch_var_.end(), 0.0);
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t j = 0; j < n; ++j) batch_mean_[j] += batch[r * n + j];
+  }
+  for (std::size_t j = 0; j < n; ++j) batch_mean_[j] /= static_cast<double>(rows);
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const double d = batch[r * n + j] - batch_mean_[j];
+      batch_var_[j] += d * d;
+    }
+  }
+  for (std::size_t j = 0; j < n; ++j) batch_var_[j] /= static_cast<double>(rows);
+  update_from_moments(batch_mean_, batch_var_, static_cast<double>(rows));
+}
+
+void RunningMeanStd::update(std::span<const float> batch) { update_rows(batch); }
+void RunningMeanStd::update(std::span<const double> batch) { update_rows(batch); }
+
+void RunningMeanStd::update_from_moments(std::span<const double> batch_mean,
+                                         std::span<const double> batch_var, double batch_count) {
+  if (batch_mean.size() != size() || batch_var.size() != size()) {
+    throw std::invalid_argument("RunningMeanStd: moments of the wrong size");
+  }
+  const double total = count_ + batch_count;
+  for (std::size_t j = 0; j < size(); ++j) {
+    const double delta = batch_mean[j] - mean_[j];
+    const double m2 = var_[j] * count_ + batch_var[j] * batch_count +
+                      delta * delta * count_ * batch_count / total;
+    mean_[j] += delta * batch_count / total;
+    var_[j] = m2 / total;
+  }
+  count_ = total;
+}
+
+nlohmann::json RunningMeanStd::to_json() const {
+  return {{"mean", mean_}, {"var", var_}, {"count", count_}};
+}
+
+void RunningMeanStd::from_json(const nlohmann::json& json, const std::string& name) {
+  if (!json.is_object()) throw std::invalid_argument(name + " must be an object");
+  auto read_vector = [&](const char* key) {
+    if (!json.contains(key)) throw std::invalid_argument("missing key " + name + "." + key);
+    const nlohmann::json& value = json.at(key);
+    if (!value.is_array() || value.size() != size()) {
+      throw std::invalid_argument(name + "." + key + " must be an array of " +
+                                  std::to_string(size()) + " numbers");
+    }
+    std::vector<double> out;
+    out.reserve(size());
+    for (const auto& item : value) {
+      if (!item.is_number()) throw std::invalid_argument(name + "." + key + " holds a non-number");
+      out.push_back(item.get<double>());
+    }
+    return out;
+  };
+  std::vector<double> mean = read_vector("mean");
+  std::vector<double> var = read_vector("var");
+  if (!json.contains("count")) throw std::invalid_argument("missing key " + name + ".count");
+  if (!json.at("count").is_number() || !(json.at("count").get<double>() > 0.0)) {
+    throw std::invalid_argument(name + ".count must be a positive number");
+  }
+  for (double v : var) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      throw std::invalid_argument(name + ".var must hold finite non-negative numbers");
+    }
+  }
+  mean_ = std::move(mean);
+  var_ = std::move(var);
+  count_ = json.at("count").get<double>();
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// SyncVectorEnv: n environments stepped one after the other on the calling thread
+/// (SB3's DummyVecEnv).
+
+#include "vec/env_batch.hpp"
+#include "vec/vector_env.hpp"
+
+namespace upkie_rl {
+
+class SyncVectorEnv final : public VectorEnv {
+ public:
+  explicit SyncVectorEnv(std::vector<std::unique_ptr<Env>> envs) : batch_(std::move(envs)) {}
+
+  std::size_t num_envs() const override { return batch_.size(); }
+  const BoxSpace& observation_space() const override { return batch_.observation_space(); }
+  const BoxSpace& action_space() const override { return batch_.action_space(); }
+  std::span<const float> reset(std::uint64_t seed) override {
+    batch_.reset(0, batch_.size(), seed);
+    batch_.mark_reset();
+    return batch_.result().observations;
+  }
+  const VectorStep& step(std::span<const float> actions) override {
+    batch_.check_step(actions);
+    batch_.step(0, batch_.size(), actions);
+    return batch_.result();
+  }
+
+  /// Environment i (e.g. for its full observation).
+  const Env& env(std::size_t i) const { return batch_.env(i); }
+
+ private:
+  EnvBatch batch_;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,101 @@
+#include "vec/thread_pool_vector_env.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace upkie_rl {
+
+namespace {
+
+// Spins this many times before sleeping on a futex: a step takes tens of microseconds, so a
+// short spin saves the wake-up latency without burning a shared core for long.
+constexpr int kSpinCount = 4000;
+
+template <typename T, typename Predicate>
+void spin_then_wait(const std::atomic<T>& value, Predicate done) {
+  for (int i = 0; i < kSpinCount; ++i) {
+    if (done(value.load(std::memory_order_acquire))) return;
+  }
+  for (T seen = value.load(std::memory_order_acquire); !done(seen);
+       seen = value.load(std::memory_order_acquire)) {
+    value.wait(seen, std::memory_order_acquire);
+  }
+}
+
+}  // namespace
+
+ThreadPoolVectorEnv::ThreadPoolVectorEnv(std::vector<std::unique_ptr<Env>> envs,
+                                         std::size_t threads)
+    : batch_(std::move(envs)), num_threads_(threads) {
+  if (threads == 0 || threads > batch_.size()) {
+    throw std::invalid_argument("thread pool vector env: threads must be in [1, " +
+                                std::to_string(batch_.size()) + "], got " +
+                                std::to_string(threads));
+  }
+  errors_.resize(num_threads_);
+  threads_.reserve(num_threads_ - 1);
+  for (std::size_t worker = 1; worker < num_threads_; ++worker) {
+    threads_.emplace_back([this, worker] { worker_loop(worker); });
+  }
+}
+
+ThreadPoolVectorEnv::~ThreadPoolVectorEnv() {
+  task_ = Task::kStop;
+  generation_.fetch_add(1, std::memory_order_acq_rel);
+  generation_.notify_all();
+  for (std::thread& thread : threads_) thread.join();
+}
+
+void ThreadPoolVectorEnv::work(std::size_t worker) {
+  const std::size_t begin = block_begin(worker);
+  const std::size_t end = block_begin(worker + 1);
+  try {
+    if (task_ == Task::kReset) {
+      batch_.reset(begin, end, seed_);
+    } else {
+      batch_.step(begin, end, actions_);
+    }
+  } catch (...) {
+    errors_[worker] = std::current_exception();
+  }
+}
+
+void ThreadPoolVectorEnv::worker_loop(std::size_t worker) {
+  std::uint64_t seen = 0;
+  while (true) {
+    spin_then_wait(generation_, [seen](std::uint64_t g) { return g != seen; });
+    seen = generation_.load(std::memory_order_acquire);
+    if (task_ == Task::kStop) return;
+    work(worker);
+    if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
+  }
+}
+
+void ThreadPoolVectorEnv::run(Task task) {
+  task_ = task;
+  for (auto& error : errors_) error = nullptr;
+  pending_.store(num_threads_ - 1, std::memory_order_release);
+  generation_.fetch_add(1, std::memory_order_acq_rel);
+  generation_.notify_all();
+  work(0);
+  spin_then_wait(pending_, [](std::size_t p) { return p == 0; });
+  for (const auto& error : errors_) {
+    if (error) std::rethrow_exception(error);
+  }
+}
+
+std::span<const float> ThreadPoolVectorEnv::reset(std::uint64_t seed) {
+  seed_ = seed;
+  run(Task::kReset);
+  batch_.mark_reset();
+  return batch_.result().observations;
+}
+
+const VectorStep& ThreadPoolVectorEnv::step(std::span<const float> actions) {
+  batch_.check_step(actions);
+  actions_ = actions;
+  run(Task::kStep);
+  return batch_.result();
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,152 @@
+#include "vec/vec_normalize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace upkie_rl {
+
+namespace {
+
+void check_config(const NormalizeConfig& config) {
+  if (!(config.clip_observations > 0.0) || !(config.clip_rewards > 0.0) ||
+      !(config.gamma > 0.0 && config.gamma <= 1.0) || !(config.epsilon > 0.0)) {
+    throw std::invalid_argument(
+        "VecNormalize: clip_observations, clip_rewards and epsilon must be positive and gamma in "
+        "(0, 1]");
+  }
+}
+
+}  // namespace
+
+VecNormalize::VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfig& config)
+    : venv_(venv ? std::move(venv) : throw std::invalid_argument("VecNormalize: null env")),
+      config_(config),
+      observation_size_(venv_->observation_space().size()),
+      observation_rms_(observation_size_),
+      return_rms_(1) {
+  check_config(config_);
+  const std::size_t n = venv_->num_envs();
+  returns_.assign(n, 0.0);
+  raw_observations_.assign(n * observation_size_, 0.0f);
+  raw_rewards_.assign(n, 0.0f);
+  observations_.assign(n * observation_size_, 0.0f);
+  step_.observations.assign(n * observation_size_, 0.0f);
+  step_.final_observations.assign(n * observation_size_, 0.0f);
+}
+
+void VecNormalize::normalize_observations(std::span<const float> raw,
+                                          std::span<float> normalized) const {
+  if (raw.size() != normalized.size() || raw.size() % observation_size_ != 0) {
+    throw std::invalid_argument("VecNormalize: observations of size " + std::to_string(raw.size()) +
+                                " are not rows of " + std::to_string(observation_size_));
+  }
+  if (!config_.observations) {
+    std::copy(raw.begin(), raw.end(), normalized.begin());
+    return;
+  }
+  const std::vector<double>& mean = observation_rms_.mean();
+  const std::vector<double>& var = observation_rms_.var();
+  const double clip = config_.clip_observations;
+  for (std::size_t k = 0; k < raw.size(); ++k) {
+    const std::size_t j = k % observation_size_;
+    const double value = (raw[k] - mean[j]) / std::sqrt(var[j] + config_.epsilon);
+    normalized[k] = static_cast<float>(std::clamp(value, -clip, clip));
+  }
+}
+
+std::span<const float> VecNormalize::reset(std::uint64_t seed) {
+  const std::span<const float> raw = venv_->reset(seed);
+  std::copy(raw.begin(), raw.end(), raw_observations_.begin());
+  std::fill(returns_.begin(), returns_.end(), 0.0);
+  if (training_ && config_.observations) observation_rms_.update(raw_observations_);
+  normalize_observations(raw_observations_, observations_);
+  return observations_;
+}
+
+const VectorStep& VecNormalize::step(std::span<const float> actions) {
+  const VectorStep& inner = venv_->step(actions);
+  const std::size_t n = num_envs();
+  std::copy(inner.observations.begin(), inner.observations.end(), raw_observations_.begin());
+  std::copy(inner.rewards.begin(), inner.rewards.end(), raw_rewards_.begin());
+  step_.terminated = inner.terminated;
+  step_.truncated = inner.truncated;
+  step_.episode_returns = inner.episode_returns;
+  step_.episode_lengths = inner.episode_lengths;
+  step_.rewards = inner.rewards;
+
+  if (training_ && config_.observations) observation_rms_.update(raw_observations_);
+  normalize_observations(raw_observations_, step_.observations);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!inner.terminated[i] && !inner.truncated[i]) continue;
+    const std::size_t offset = i * observation_size_;
+    normalize_observations(
+        std::span<const float>(inner.final_observations).subspan(offset, observation_size_),
+        std::span<float>(step_.final_observations).subspan(offset, observation_size_));
+  }
+
+  if (training_) {
+    for (std::size_t i = 0; i < n; ++i) returns_[i] = returns_[i] * config_.gamma + raw_rewards_[i];
+    return_rms_.update(returns_);
+    if (config_.rewards) {
+      const double scale = std::sqrt(return_rms_.var()[0] + config_.epsilon);
+      const double clip = config_.clip_rewards;
+      for (std::size_t i = 0; i < n; ++i) {
+        step_.rewards[i] = static_cast<float>(std::clamp(raw_rewards_[i] / scale, -clip, clip));
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (inner.terminated[i] || inner.truncated[i]) returns_[i] = 0.0;
+  }
+  return step_;
+}
+
+nlohmann::json VecNormalize::state() const {
+  return {{"observations", observation_rms_.to_json()},
+          {"returns", return_rms_.to_json()},
+          {"config",
+           {{"observations", config_.observations},
+            {"rewards", config_.rewards},
+            {"clip_observations", config_.clip_observations},
+            {"clip_rewards", config_.clip_rewards},
+            {"gamma", config_.gamma},
+            {"epsilon", config_.epsilon}}}};
+}
+
+void VecNormalize::load_state(const nlohmann::json& state) {
+  if (!state.is_object()) throw std::invalid_argument("normalisation state must be an object");
+  for (const char* key : {"observations", "returns", "config"}) {
+    if (!state.contains(key)) throw std::invalid_argument(std::string("missing key ") + key);
+  }
+  RunningMeanStd observations(observation_size_);
+  observations.from_json(state.at("observations"), "observations");
+  RunningMeanStd returns(1);
+  returns.from_json(state.at("returns"), "returns");
+  const nlohmann::json& json = state.at("config");
+  NormalizeConfig config;
+  auto read_bool = [&](const char* key, bool& out) {
+    if (!json.contains(key) || !json.at(key).is_boolean()) {
+      throw std::invalid_argument(std::string("config.") + key + " must be a boolean");
+    }
+    out = json.at(key).get<bool>();
+  };
+  auto read_number = [&](const char* key, double& out) {
+    if (!json.contains(key) || !json.at(key).is_number()) {
+      throw std::invalid_argument(std::string("config.") + key + " must be a number");
+    }
+    out = json.at(key).get<double>();
+  };
+  read_bool("observations", config.observations);
+  read_bool("rewards", config.rewards);
+  read_number("clip_observations", config.clip_observations);
+  read_number("clip_rewards", config.clip_rewards);
+  read_number("gamma", config.gamma);
+  read_number("epsilon", config.epsilon);
+  check_config(config);
+  observation_rms_ = std::move(observations);
+  return_rms_ = std::move(returns);
+  config_ = config;
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,84 @@
+#pragma once
+/// @file
+/// VecNormalize: running normalisation of observations and rewards around a vector env
+/// (SB3 VecNormalize semantics, training.md section 3).
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <vector>
+
+#include "vec/running_mean_std.hpp"
+#include "vec/vector_env.hpp"
+
+namespace upkie_rl {
+
+/// Settings of VecNormalize (SB3's defaults, the seed's values).
+struct NormalizeConfig {
+  bool observations = true;        ///< Normalise observations.
+  bool rewards = true;             ///< Normalise rewards (by the std of discounted returns).
+  double clip_observations = 10.0;
+  double clip_rewards = 10.0;
+  double gamma = 0.99;             ///< Discount of the returns whose variance scales rewards.
+  double epsilon = 1e-8;
+};
+
+/// Observations: obs_n = clip((obs - mean) / sqrt(var + epsilon), ±clip_observations), with
+/// the statistics updated (while training) by every batch of observations the inner env
+/// returns, at reset and at each step (post-reset observations), before normalising. The
+/// final observations of ended episodes are normalised with the same statistics.
+/// Rewards (while training): per env G <- gamma·G + r, the variance of G updated with the
+/// batch of G, r_n = clip(r / sqrt(var_G + epsilon), ±clip_rewards), G <- 0 when an
+/// episode ends. When not training, statistics are frozen and rewards pass raw.
+/// episode_returns / episode_lengths stay raw.
+class VecNormalize final : public VectorEnv {
+ public:
+  /// @throws std::invalid_argument on a null env or a non-positive clip, gamma or epsilon.
+  VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfig& config);
+
+  /// false: statistics frozen, rewards not normalised (evaluation).
+  void set_training(bool training) { training_ = training; }
+  bool training() const { return training_; }
+
+  /// Normalises observations with the current statistics (no update); `raw` and
+  /// `normalized` have the same size, a multiple of the observation size; may alias.
+  void normalize_observations(std::span<const float> raw, std::span<float> normalized) const;
+
+  /// Last un-normalised observations (num_envs x obs_dim).
+  std::span<const float> raw_observations() const { return raw_observations_; }
+  /// Last un-normalised rewards.
+  const std::vector<float>& raw_rewards() const { return raw_rewards_; }
+
+  /// Statistics as JSON: {"observations": {"mean","var","count"}, "returns": {...},
+  /// "config": {...}}.
+  nlohmann::json state() const;
+  /// Restores state(); throws std::invalid_argument naming the field on a mismatch (wrong
+  /// size, missing key, wrong type). Leaves the object unchanged when it throws.
+  void load_state(const nlohmann::json& state);
+
+  const VectorEnv& inner() const { return *venv_; }
+  const RunningMeanStd& observation_statistics() const { return observation_rms_; }
+  const RunningMeanStd& return_statistics() const { return return_rms_; }
+  const NormalizeConfig& config() const { return config_; }
+
+  std::size_t num_envs() const override { return venv_->num_envs(); }
+  const BoxSpace& observation_space() const override { return venv_->observation_space(); }
+  const BoxSpace& action_space() const override { return venv_->action_space(); }
+  std::span<const float> reset(std::uint64_t seed) override;
+  const VectorStep& step(std::span<const float> actions) override;
+
+ private:
+  std::unique_ptr<VectorEnv> venv_;
+  NormalizeConfig config_;
+  bool training_ = true;
+  std::size_t observation_size_;
+  RunningMeanStd observation_rms_;
+  RunningMeanStd return_rms_;
+  std::vector<double> returns_;  // Discounted return G per env.
+  std::vector<float> raw_observations_;
+  std::vector<float> raw_rewards_;
+  std::vector<float> observations_;  // Normalised reset output.
+  VectorStep step_;
+};
+
+}  // namespace upkie_rl
