@@ -33,7 +33,7 @@ test: build
 	$(MAKE) test-python
 
 bench: build
-	$(BUILD_DIR)/bench/upkie_rl_bench --benchmark_min_time=1
+	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done
 
 sanitize: deps
 	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE=ON -DUPKIE_RL_BUILD_BENCH=OFF
