@@ -1,0 +1,258 @@
+#include "spine/dictionary.hpp"
+
+#include <limits>
+
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+
+/// Key path of the value being merged, as a chain on the stack: formatted only for errors.
+struct Dictionary::Path {
+  const Path* parent;
+  std::string_view key;
+  std::string format() const {
+    std::string text = parent != nullptr ? parent->format() : std::string();
+    if (!text.empty()) text += '.';
+    text += key;
+    return text;
+  }
+};
+
+namespace {
+
+/// Deeper messages are refused (the unpacker limits depth too; this guards direct use).
+constexpr int kMaxDepth = 32;
+
+std::string describe(const Dictionary::Path* path) {
+  const std::string text = path != nullptr ? path->format() : std::string();
+  return text.empty() ? std::string("the message root") : "key '" + text + "'";
+}
+
+Dictionary::Kind array_kind(std::size_t size) {
+  switch (size) {
+    case 2:
+      return Dictionary::Kind::kVector2;
+    case 3:
+      return Dictionary::Kind::kVector3;
+    case 4:
+      return Dictionary::Kind::kQuaternion;
+    case 9:
+      return Dictionary::Kind::kMatrix3;
+    default:
+      return Dictionary::Kind::kVector;
+  }
+}
+
+std::string_view msgpack_type_name(msgpack::type::object_type type) {
+  switch (type) {
+    case msgpack::type::NIL:
+      return "nil";
+    case msgpack::type::BOOLEAN:
+      return "bool";
+    case msgpack::type::POSITIVE_INTEGER:
+    case msgpack::type::NEGATIVE_INTEGER:
+      return "int";
+    case msgpack::type::FLOAT32:
+    case msgpack::type::FLOAT64:
+      return "float";
+    case msgpack::type::STR:
+      return "str";
+    case msgpack::type::BIN:
+      return "binary";
+    case msgpack::type::ARRAY:
+      return "array";
+    case msgpack::type::MAP:
+      return "map";
+    case msgpack::type::EXT:
+      return "extension";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+std::string_view Dictionary::kind_name(Kind kind) {
+  switch (kind) {
+    case Kind::kMap:
+      return "map";
+    case Kind::kBool:
+      return "bool";
+    case Kind::kInt:
+      return "int";
+    case Kind::kFloat:
+      return "float";
+    case Kind::kString:
+      return "str";
+    case Kind::kVector2:
+      return "vector2";
+    case Kind::kVector3:
+      return "vector3";
+    case Kind::kQuaternion:
+      return "quaternion";
+    case Kind::kMatrix3:
+      return "matrix3";
+    case Kind::kVector:
+      return "vector";
+  }
+  return "unknown";
+}
+
+void Dictionary::update(const msgpack::object& message) {
+  if (message.type != msgpack::type::MAP) {
+    throw SpineError("message is a " + std::string(msgpack_type_name(message.type)) +
+                     ", expected a map");
+  }
+  if (!is_map()) throw SpineError("cannot merge a message into a value");
+  update_map(message, nullptr, 0);
+}
+
+void Dictionary::clear() {
+  kind_ = Kind::kMap;
+  children_.clear();
+  string_.clear();
+  array_.clear();
+}
+
+void Dictionary::update_map(const msgpack::object& message, const Path* path, int depth) {
+  if (depth > kMaxDepth) throw SpineError(describe(path) + " is nested too deeply");
+  const msgpack::object_map& map = message.via.map;
+  for (std::uint32_t i = 0; i < map.size; ++i) {
+    const msgpack::object& key = map.ptr[i].key;
+    if (key.type != msgpack::type::STR) {
+      throw SpineError("a key under " + describe(path) + " is a " +
+                       std::string(msgpack_type_name(key.type)) + ", keys must be strings");
+    }
+    const std::string_view name(key.via.str.ptr, key.via.str.size);
+    const Path child_path{path, name};
+    auto it = children_.find(name);
+    const bool fresh = it == children_.end();  // a new key takes any type
+    if (fresh) it = children_.emplace(std::string(name), std::make_unique<Dictionary>()).first;
+    it->second->assign(map.ptr[i].val, &child_path, depth + 1, fresh);
+  }
+}
+
+void Dictionary::assign(const msgpack::object& value, const Path* path, int depth, bool fresh) {
+  Kind kind = Kind::kMap;
+  switch (value.type) {
+    case msgpack::type::MAP:
+      kind = Kind::kMap;
+      break;
+    case msgpack::type::BOOLEAN:
+      kind = Kind::kBool;
+      break;
+    case msgpack::type::POSITIVE_INTEGER:
+    case msgpack::type::NEGATIVE_INTEGER:
+      kind = Kind::kInt;
+      break;
+    case msgpack::type::FLOAT32:
+    case msgpack::type::FLOAT64:
+      kind = Kind::kFloat;
+      break;
+    case msgpack::type::STR:
+      kind = Kind::kString;
+      break;
+    case msgpack::type::ARRAY:
+      kind = array_kind(value.via.array.size);
+      break;
+    default:
+      throw SpineError(describe(path) + " has a " + std::string(msgpack_type_name(value.type)) +
+                       " value, which the spine refuses");
+  }
+  if (!fresh && kind != kind_) {
+    throw SpineError(describe(path) + " changed type from " + std::string(kind_name(kind_)) +
+                     " to " + std::string(kind_name(kind)));
+  }
+  switch (kind) {
+    case Kind::kMap:
+      kind_ = Kind::kMap;
+      update_map(value, path, depth);
+      return;
+    case Kind::kBool:
+      bool_ = value.via.boolean;
+      break;
+    case Kind::kInt:
+      if (value.type == msgpack::type::POSITIVE_INTEGER) {
+        if (value.via.u64 > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+          throw SpineError(describe(path) + " is an integer too large for int64");
+        }
+        int_ = static_cast<std::int64_t>(value.via.u64);
+      } else {
+        int_ = value.via.i64;
+      }
+      break;
+    case Kind::kFloat:
+      float_ = value.via.f64;  // msgpack-cxx widens float32 into f64
+      break;
+    case Kind::kString:
+      string_.assign(value.via.str.ptr, value.via.str.size);
+      break;
+    default: {  // arrays
+      const msgpack::object_array& array = value.via.array;
+      array_.resize(array.size);
+      for (std::uint32_t i = 0; i < array.size; ++i) {
+        const msgpack::object& element = array.ptr[i];
+        switch (element.type) {
+          case msgpack::type::FLOAT32:
+          case msgpack::type::FLOAT64:
+            array_[i] = element.via.f64;
+            break;
+          case msgpack::type::POSITIVE_INTEGER:
+            array_[i] = static_cast<double>(element.via.u64);
+            break;
+          case msgpack::type::NEGATIVE_INTEGER:
+            array_[i] = static_cast<double>(element.via.i64);
+            break;
+          default:
+            throw SpineError(describe(path) + " holds a " +
+                             std::string(msgpack_type_name(element.type)) +
+                             " in an array, arrays must hold numbers");
+        }
+      }
+    }
+  }
+  kind_ = kind;
+}
+
+bool Dictionary::has(std::string_view key) const {
+  return is_map() && children_.find(key) != children_.end();
+}
+
+const Dictionary& Dictionary::at(std::string_view key) const {
+  if (!is_map()) {
+    throw SpineError("cannot look up '" + std::string(key) + "' in a " +
+                     std::string(kind_name(kind_)));
+  }
+  const auto it = children_.find(key);
+  if (it == children_.end()) throw SpineError("missing key '" + std::string(key) + "'");
+  return *it->second;
+}
+
+bool Dictionary::as_bool() const {
+  if (kind_ != Kind::kBool) {
+    throw SpineError("expected a bool, found a " + std::string(kind_name(kind_)));
+  }
+  return bool_;
+}
+
+double Dictionary::as_number() const {
+  if (kind_ == Kind::kFloat) return float_;
+  if (kind_ == Kind::kInt) return static_cast<double>(int_);
+  throw SpineError("expected a number, found a " + std::string(kind_name(kind_)));
+}
+
+const std::string& Dictionary::as_string() const {
+  if (kind_ != Kind::kString) {
+    throw SpineError("expected a string, found a " + std::string(kind_name(kind_)));
+  }
+  return string_;
+}
+
+const std::vector<double>& Dictionary::as_array() const {
+  if (kind_ == Kind::kMap || kind_ == Kind::kBool || kind_ == Kind::kInt || kind_ == Kind::kFloat ||
+      kind_ == Kind::kString) {
+    throw SpineError("expected an array, found a " + std::string(kind_name(kind_)));
+  }
+  return array_;
+}
+
+}  // namespace upkie_rl

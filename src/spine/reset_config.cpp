@@ -1,0 +1,131 @@
+#include "spine/reset_config.hpp"
+
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "sim/msgpack_float64.hpp"
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+class ConfigPacker {
+ public:
+  explicit ConfigPacker(msgpack::sbuffer& buffer) : buffer_(buffer), packer_(buffer) {}
+  void map(std::uint32_t size) { packer_.pack_map(size); }
+  void key(std::string_view key) {
+    packer_.pack_str(static_cast<std::uint32_t>(key.size()));
+    packer_.pack_str_body(key.data(), static_cast<std::uint32_t>(key.size()));
+  }
+  void real(std::string_view name, double value) {
+    key(name);
+    pack_float64(buffer_, value);
+  }
+  void reals(std::string_view name, const double* values, std::uint32_t size) {
+    key(name);
+    packer_.pack_array(size);
+    for (std::uint32_t i = 0; i < size; ++i) pack_float64(buffer_, values[i]);
+  }
+
+ private:
+  msgpack::sbuffer& buffer_;
+  msgpack::packer<msgpack::sbuffer> packer_;
+};
+
+/// Reads an array of `size` finite numbers at config key `path`.
+void read_array(const Dictionary& reset, std::string_view key, double* out, std::size_t size) {
+  if (!reset.has(key)) return;
+  const std::string path = "bullet.reset." + std::string(key);
+  const Dictionary& value = reset.at(key);
+  if (value.is_map() || value.kind() == Dictionary::Kind::kBool ||
+      value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat ||
+      value.kind() == Dictionary::Kind::kString || value.as_array().size() != size) {
+    throw SpineError("spine configuration '" + path + "' must be an array of " +
+                     std::to_string(size) + " numbers");
+  }
+  const auto& array = value.as_array();
+  for (std::size_t i = 0; i < size; ++i) {
+    if (!std::isfinite(array[i])) {
+      throw SpineError("spine configuration '" + path + "' has a non-finite element");
+    }
+    out[i] = array[i];
+  }
+}
+
+}  // namespace
+
+void write_start_config_msgpack(const ResetState& state, const SpineStartParameters& parameters,
+                                msgpack::sbuffer& buffer) {
+  buffer.clear();
+  ConfigPacker packer(buffer);
+  packer.map(5);
+
+  packer.key("base_orientation");
+  packer.map(1);
+  double row_major[9];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) row_major[3 * i + j] = parameters.rotation_base_to_imu(i, j);
+  }
+  packer.reals("rotation_base_to_imu", row_major, 9);
+
+  packer.key("bullet");
+  packer.map(2);
+  packer.key("reset");
+  packer.map(5);
+  packer.reals("angular_velocity_base_in_base", state.angular_velocity_base_in_base.data(), 3);
+  packer.reals("joint_configuration", state.joint_configuration.data(), kNumServos);
+  packer.reals("linear_velocity_base_to_world_in_world",
+               state.linear_velocity_base_to_world_in_world.data(), 3);
+  const Eigen::Quaterniond& q = state.orientation_base_in_world;
+  const double wxyz[4] = {q.w(), q.x(), q.y(), q.z()};
+  packer.reals("orientation_base_in_world", wxyz, 4);
+  packer.reals("position_base_in_world", state.position_base_in_world.data(), 3);
+  packer.key("torque_control");
+  packer.map(2);
+  packer.real("kd", parameters.kd);
+  packer.real("kp", parameters.kp);
+
+  packer.key("floor_contact");
+  packer.map(1);
+  packer.real("upper_leg_torque_threshold", 10.0);
+
+  packer.key("wheel_contact");
+  packer.map(5);
+  packer.real("cutoff_period", 0.2);
+  packer.real("liftoff_inertia", 0.001);
+  packer.real("min_touchdown_acceleration", 2.0);
+  packer.real("min_touchdown_torque", 0.015);
+  packer.real("touchdown_inertia", 0.004);
+
+  packer.key("wheel_odometry");
+  packer.map(1);
+  packer.key("signed_radius");
+  packer.map(2);
+  packer.real("left_wheel", +parameters.wheel_radius);
+  packer.real("right_wheel", -parameters.wheel_radius);
+}
+
+ResetState reset_state_from_config(const Dictionary& config) {
+  ResetState state;
+  if (!config.has("bullet") || !config.at("bullet").has("reset")) return state;
+  const Dictionary& reset = config.at("bullet").at("reset");
+  if (!reset.is_map()) throw SpineError("spine configuration 'bullet.reset' is not a map");
+  read_array(reset, "position_base_in_world", state.position_base_in_world.data(), 3);
+  read_array(reset, "linear_velocity_base_to_world_in_world",
+             state.linear_velocity_base_to_world_in_world.data(), 3);
+  read_array(reset, "angular_velocity_base_in_base", state.angular_velocity_base_in_base.data(), 3);
+  read_array(reset, "joint_configuration", state.joint_configuration.data(), kNumServos);
+  if (reset.has("orientation_base_in_world")) {
+    double wxyz[4];
+    read_array(reset, "orientation_base_in_world", wxyz, 4);
+    Eigen::Quaterniond q(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+    if (!(q.norm() > 1e-6)) {
+      throw SpineError("spine configuration 'bullet.reset.orientation_base_in_world' is zero");
+    }
+    state.orientation_base_in_world = q.normalized();
+  }
+  return state;
+}
+
+}  // namespace upkie_rl

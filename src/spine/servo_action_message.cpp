@@ -1,0 +1,88 @@
+#include "spine/servo_action_message.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <string_view>
+
+#include "sim/msgpack_float64.hpp"
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+void pack_key(msgpack::packer<msgpack::sbuffer>& packer, std::string_view key) {
+  packer.pack_str(static_cast<std::uint32_t>(key.size()));
+  packer.pack_str_body(key.data(), static_cast<std::uint32_t>(key.size()));
+}
+
+}  // namespace
+
+void write_servo_action_msgpack(const ServoAction& action, msgpack::sbuffer& buffer) {
+  buffer.clear();
+  msgpack::packer<msgpack::sbuffer> packer(buffer);
+  packer.pack_map(1);
+  pack_key(packer, "servo");
+  packer.pack_map(kNumServos);
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const ServoCommand& command = action[i];
+    pack_key(packer, kServoNames[i]);
+    packer.pack_map(6);
+    pack_key(packer, "feedforward_torque");
+    pack_float64(buffer, command.feedforward_torque);
+    pack_key(packer, "kd_scale");
+    pack_float64(buffer, command.kd_scale);
+    pack_key(packer, "kp_scale");
+    pack_float64(buffer, command.kp_scale);
+    pack_key(packer, "maximum_torque");
+    pack_float64(buffer, command.maximum_torque);
+    pack_key(packer, "position");
+    pack_float64(buffer, command.position);
+    pack_key(packer, "velocity");
+    pack_float64(buffer, command.velocity);
+  }
+}
+
+ServoAction spine_default_servo_action() {
+  ServoAction action;
+  for (ServoCommand& command : action) {
+    command = ServoCommand{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 1.0, 1.0, 1.0};
+  }
+  return action;
+}
+
+void read_servo_action(const Dictionary& dictionary, ServoAction& action,
+                       const std::array<double, kNumServos>* maximum_torques) {
+  if (!dictionary.has("servo")) return;
+  const Dictionary& servos = dictionary.at("servo");
+  if (!servos.is_map()) throw SpineError("action key 'servo' is not a map");
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    if (!servos.has(kServoNames[i])) continue;
+    const Dictionary& fields = servos.at(kServoNames[i]);
+    ServoCommand& command = action[i];
+    const auto read = [&](std::string_view key, double& out) {
+      if (!fields.has(key)) return;
+      const Dictionary& value = fields.at(key);
+      if (value.kind() != Dictionary::Kind::kFloat && value.kind() != Dictionary::Kind::kInt) {
+        throw SpineError("action key 'servo." + std::string(kServoNames[i]) + "." +
+                         std::string(key) + "' is a " +
+                         std::string(Dictionary::kind_name(value.kind())) + ", not a number");
+      }
+      out = value.as_number();
+    };
+    read("position", command.position);
+    read("velocity", command.velocity);
+    read("feedforward_torque", command.feedforward_torque);
+    read("kp_scale", command.kp_scale);
+    read("kd_scale", command.kd_scale);
+    read("maximum_torque", command.maximum_torque);
+    if (maximum_torques != nullptr &&
+        !(command.maximum_torque >= 0.0 && command.maximum_torque <= (*maximum_torques)[i])) {
+      throw SpineError("action servo." + std::string(kServoNames[i]) +
+                       ".maximum_torque = " + std::to_string(command.maximum_torque) +
+                       " N.m is outside [0, " + std::to_string((*maximum_torques)[i]) + "]");
+    }
+  }
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,173 @@
+#include "spine/shared_memory.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+std::string errno_text() { return std::strerror(errno); }
+
+/// Closes a file descriptor at scope exit; the mapping outlives it.
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+char* map(int fd, std::size_t size, const std::string& name) {
+  void* data = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  if (data == MAP_FAILED) {
+    throw SpineError("cannot map shared memory " + name + ": " + errno_text());
+  }
+  return static_cast<char*>(data);
+}
+
+}  // namespace
+
+void SharedMemory::validate_name(const std::string& name) {
+  if (name.size() < 2 || name[0] != '/') {
+    throw SpineError("invalid shared-memory name '" + name +
+                     "': it must be '/' followed by at least one character");
+  }
+  if (name.find('/', 1) != std::string::npos) {
+    throw SpineError("invalid shared-memory name '" + name +
+                     "': only the first character may be '/'");
+  }
+  if (name.size() > 251) {
+    throw SpineError("invalid shared-memory name '" + name + "': longer than 251 characters");
+  }
+}
+
+SharedMemory SharedMemory::create(const std::string& name, std::size_t size) {
+  validate_name(name);
+  if (size <= kHeaderSize + 1 || size > (std::size_t{1} << 31)) {
+    throw SpineError("invalid shared-memory size " + std::to_string(size) + " for " + name);
+  }
+  // A spine that crashed leaves its object behind; its agents are gone with it.
+  if (::shm_unlink(name.c_str()) != 0 && errno != ENOENT) {
+    throw SpineError("cannot remove stale shared memory " + name + ": " + errno_text());
+  }
+  // The umask would otherwise strip the group/other write bits agents need.
+  const mode_t previous_mask = ::umask(0);
+  FileDescriptor fd(::shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666));
+  ::umask(previous_mask);
+  if (fd.get() < 0) {
+    throw SpineError("cannot create shared memory " + name + ": " + errno_text());
+  }
+  if (::ftruncate(fd.get(), static_cast<off_t>(size)) != 0) {
+    const std::string reason = errno_text();
+    ::shm_unlink(name.c_str());
+    throw SpineError("cannot size shared memory " + name + ": " + reason);
+  }
+  char* data = nullptr;
+  try {
+    data = map(fd.get(), size, name);
+  } catch (...) {
+    ::shm_unlink(name.c_str());
+    throw;
+  }
+  std::memset(data, 0, kHeaderSize);  // request None, empty payload
+  return SharedMemory(name, size, data, true);
+}
+
+SharedMemory SharedMemory::open(const std::string& name) {
+  validate_name(name);
+  FileDescriptor fd(::shm_open(name.c_str(), O_RDWR, 0666));
+  if (fd.get() < 0) {
+    throw SpineError("cannot open shared memory " + name + ": " + errno_text());
+  }
+  struct stat status {};
+  if (::fstat(fd.get(), &status) != 0) {
+    throw SpineError("cannot stat shared memory " + name + ": " + errno_text());
+  }
+  const auto size = static_cast<std::size_t>(status.st_size);
+  if (size <= kHeaderSize + 1) {
+    throw SpineError("shared memory " + name + " has " + std::to_string(size) +
+                     " bytes, too small for the spine layout");
+  }
+  return SharedMemory(name, size, map(fd.get(), size, name), false);
+}
+
+SharedMemory::SharedMemory(std::string name, std::size_t size, char* data, bool owner)
+    : name_(std::move(name)), size_(size), data_(data), owner_(owner) {}
+
+SharedMemory::SharedMemory(SharedMemory&& other) noexcept
+    : name_(std::move(other.name_)),
+      size_(std::exchange(other.size_, 0)),
+      data_(std::exchange(other.data_, nullptr)),
+      owner_(std::exchange(other.owner_, false)) {}
+
+SharedMemory& SharedMemory::operator=(SharedMemory&& other) noexcept {
+  if (this != &other) {
+    release();
+    name_ = std::move(other.name_);
+    size_ = std::exchange(other.size_, 0);
+    data_ = std::exchange(other.data_, nullptr);
+    owner_ = std::exchange(other.owner_, false);
+  }
+  return *this;
+}
+
+SharedMemory::~SharedMemory() { release(); }
+
+void SharedMemory::release() noexcept {
+  if (data_ != nullptr) {
+    ::munmap(data_, size_);
+    data_ = nullptr;
+  }
+  if (owner_) {
+    ::shm_unlink(name_.c_str());
+    owner_ = false;
+  }
+}
+
+std::atomic_ref<std::uint32_t> SharedMemory::word(std::size_t offset) const {
+  // mmap returns page-aligned memory, so both words are 4-byte aligned.
+  return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(data_ + offset));
+}
+
+std::uint32_t SharedMemory::request() const { return word(0).load(std::memory_order_acquire); }
+
+void SharedMemory::set_request(Request request) {
+  word(0).store(static_cast<std::uint32_t>(request), std::memory_order_release);
+}
+
+std::uint32_t SharedMemory::payload_size() const { return word(4).load(std::memory_order_acquire); }
+
+std::span<const char> SharedMemory::payload() const {
+  const std::uint32_t size = payload_size();
+  if (size > max_payload_size()) {
+    throw SpineError("payload of " + std::to_string(size) + " bytes refused: shared memory " +
+                     name_ + " holds at most " + std::to_string(max_payload_size()));
+  }
+  return {data_ + kHeaderSize, size};
+}
+
+void SharedMemory::write_payload(std::span<const char> bytes) {
+  if (bytes.size() > max_payload_size()) {
+    throw SpineError("payload of " + std::to_string(bytes.size()) +
+                     " bytes does not fit in shared memory " + name_ + " (at most " +
+                     std::to_string(max_payload_size()) + ")");
+  }
+  std::memcpy(data_ + kHeaderSize, bytes.data(), bytes.size());
+  word(4).store(static_cast<std::uint32_t>(bytes.size()), std::memory_order_release);
+}
+
+}  // namespace upkie_rl

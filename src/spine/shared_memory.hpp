@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// The POSIX shared memory that carries the spine link: a request word, a payload size
+/// and a msgpack payload (spine.md section 1).
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "spine/request.hpp"
+
+namespace upkie_rl {
+
+/// A mapped shared-memory object with the spine layout, native byte order:
+/// bytes [0, 4) request word, [4, 8) payload size n, [8, 8 + n) msgpack payload.
+/// The spine creates (and at destruction unlinks) it; agents open the existing one.
+/// Movable, not copyable.
+class SharedMemory {
+ public:
+  /// Default size of the spine's shared memory [bytes] (1 MiB).
+  static constexpr std::size_t kDefaultSize = 1 << 20;
+  /// Bytes before the payload: request word and payload size.
+  static constexpr std::size_t kHeaderSize = 8;
+
+  /// Creates the object for a spine: unlinks a stale one of the same name, then
+  /// shm_open(O_RDWR | O_CREAT | O_EXCL, 0666), ftruncate and mmap. The request word
+  /// starts at None and the payload is empty. Unlinked by the destructor.
+  /// @param name POSIX name, "/" followed by up to 250 characters other than "/".
+  /// @throws SpineError naming the object and the failing call.
+  static SharedMemory create(const std::string& name, std::size_t size = kDefaultSize);
+
+  /// Opens an existing object for an agent (never unlinks it).
+  /// @throws SpineError when it does not exist, is smaller than the header, or cannot be
+  ///         mapped; the message names the object.
+  static SharedMemory open(const std::string& name);
+
+  /// Checks a shared-memory name. @throws SpineError explaining what is wrong.
+  static void validate_name(const std::string& name);
+
+  SharedMemory(SharedMemory&& other) noexcept;
+  SharedMemory& operator=(SharedMemory&& other) noexcept;
+  SharedMemory(const SharedMemory&) = delete;
+  SharedMemory& operator=(const SharedMemory&) = delete;
+  ~SharedMemory();
+
+  /// Current request word (raw: it may hold a code outside the protocol). Acquire load.
+  std::uint32_t request() const;
+  /// Sets the request word. Release store: the payload written before is visible.
+  void set_request(Request request);
+
+  /// Payload size word as written in memory (not validated).
+  std::uint32_t payload_size() const;
+  /// Largest accepted payload [bytes]: a payload with n + 8 >= size is refused.
+  std::size_t max_payload_size() const { return size_ - kHeaderSize - 1; }
+  /// The payload, validated against the object size.
+  /// @throws SpineError when the size word is too large.
+  std::span<const char> payload() const;
+  /// Writes size and payload bytes (not the request word).
+  /// @throws SpineError when the payload is too large for the object.
+  void write_payload(std::span<const char> bytes);
+
+  const std::string& name() const { return name_; }
+  std::size_t size() const { return size_; }
+  /// True for the creating side, which unlinks the object on destruction.
+  bool owner() const { return owner_; }
+
+ private:
+  SharedMemory(std::string name, std::size_t size, char* data, bool owner);
+  void release() noexcept;
+  std::atomic_ref<std::uint32_t> word(std::size_t offset) const;
+
+  std::string name_;
+  std::size_t size_ = 0;
+  char* data_ = nullptr;
+  bool owner_ = false;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,148 @@
+#include "spine/spine_backend.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "spine/observation_reader.hpp"
+#include "spine/servo_action_message.hpp"
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+SharedMemory open_with_retries(const SpineBackendConfig& config) {
+  SharedMemory::validate_name(config.shm_name);
+  if (config.open_tries < 1) throw SpineError("open_tries must be at least 1");
+  std::string last_reason;
+  for (int attempt = 1; attempt <= config.open_tries; ++attempt) {
+    try {
+      return SharedMemory::open(config.shm_name);
+    } catch (const SpineError& error) {
+      last_reason = error.what();
+    }
+    if (attempt < config.open_tries) {
+      spdlog::info("waiting for spine {} (attempt {} / {})", config.shm_name, attempt,
+                   config.open_tries);
+      std::this_thread::sleep_for(std::chrono::duration<double>(config.open_retry_delay));
+    }
+  }
+  throw SpineError("spine " + config.shm_name + " did not respond after " +
+                   std::to_string(config.open_tries) + " attempts (" + last_reason +
+                   "); is `upkie-rl spine` running?");
+}
+
+void check_finite(double value, std::size_t servo, const char* field) {
+  if (!std::isfinite(value)) {
+    throw InvalidCommandError(std::string(kServoNames[servo]) + "." + field +
+                              " must be finite, got " + std::to_string(value));
+  }
+}
+
+/// Polls for at most this long with yields before sleeping between polls.
+constexpr auto kSpinDuration = std::chrono::microseconds(200);
+constexpr auto kPollSleep = std::chrono::microseconds(20);
+
+}  // namespace
+
+SpineBackend::SpineBackend(const SpineBackendConfig& config)
+    : config_(config), memory_(open_with_retries(config)), unpacker_(memory_.max_payload_size()) {
+  if (!(config.agent_frequency > 0.0 && std::isfinite(config.agent_frequency))) {
+    throw SpineError("agent_frequency must be positive and finite");
+  }
+  if (!(config.request_timeout > 0.0)) throw SpineError("request_timeout must be positive");
+}
+
+SpineBackend::~SpineBackend() {
+  try {
+    stop();
+  } catch (const std::exception& error) {
+    spdlog::debug("spine backend: stop at destruction failed: {}", error.what());
+  }
+}
+
+void SpineBackend::wait_for_spine() {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
+                                    std::chrono::duration<double>(config_.request_timeout));
+  for (;;) {
+    const std::uint32_t request = memory_.request();
+    if (request == static_cast<std::uint32_t>(Request::kNone)) return;
+    if (request == static_cast<std::uint32_t>(Request::kError)) {
+      memory_.set_request(Request::kNone);
+      throw SpineError("invalid request, is the spine started?");
+    }
+    const auto now = Clock::now();
+    if (now > deadline) {
+      throw SpineTimeoutError("spine did not process request within " +
+                              std::to_string(std::lround(config_.request_timeout * 1e3)) +
+                              " ms, is it stopped?");
+    }
+    if (now - start < kSpinDuration) {
+      std::this_thread::yield();
+    } else {
+      std::this_thread::sleep_for(kPollSleep);
+    }
+  }
+}
+
+void SpineBackend::send(Request request) {
+  memory_.write_payload({buffer_.data(), buffer_.size()});
+  memory_.set_request(request);
+}
+
+const Observation& SpineBackend::read_observation_payload() {
+  read_observation(unpacker_.unpack(memory_.payload()), observation_);
+  return observation_;
+}
+
+void SpineBackend::stop() {
+  wait_for_spine();
+  memory_.set_request(Request::kStop);
+}
+
+const Observation& SpineBackend::reset(const ResetState& state) {
+  stop();
+  write_start_config_msgpack(state, config_.start_parameters, buffer_);
+  wait_for_spine();
+  send(Request::kStart);
+  wait_for_spine();
+  next_action_time_.reset();
+  return read_observation_payload();
+}
+
+void SpineBackend::regulate() {
+  using Clock = std::chrono::steady_clock;
+  const auto period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / config_.agent_frequency));
+  const auto now = Clock::now();
+  if (!next_action_time_ || *next_action_time_ < now - period) {
+    next_action_time_ = now;  // first action, or late by more than a period: no burst
+  } else {
+    std::this_thread::sleep_until(*next_action_time_);
+  }
+  *next_action_time_ += period;
+}
+
+const Observation& SpineBackend::step(const ServoAction& action) {
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const ServoCommand& command = action[i];
+    if (std::isinf(command.position)) check_finite(command.position, i, "position");
+    check_finite(command.velocity, i, "velocity");
+    check_finite(command.feedforward_torque, i, "feedforward_torque");
+    check_finite(command.kp_scale, i, "kp_scale");
+    check_finite(command.kd_scale, i, "kd_scale");
+    check_finite(command.maximum_torque, i, "maximum_torque");
+  }
+  write_servo_action_msgpack(action, buffer_);
+  if (config_.regulate_frequency) regulate();
+  wait_for_spine();
+  send(Request::kAction);
+  wait_for_spine();
+  return read_observation_payload();
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,79 @@
+#pragma once
+/// @file
+/// The agent side of the spine link as a Simulation backend: environments built on it
+/// drive a spine process (ours, or the real robot's) instead of an in-process simulator.
+
+#include <chrono>
+#include <msgpack.hpp>
+#include <optional>
+#include <string>
+
+#include "sim/simulation.hpp"
+#include "spine/payload_unpacker.hpp"
+#include "spine/reset_config.hpp"
+#include "spine/shared_memory.hpp"
+
+namespace upkie_rl {
+
+/// Settings of a SpineBackend.
+struct SpineBackendConfig {
+  std::string shm_name = "/upkie";  ///< Shared-memory name of the spine.
+  double agent_frequency = 200.0;   ///< Agent steps per second [Hz]; agent_timestep = 1/f.
+  /// Sleep before each action so that actions leave at agent_frequency (needed with a
+  /// real-time spine, like the public environments' rate limiter). Off for a spine that
+  /// advances on request, where it would only slow the agent down.
+  bool regulate_frequency = true;
+  /// How long a request may stay unprocessed before a SpineTimeoutError [s].
+  double request_timeout = 0.1;
+  int open_tries = 10;                    ///< Attempts at opening the shared memory.
+  double open_retry_delay = 1.0;          ///< Pause between two attempts [s].
+  SpineStartParameters start_parameters;  ///< Sent with every Start.
+};
+
+/// Talks to a spine through its shared memory (spine.md section 2): reset() is stop()
+/// then start(configuration with the reset state); step() sends the servo action and
+/// returns the observation of that step, decoded into the typed Observation. Once warmed
+/// up, a step allocates nothing. Not thread-safe. The destructor stops the spine.
+class SpineBackend final : public Simulation {
+ public:
+  /// Opens the spine's shared memory, trying `open_tries` times `open_retry_delay` apart.
+  /// @throws SpineError "spine <name> did not respond ..." when it never appears.
+  explicit SpineBackend(const SpineBackendConfig& config = {});
+  ~SpineBackend() override;
+  SpineBackend(const SpineBackend&) = delete;
+  SpineBackend& operator=(const SpineBackend&) = delete;
+
+  /// Stops the spine, then starts it with `state`; returns its first observation.
+  /// @throws SpineTimeoutError when the spine does not answer within request_timeout.
+  /// @throws SpineError on an Error reply or a malformed observation.
+  const Observation& reset(const ResetState& state) override;
+
+  /// Sends `action` and returns the observation of that step.
+  /// @throws InvalidCommandError on a non-finite velocity, torque or gain (NaN position
+  ///         is allowed), before anything is sent.
+  /// @throws SpineTimeoutError, SpineError as reset().
+  const Observation& step(const ServoAction& action) override;
+
+  const Observation& observation() const override { return observation_; }
+  double agent_timestep() const override { return 1.0 / config_.agent_frequency; }
+
+  /// Asks the spine to stop its actuators (does not wait for completion).
+  void stop();
+
+  const SpineBackendConfig& config() const { return config_; }
+
+ private:
+  void wait_for_spine();
+  void send(Request request);
+  const Observation& read_observation_payload();
+  void regulate();
+
+  SpineBackendConfig config_;
+  SharedMemory memory_;
+  PayloadUnpacker unpacker_;
+  msgpack::sbuffer buffer_;
+  Observation observation_;
+  std::optional<std::chrono::steady_clock::time_point> next_action_time_;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,21 @@
+#pragma once
+/// @file
+/// Errors of the spine link.
+
+#include <stdexcept>
+
+namespace upkie_rl {
+
+/// A spine link failure: no spine, an invalid request, a malformed or mistyped message.
+class SpineError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The spine did not process a request in time (it is stopped, busy or gone).
+class SpineTimeoutError : public SpineError {
+ public:
+  using SpineError::SpineError;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,144 @@
+#include "spine/spine_server.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "sim/observation_dict.hpp"
+#include "spine/reset_config.hpp"
+#include "spine/servo_action_message.hpp"
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+/// In on-request mode, polls spin (yielding) this many idle cycles before sleeping, which
+/// keeps the reply latency low while the agent is busy without burning a core when not.
+constexpr int kSpinningIdleCycles = 2000;
+constexpr auto kIdleSleep = std::chrono::microseconds(50);
+
+}  // namespace
+
+SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config)
+    : simulation_(simulation),
+      config_(config),
+      memory_(SharedMemory::create(config.shm_name, config.shm_size)),
+      machine_(config.nb_stop_cycles),
+      unpacker_(memory_.max_payload_size()),
+      action_(spine_default_servo_action()) {
+  if (config.real_time && !(config.frequency > 0.0 && std::isfinite(config.frequency))) {
+    throw SpineError("spine frequency must be positive and finite, got " +
+                     std::to_string(config.frequency));
+  }
+  for (ServoCommand& command : stop_action_) {
+    command = ServoCommand{std::numeric_limits<double>::quiet_NaN(),
+                           0.0,
+                           0.0,
+                           0.0,
+                           config.brake_kd_scale,
+                           config.brake_maximum_torque};
+  }
+}
+
+void SpineServer::cycle() {
+  ++nb_cycles_;
+  if (machine_.is_over()) return;
+  try {
+    if (const auto request = machine_.on_cycle_beginning(memory_.request())) {
+      memory_.set_request(*request);
+    }
+    if (machine_.start_ignored()) spdlog::warn("spine: Start request while started, ignored");
+    process_state();
+    if (const auto request = machine_.on_cycle_end()) memory_.set_request(*request);
+  } catch (const std::exception& exception) {
+    error_ = exception.what();
+    spdlog::error("spine: {}; shutting down", error_);
+    machine_.on_interrupt();
+  }
+}
+
+void SpineServer::process_state() {
+  switch (machine_.state()) {
+    case SpineState::kReset:
+      reset_from_payload();
+      write_observation();
+      break;
+    case SpineState::kStep:
+      step_from_payload();
+      advance(action_);
+      write_observation();
+      break;
+    case SpineState::kIdle:
+      if (config_.real_time) advance(action_);
+      break;
+    case SpineState::kSendStops:
+    case SpineState::kShutdown:
+      if (config_.real_time && simulation_ready_) advance(stop_action_);
+      break;
+    case SpineState::kOver:
+      break;
+  }
+}
+
+void SpineServer::reset_from_payload() {
+  // The configuration is replaced, not merged (spine.md section 4).
+  configuration_.clear();
+  configuration_.update(unpacker_.unpack(memory_.payload()));
+  const ResetState state = reset_state_from_config(configuration_);
+
+  // The action is reset to the defaults, which also fixes every field's type to float.
+  action_dictionary_.clear();
+  action_ = spine_default_servo_action();
+  write_servo_action_msgpack(action_, buffer_);
+  action_dictionary_.update(unpacker_.unpack({buffer_.data(), buffer_.size()}));
+
+  simulation_.reset(state);
+  simulation_ready_ = true;
+}
+
+void SpineServer::step_from_payload() {
+  action_dictionary_.update(unpacker_.unpack(memory_.payload()));
+  read_servo_action(action_dictionary_, action_, &config_.maximum_torques);
+}
+
+void SpineServer::advance(const ServoAction& action) {
+  simulation_.step(action);
+  ++nb_simulation_steps_;
+}
+
+void SpineServer::write_observation() {
+  write_observation_msgpack(simulation_.observation(), buffer_);
+  memory_.write_payload({buffer_.data(), buffer_.size()});
+}
+
+void SpineServer::run(const std::atomic<bool>& interrupt) {
+  using Clock = std::chrono::steady_clock;
+  const auto period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / config_.frequency));
+  auto next_cycle = Clock::now();
+  int idle_cycles = 0;
+  while (!machine_.is_over()) {
+    if (interrupt.load(std::memory_order_relaxed)) machine_.on_interrupt();
+    const std::uint32_t request = memory_.request();
+    const bool had_request = request != static_cast<std::uint32_t>(Request::kNone) &&
+                             request != static_cast<std::uint32_t>(Request::kError);
+    cycle();
+    if (config_.real_time) {
+      next_cycle += period;
+      const auto now = Clock::now();
+      if (next_cycle < now - 10 * period) next_cycle = now;  // fell behind: don't burst
+      std::this_thread::sleep_until(next_cycle);
+    } else if (had_request || machine_.state() == SpineState::kShutdown) {
+      idle_cycles = 0;
+    } else if (++idle_cycles < kSpinningIdleCycles) {
+      std::this_thread::yield();
+    } else {
+      std::this_thread::sleep_for(kIdleSleep);
+    }
+  }
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,95 @@
+#pragma once
+/// @file
+/// The spine process side of the link: a simulation served through shared memory to an
+/// agent (ours, or the public `upkie` Python package), with the reference state machine.
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <msgpack.hpp>
+#include <string>
+
+#include "sim/simulation.hpp"
+#include "spine/dictionary.hpp"
+#include "spine/payload_unpacker.hpp"
+#include "spine/shared_memory.hpp"
+#include "spine/spine_state_machine.hpp"
+
+namespace upkie_rl {
+
+/// Settings of a SpineServer.
+struct SpineServerConfig {
+  std::string shm_name = "/upkie";                    ///< POSIX shared-memory name.
+  std::size_t shm_size = SharedMemory::kDefaultSize;  ///< [bytes]
+  /// True: a real-time loop at `frequency` where the simulation advances every cycle
+  /// whatever the agent does (like the robot); give it a simulation whose step() is one
+  /// physics step. False: the simulation advances only on Action requests, by one step()
+  /// of the simulation (nb_substeps physics steps), as fast as the agent asks.
+  bool real_time = true;
+  double frequency = 1000.0;  ///< Cycles per second in real-time mode [Hz].
+  /// Joint effort limits [N.m]: an action whose maximum_torque leaves [0, effort] is an
+  /// error that shuts the spine down, as on the real robot.
+  std::array<double, kNumServos> maximum_torques = {16.0, 16.0, 1.7, 16.0, 16.0, 1.7};
+  /// Stop command of a stopped joint: velocity 0, no position term, kd scaled by this.
+  double brake_kd_scale = 10.0;
+  /// Torque clamp of the stop command [N.m] (the simulation's effort clamp applies on top).
+  double brake_maximum_torque = 100.0;
+  int nb_stop_cycles = SpineStateMachine::kDefaultNbStopCycles;
+};
+
+/// Serves a Simulation over the spine link. Creates the shared memory at construction
+/// (removing a stale one) and unlinks it at destruction. Each cycle() reads the request
+/// word, runs the state machine, then resets or steps the simulation and writes the
+/// observation before clearing the request. An exception in a cycle (malformed, nil,
+/// mistyped or oversized message, an invalid command, a diverged simulation) is logged
+/// and sends the spine to Shutdown, then Over; it never escapes cycle().
+class SpineServer {
+ public:
+  /// @param simulation Backend served; must outlive the server.
+  /// @throws SpineError when the shared memory cannot be created.
+  SpineServer(Simulation& simulation, const SpineServerConfig& config);
+
+  /// Runs one cycle (no waiting).
+  void cycle();
+
+  /// Cycles until Over: paced at `frequency` in real-time mode, polling otherwise. Sets
+  /// Shutdown as soon as `interrupt` becomes true (a signal handler may set it).
+  void run(const std::atomic<bool>& interrupt);
+
+  /// Requests a Shutdown (as SIGINT does).
+  void interrupt() { machine_.on_interrupt(); }
+
+  SpineState state() const { return machine_.state(); }
+  const SharedMemory& memory() const { return memory_; }
+  /// The action currently applied (spine.md defaults after a reset).
+  const ServoAction& action() const { return action_; }
+  /// Message of the exception that shut the spine down, empty if none.
+  const std::string& error() const { return error_; }
+  /// Cycles run so far, and simulation step() calls so far.
+  std::uint64_t nb_cycles() const { return nb_cycles_; }
+  std::uint64_t nb_simulation_steps() const { return nb_simulation_steps_; }
+
+ private:
+  void process_state();
+  void reset_from_payload();
+  void step_from_payload();
+  void advance(const ServoAction& action);
+  void write_observation();
+
+  Simulation& simulation_;
+  SpineServerConfig config_;
+  SharedMemory memory_;
+  SpineStateMachine machine_;
+  PayloadUnpacker unpacker_;
+  Dictionary configuration_;
+  Dictionary action_dictionary_;
+  ServoAction action_{};
+  ServoAction stop_action_{};
+  msgpack::sbuffer buffer_;
+  bool simulation_ready_ = false;
+  std::string error_;
+  std::uint64_t nb_cycles_ = 0;
+  std::uint64_t nb_simulation_steps_ = 0;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,93 @@
+#include "spine/reset_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include "message_builder.hpp"
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+TEST(ResetConfig, StartConfigCarriesTheResetState) {
+  ResetState state;
+  state.position_base_in_world = {0.1, -0.2, 0.7};
+  state.orientation_base_in_world = Eigen::Quaterniond(0.8, 0.0, 0.6, 0.0);
+  state.linear_velocity_base_to_world_in_world = {0.5, 0.0, -0.1};
+  state.angular_velocity_base_in_base = {0.0, 0.3, 0.0};
+  state.joint_configuration = {0.1, 0.2, 0.3, -0.1, -0.2, -0.3};
+  msgpack::sbuffer buffer;
+  write_start_config_msgpack(state, {}, buffer);
+  Dictionary config;
+  config.update(msgpack::unpack(buffer.data(), buffer.size()).get());
+
+  const ResetState read = reset_state_from_config(config);
+  EXPECT_EQ(read.position_base_in_world, state.position_base_in_world);
+  EXPECT_TRUE(
+      read.orientation_base_in_world.coeffs().isApprox(state.orientation_base_in_world.coeffs()));
+  EXPECT_EQ(read.linear_velocity_base_to_world_in_world,
+            state.linear_velocity_base_to_world_in_world);
+  EXPECT_EQ(read.angular_velocity_base_in_base, state.angular_velocity_base_in_base);
+  EXPECT_EQ(read.joint_configuration, state.joint_configuration);
+
+  EXPECT_EQ(config.at("bullet").at("reset").at("orientation_base_in_world").kind(),
+            Dictionary::Kind::kQuaternion);
+  EXPECT_DOUBLE_EQ(config.at("bullet").at("torque_control").at("kp").as_number(), 20.0);
+  EXPECT_DOUBLE_EQ(config.at("bullet").at("torque_control").at("kd").as_number(), 1.0);
+  EXPECT_DOUBLE_EQ(config.at("wheel_odometry").at("signed_radius").at("left_wheel").as_number(),
+                   0.05);
+  EXPECT_DOUBLE_EQ(config.at("wheel_odometry").at("signed_radius").at("right_wheel").as_number(),
+                   -0.05);
+  EXPECT_EQ(config.at("base_orientation").at("rotation_base_to_imu").as_array(),
+            (std::vector<double>{-1, 0, 0, 0, 1, 0, 0, 0, -1}));
+  EXPECT_DOUBLE_EQ(config.at("floor_contact").at("upper_leg_torque_threshold").as_number(), 10.0);
+  const Dictionary& wheel_contact = config.at("wheel_contact");
+  EXPECT_DOUBLE_EQ(wheel_contact.at("cutoff_period").as_number(), 0.2);
+  EXPECT_DOUBLE_EQ(wheel_contact.at("liftoff_inertia").as_number(), 0.001);
+  EXPECT_DOUBLE_EQ(wheel_contact.at("min_touchdown_acceleration").as_number(), 2.0);
+  EXPECT_DOUBLE_EQ(wheel_contact.at("min_touchdown_torque").as_number(), 0.015);
+  EXPECT_DOUBLE_EQ(wheel_contact.at("touchdown_inertia").as_number(), 0.004);
+  EXPECT_EQ(wheel_contact.at("touchdown_inertia").kind(), Dictionary::Kind::kFloat);
+}
+
+TEST(ResetConfig, MissingKeysKeepDefaults) {
+  testing::MessageBuilder message;
+  message.map(1).key("bullet").map(1).key("reset").map(1).key("position_base_in_world");
+  message.array(3).real(0).real(0).real(1.0);
+  Dictionary config;
+  config.update(message.object().get());
+  const ResetState read = reset_state_from_config(config);
+  EXPECT_DOUBLE_EQ(read.position_base_in_world.z(), 1.0);
+  EXPECT_TRUE(
+      read.orientation_base_in_world.coeffs().isApprox(Eigen::Quaterniond::Identity().coeffs()));
+  Dictionary empty;
+  EXPECT_DOUBLE_EQ(reset_state_from_config(empty).position_base_in_world.z(), 0.6);
+}
+
+TEST(ResetConfig, BadValuesAreNamed) {
+  const auto error_of = [](testing::MessageBuilder& message) -> std::string {
+    Dictionary config;
+    config.update(message.object().get());
+    try {
+      reset_state_from_config(config);
+    } catch (const SpineError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  testing::MessageBuilder wrong_length;
+  wrong_length.map(1).key("bullet").map(1).key("reset").map(1).key("joint_configuration");
+  wrong_length.array(5).real(0).real(0).real(0).real(0).real(0);
+  EXPECT_NE(error_of(wrong_length).find("joint_configuration' must be an array of 6"),
+            std::string::npos);
+  testing::MessageBuilder zero_quaternion;
+  zero_quaternion.map(1).key("bullet").map(1).key("reset").map(1);
+  zero_quaternion.key("orientation_base_in_world").array(4).real(0).real(0).real(0).real(0);
+  EXPECT_NE(error_of(zero_quaternion).find("is zero"), std::string::npos);
+  testing::MessageBuilder not_finite;
+  not_finite.map(1).key("bullet").map(1).key("reset").map(1).key("position_base_in_world");
+  not_finite.array(3).real(0).real(std::nan("")).real(0);
+  EXPECT_NE(error_of(not_finite).find("non-finite"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace upkie_rl

@@ -1,0 +1,97 @@
+#include "spine/shared_memory.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "fake_simulation.hpp"
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+bool shm_exists(const std::string& name) { return std::filesystem::exists("/dev/shm" + name); }
+
+TEST(SharedMemory, CreateOpenAndUnlink) {
+  const std::string name = testing::unique_shm_name("shm");
+  {
+    SharedMemory spine = SharedMemory::create(name);
+    EXPECT_TRUE(shm_exists(name));
+    EXPECT_EQ(spine.size(), SharedMemory::kDefaultSize);
+    EXPECT_EQ(spine.request(), 0u);
+    EXPECT_EQ(spine.payload_size(), 0u);
+    SharedMemory agent = SharedMemory::open(name);
+    EXPECT_FALSE(agent.owner());
+    EXPECT_EQ(agent.size(), SharedMemory::kDefaultSize);
+
+    const std::string payload = "\x81\xa1x\xc3";  // {"x": true}
+    agent.write_payload({payload.data(), payload.size()});
+    agent.set_request(Request::kAction);
+    EXPECT_EQ(spine.request(), static_cast<std::uint32_t>(Request::kAction));
+    EXPECT_EQ(std::string(spine.payload().data(), spine.payload().size()), payload);
+    SharedMemory moved = std::move(agent);  // closing the agent must not unlink
+  }
+  EXPECT_FALSE(shm_exists(name));
+}
+
+TEST(SharedMemory, AgentNeverUnlinks) {
+  const std::string name = testing::unique_shm_name("shm");
+  SharedMemory spine = SharedMemory::create(name);
+  { SharedMemory agent = SharedMemory::open(name); }
+  EXPECT_TRUE(shm_exists(name));
+}
+
+TEST(SharedMemory, CreateReplacesAStaleObject) {
+  const std::string name = testing::unique_shm_name("stale");
+  // A crashed spine's leftover: wrong size and a request word stuck at Action.
+  const int fd = ::shm_open(name.c_str(), O_RDWR | O_CREAT, 0666);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::ftruncate(fd, 4096), 0);
+  const std::uint32_t stuck = 1;
+  ASSERT_EQ(::write(fd, &stuck, sizeof(stuck)), 4);
+  ::close(fd);
+  SharedMemory spine = SharedMemory::create(name);
+  EXPECT_EQ(spine.size(), SharedMemory::kDefaultSize);
+  EXPECT_EQ(spine.request(), 0u);
+}
+
+TEST(SharedMemory, OpenMissingNamesTheObject) {
+  const std::string name = testing::unique_shm_name("missing");
+  try {
+    SharedMemory::open(name);
+    FAIL();
+  } catch (const SpineError& error) {
+    EXPECT_NE(std::string(error.what()).find(name), std::string::npos);
+  }
+}
+
+TEST(SharedMemory, RefusesOversizedPayloads) {
+  const std::string name = testing::unique_shm_name("size");
+  SharedMemory spine = SharedMemory::create(name, 64);
+  EXPECT_EQ(spine.max_payload_size(), 55u);  // n + 8 >= 64 refused
+  const std::string fits(55, 'a');
+  EXPECT_NO_THROW(spine.write_payload({fits.data(), fits.size()}));
+  const std::string too_big(56, 'a');
+  EXPECT_THROW(spine.write_payload({too_big.data(), too_big.size()}), SpineError);
+  // A size word written by someone else is checked when reading.
+  SharedMemory agent = SharedMemory::open(name);
+  const std::uint32_t lie = 1000;
+  std::memcpy(const_cast<char*>(agent.payload().data()) - 4, &lie, 4);
+  EXPECT_EQ(spine.payload_size(), 1000u);
+  EXPECT_THROW(spine.payload(), SpineError);
+}
+
+TEST(SharedMemory, ValidatesNames) {
+  EXPECT_THROW(SharedMemory::validate_name("upkie"), SpineError);
+  EXPECT_THROW(SharedMemory::validate_name("/"), SpineError);
+  EXPECT_THROW(SharedMemory::validate_name("/a/b"), SpineError);
+  EXPECT_THROW(SharedMemory::validate_name("/" + std::string(300, 'x')), SpineError);
+  EXPECT_NO_THROW(SharedMemory::validate_name("/upkie"));
+}
+
+}  // namespace
+}  // namespace upkie_rl
