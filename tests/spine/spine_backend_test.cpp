@@ -1,0 +1,180 @@
+#include "spine/spine_backend.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <thread>
+
+#include "fake_simulation.hpp"
+#include "spine/spine_error.hpp"
+#include "spine/spine_server.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using testing::FakeSimulation;
+
+/// Our agent against our spine (fake simulation), the spine running in its own thread.
+class SpineBackendTest : public ::testing::Test {
+ protected:
+  void start_spine(bool real_time, double timestep = 0.005) {
+    simulation_ = std::make_unique<FakeSimulation>(timestep);
+    server_config_.shm_name = testing::unique_shm_name("backend");
+    server_config_.real_time = real_time;
+    server_ = std::make_unique<SpineServer>(*simulation_, server_config_);
+    thread_ = std::thread([this] { server_->run(interrupt_); });
+  }
+
+  SpineBackendConfig backend_config(bool regulate) const {
+    SpineBackendConfig config;
+    config.shm_name = server_config_.shm_name;
+    config.regulate_frequency = regulate;
+    config.open_tries = 1;
+    return config;
+  }
+
+  void TearDown() override {
+    interrupt_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+
+  std::unique_ptr<FakeSimulation> simulation_;
+  SpineServerConfig server_config_;
+  std::unique_ptr<SpineServer> server_;
+  std::atomic<bool> interrupt_{false};
+  std::thread thread_;
+};
+
+TEST_F(SpineBackendTest, ResetAndStepOnRequest) {
+  start_spine(false);
+  {
+    SpineBackend backend(backend_config(false));
+    EXPECT_DOUBLE_EQ(backend.agent_timestep(), 0.005);
+    ResetState state;
+    state.joint_configuration = {0.0, 0.5, 0.0, 0.0, -0.5, 0.0};
+    state.position_base_in_world = {0.0, 0.0, 0.7};
+    const Observation& first = backend.reset(state);
+    EXPECT_DOUBLE_EQ(first.time, 0.0);
+    EXPECT_DOUBLE_EQ(first.servo[kLeftKnee].position, 0.5);
+    EXPECT_DOUBLE_EQ(first.sim_base.position.z(), 0.7);
+
+    ServoAction action;
+    for (ServoCommand& command : action) command.maximum_torque = 1.0;
+    action[kLeftWheel].velocity = 10.0;
+    for (int i = 1; i <= 20; ++i) {
+      const Observation& observation = backend.step(action);
+      EXPECT_NEAR(observation.time, 0.005 * i, 1e-12);
+    }
+    EXPECT_NEAR(backend.observation().servo[kLeftWheel].position, 20 * 0.005 * 10.0, 1e-9);
+    EXPECT_EQ(simulation_->actions.size(), 20u);
+
+    const Observation& again = backend.reset(ResetState{});
+    EXPECT_DOUBLE_EQ(again.time, 0.0);
+    EXPECT_EQ(simulation_->resets.size(), 2u);
+  }
+  // The backend's destructor asked for a stop.
+  for (int i = 0; i < 1000 && server_->state() != SpineState::kSendStops; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(server_->state(), SpineState::kSendStops);
+}
+
+TEST_F(SpineBackendTest, RealTimeSpineWithRegulatedAgent) {
+  start_spine(true, 0.001);
+  SpineBackend backend(backend_config(true));
+  backend.reset(ResetState{});
+  double previous_time = backend.observation().time;
+  ServoAction action;
+  for (ServoCommand& command : action) command.maximum_torque = 1.0;
+  for (int i = 0; i < 20; ++i) {
+    const double time = backend.step(action).time;
+    EXPECT_GT(time, previous_time);  // the spine kept simulating in between
+    previous_time = time;
+  }
+  // 20 regulated steps at 200 Hz last ~0.1 s, during which the spine cycled on its own.
+  EXPECT_GT(server_->nb_simulation_steps(), 20u);
+}
+
+TEST_F(SpineBackendTest, ActionBeforeStartIsAnInvalidRequest) {
+  start_spine(false);
+  SpineBackend backend(backend_config(false));
+  ServoAction action;
+  for (ServoCommand& command : action) command.maximum_torque = 1.0;
+  try {
+    backend.step(action);
+    FAIL();
+  } catch (const SpineError& error) {
+    EXPECT_STREQ(error.what(), "invalid request, is the spine started?");
+  }
+  backend.reset(ResetState{});  // recovers
+  EXPECT_NO_THROW(backend.step(action));
+}
+
+TEST_F(SpineBackendTest, NonFiniteCommandsAreRefusedBeforeSending) {
+  start_spine(false);
+  SpineBackend backend(backend_config(false));
+  backend.reset(ResetState{});
+  ServoAction action;
+  for (ServoCommand& command : action) command.maximum_torque = 1.0;
+  action[kRightHip].velocity = std::nan("");
+  EXPECT_THROW(backend.step(action), InvalidCommandError);
+  action[kRightHip].velocity = 0.0;
+  action[kRightHip].position = std::nan("");  // NaN position is "no position loop"
+  EXPECT_NO_THROW(backend.step(action));
+  EXPECT_EQ(simulation_->actions.size(), 1u);
+}
+
+TEST(SpineBackend, NoSpineFailsAfterTheConfiguredTries) {
+  SpineBackendConfig config;
+  config.shm_name = testing::unique_shm_name("absent");
+  config.open_tries = 3;
+  config.open_retry_delay = 0.01;
+  try {
+    SpineBackend backend(config);
+    FAIL();
+  } catch (const SpineError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("did not respond after 3 attempts"), std::string::npos) << message;
+    EXPECT_NE(message.find(config.shm_name), std::string::npos);
+  }
+}
+
+TEST(SpineBackend, StaleSharedMemoryTimesOutCleanly) {
+  // A spine that died without unlinking: the object exists but nobody answers.
+  const std::string name = testing::unique_shm_name("stale");
+  const int fd = ::shm_open(name.c_str(), O_RDWR | O_CREAT, 0666);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::ftruncate(fd, 4096), 0);
+  ::close(fd);
+  {
+    SpineBackendConfig config;
+    config.shm_name = name;
+    config.open_tries = 1;
+    SpineBackend backend(config);
+    try {
+      backend.reset(ResetState{});
+      FAIL();
+    } catch (const SpineTimeoutError& error) {
+      EXPECT_STREQ(error.what(), "spine did not process request within 100 ms, is it stopped?");
+    }
+  }  // the destructor's stop times out too, silently
+  ::shm_unlink(name.c_str());
+}
+
+TEST(SpineBackend, TooSmallSharedMemoryIsRefused) {
+  const std::string name = testing::unique_shm_name("small");
+  const int fd = ::shm_open(name.c_str(), O_RDWR | O_CREAT, 0666);
+  ASSERT_GE(fd, 0);
+  ::close(fd);  // size 0
+  SpineBackendConfig config;
+  config.shm_name = name;
+  config.open_tries = 1;
+  EXPECT_THROW(SpineBackend backend(config), SpineError);
+  ::shm_unlink(name.c_str());
+}
+
+}  // namespace
+}  // namespace upkie_rl
