@@ -77,6 +77,15 @@ void OptionTable::add_int(std::string name, int* target, int min, int max, std::
   entries_.push_back(std::move(entry));
 }
 
+void OptionTable::add_string(std::string name, std::string* target, std::string help) {
+  Entry entry{std::move(name), std::move(help), *target, nullptr};
+  entry.parse = [target](const std::string& value, const std::string& where) {
+    if (value.empty()) throw std::invalid_argument(where + ": empty value");
+    *target = value;
+  };
+  entries_.push_back(std::move(entry));
+}
+
 void OptionTable::add_choice(std::string name, std::vector<std::string> choices,
                              std::function<void(std::size_t)> set, std::string help) {
   Entry entry{std::move(name), std::move(help) + " (" + join(choices, "|") + ")", choices.front(),

@@ -18,7 +18,10 @@ class OptionTable {
   void add_double(std::string name, double* target, double min, double max, std::string help);
   /// An integer option within [min, max].
   void add_int(std::string name, int* target, int min, int max, std::string help);
-  /// An option taking one of `choices`; `set` receives the index of the chosen one.
+  /// A free-form text option (non-empty).
+  void add_string(std::string name, std::string* target, std::string help);
+  /// An option taking one of `choices`, the first being the default; `set` receives the
+  /// index of the chosen one.
   void add_choice(std::string name, std::vector<std::string> choices,
                   std::function<void(std::size_t)> set, std::string help);
 

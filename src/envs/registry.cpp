@@ -12,20 +12,16 @@
 #include "envs/servos_task_env.hpp"
 #include "envs/time_limit.hpp"
 #include "model/inertia_source.hpp"
-#include "sim/mock_simulation.hpp"
-
-#if __has_include("sim/bullet_simulation.hpp")
 #include "sim/bullet_simulation.hpp"
-#define UPKIE_RL_HAS_BULLET 1
-#else
-#define UPKIE_RL_HAS_BULLET 0
-#endif
+#include "sim/mock_simulation.hpp"
+#include "spine/spine_backend.hpp"
+
 
 namespace upkie_rl {
 
 namespace {
 
-enum class Backend { kBullet, kMock };
+enum class Backend { kBullet, kMock, kSpine };
 enum class Kind { kServos, kPendulum, kGyropod, kServosTask };
 
 struct BackendName {
@@ -37,12 +33,10 @@ struct KindName {
   Kind kind;
 };
 
-// The Spine backend is not registered: no spine Simulation exists yet (see the report).
-constexpr std::array<BackendName, UPKIE_RL_HAS_BULLET ? 2 : 1> kBackends = {{
-#if UPKIE_RL_HAS_BULLET
+constexpr std::array<BackendName, 3> kBackends = {{
     {"Bullet", Backend::kBullet},
-#endif
     {"Mock", Backend::kMock},
+    {"Spine", Backend::kSpine},
 }};
 constexpr std::array<KindName, 4> kKinds = {{{"Servos", Kind::kServos},
                                              {"Pendulum", Kind::kPendulum},
@@ -85,6 +79,7 @@ struct EnvSettings {
   int nb_substeps = 0;       // 0: round(1000 / frequency), physics at about 1 kHz.
   InertiaSource inertia_source = InertiaSource::kBulletBoxRule;
   InitRandomization init_rand;
+  SpineBackendConfig spine;
   int max_episode_steps = 0;  // 0: no time limit.
   PendulumConfig pendulum;
   GyropodConfig gyropod;
@@ -114,20 +109,35 @@ void add_balance_options(OptionTable& table, BalanceRewardWeights& reward,
                    "reward weight of (second action difference)^2");
 }
 
-/// The options of `kind`, bound to `settings`, whose defaults it sets first.
-OptionTable option_table(Kind kind, EnvSettings& settings) {
+/// The options of `id`, bound to `settings`, whose defaults it sets first.
+OptionTable option_table(const EnvId& id, EnvSettings& settings) {
+  const Kind kind = id.kind;
   const bool timed = kind == Kind::kPendulum || kind == Kind::kServosTask;
   settings.max_episode_steps = timed ? 300 : 0;
   OptionTable table;
   table.add_double("frequency", &settings.frequency, 1.0, 10000.0, "agent rate [Hz]");
-  table.add_int("nb_substeps", &settings.nb_substeps, 0, 10000,
-                "physics steps per agent step, 0 for round(1000/frequency)");
-  table.add_choice(
-      "inertia", {"box", "urdf"},
-      [&settings](std::size_t choice) {
-        settings.inertia_source = choice == 0 ? InertiaSource::kBulletBoxRule : InertiaSource::kUrdf;
-      },
-      "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
+  if (id.backend == Backend::kSpine) {
+    SpineBackendConfig& spine = settings.spine;
+    table.add_string("shm_name", &spine.shm_name, "shared-memory name of the spine");
+    table.add_choice(
+        "regulate_frequency", {"true", "false"},
+        [&spine](std::size_t choice) { spine.regulate_frequency = choice == 0; },
+        "sleep so that actions leave at the agent rate (real-time spines)");
+    table.add_double("request_timeout", &spine.request_timeout, 1e-3, 3600.0,
+                     "longest wait for the spine to answer [s]");
+    table.add_int("open_tries", &spine.open_tries, 1, 1000,
+                  "attempts at opening the spine's shared memory, 1 s apart");
+  } else {
+    table.add_int("nb_substeps", &settings.nb_substeps, 0, 10000,
+                  "physics steps per agent step, 0 for round(1000/frequency) (Bullet)");
+    table.add_choice(
+        "inertia", {"box", "urdf"},
+        [&settings](std::size_t choice) {
+          settings.inertia_source =
+              choice == 0 ? InertiaSource::kBulletBoxRule : InertiaSource::kUrdf;
+        },
+        "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors (Bullet)");
+  }
   table.add_int("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
                 "truncate episodes after this many steps, 0 for never");
   InitRandomization& init = settings.init_rand;
@@ -180,7 +190,6 @@ std::unique_ptr<Simulation> make_simulation(Backend backend, const EnvSettings& 
                               ? settings.nb_substeps
                               : std::max(1, static_cast<int>(std::lround(1000.0 / settings.frequency)));
   switch (backend) {
-#if UPKIE_RL_HAS_BULLET
     case Backend::kBullet: {
       BulletConfig config;
       config.nb_substeps = nb_substeps;
@@ -189,7 +198,12 @@ std::unique_ptr<Simulation> make_simulation(Backend backend, const EnvSettings& 
       physics_steps_per_step = nb_substeps;
       return std::make_unique<BulletSimulation>(model, config);
     }
-#endif
+    case Backend::kSpine: {
+      SpineBackendConfig config = settings.spine;
+      config.agent_frequency = settings.frequency;
+      physics_steps_per_step = 0;
+      return std::make_unique<SpineBackend>(config);
+    }
     case Backend::kMock:
     default:
       physics_steps_per_step = 0;
@@ -240,7 +254,7 @@ std::vector<std::string> registered_env_ids() {
 EnvFactory make_env_factory(const std::string& id, const EnvOptions& options) {
   const EnvId parsed = parse_id(id);
   EnvSettings settings;
-  option_table(parsed.kind, settings).apply(options, id);
+  option_table(parsed, settings).apply(options, id);
   // Fail here, not in the factory, on the model or a settings error.
   RobotModel::default_model();
   return [parsed, settings]() { return build(parsed, settings); };
@@ -252,7 +266,7 @@ std::unique_ptr<Env> make_env(const std::string& id, const EnvOptions& options) 
 
 std::vector<std::string> env_option_help(const std::string& id) {
   EnvSettings settings;
-  return option_table(parse_id(id).kind, settings).describe();
+  return option_table(parse_id(id), settings).describe();
 }
 
 }  // namespace upkie_rl

@@ -27,7 +27,8 @@ TEST(Registry, ListsEveryKindForEachBackend) {
   const std::vector<std::string> ids = registered_env_ids();
   for (const char* id : {"Upkie-Mock-Servos", "Upkie-Mock-Pendulum", "Upkie-Mock-Gyropod",
                          "Upkie-Mock-ServosTask", "Upkie-Bullet-Servos", "Upkie-Bullet-Pendulum",
-                         "Upkie-Bullet-Gyropod", "Upkie-Bullet-ServosTask"}) {
+                         "Upkie-Bullet-Gyropod", "Upkie-Bullet-ServosTask", "Upkie-Spine-Servos",
+                         "Upkie-Spine-Pendulum", "Upkie-Spine-Gyropod", "Upkie-Spine-ServosTask"}) {
     EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
   }
 }
@@ -92,6 +93,23 @@ TEST(Registry, OptionsAcceptedByEveryKind) {
         << id;
     EXPECT_FALSE(env_option_help(id).empty());
   }
+}
+
+TEST(Registry, SpineOptionsAreTheirOwn) {
+  // A spine that is not there: a clear error after one attempt, not a hang.
+  try {
+    make_env("Upkie-Spine-Pendulum", {{"shm_name", "/upkie-rl-no-such-spine"}, {"open_tries", "1"}});
+    FAIL() << "expected an exception";
+  } catch (const std::runtime_error& error) {
+    EXPECT_TRUE(contains(error.what(), "upkie-rl-no-such-spine")) << error.what();
+  }
+  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Spine-Servos", {{"nb_substeps", "5"}}); }),
+                       "unknown option \"nb_substeps\""));
+  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Mock-Servos", {{"shm_name", "/x"}}); }),
+                       "unknown option"));
+  EXPECT_TRUE(contains(
+      error_of([] { make_env("Upkie-Spine-Servos", {{"regulate_frequency", "maybe"}}); }),
+      "true, false"));
 }
 
 TEST(Registry, InitRandomizationIsSeeded) {
