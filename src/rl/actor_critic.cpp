@@ -1,0 +1,203 @@
+#include "rl/actor_critic.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace upkie_rl {
+
+namespace {
+
+constexpr double kHalfLog2Pi = 0.91893853320467274178;  // ½·log(2π)
+
+std::int64_t mlp_size(std::int64_t input_size, const std::vector<std::int64_t>& hidden_sizes,
+                      std::int64_t output_size) {
+  std::int64_t count = 0;
+  std::int64_t in = input_size;
+  for (std::int64_t out : hidden_sizes) {
+    count += out * in + out;
+    in = out;
+  }
+  return count + output_size * in + output_size;
+}
+
+}  // namespace
+
+std::int64_t count_parameters(std::int64_t observation_size, std::int64_t action_size,
+                              const PolicyConfig& config) {
+  return mlp_size(observation_size, config.actor_hidden_sizes, action_size) +
+         mlp_size(observation_size, config.critic_hidden_sizes, 1) + action_size;
+}
+
+void orthogonal_init(torch::Tensor tensor, double gain, at::Generator& generator) {
+  torch::NoGradGuard no_grad;
+  const std::int64_t rows = tensor.size(0);
+  const std::int64_t columns = tensor.numel() / rows;
+  torch::Tensor flattened = torch::randn({rows, columns}, generator, torch::kFloat32);
+  if (rows < columns) flattened = flattened.t();
+  auto [q, r] = torch::linalg_qr(flattened);
+  q = q * torch::diagonal(r, 0).sign();
+  if (rows < columns) q = q.t();
+  tensor.view_as(q).copy_(q);
+  tensor.mul_(gain);
+}
+
+ActorCritic::ActorCritic(std::int64_t observation_size, std::int64_t action_size,
+                         const PolicyConfig& config, std::uint64_t seed)
+    : observation_size_(observation_size), action_size_(action_size), config_(config) {
+  if (observation_size < 1 || action_size < 1) {
+    throw std::invalid_argument("ActorCritic: observation and action sizes must be positive");
+  }
+  const std::int64_t total = count_parameters(observation_size, action_size, config);
+  flat_parameters_ = torch::zeros({total}, torch::kFloat32);
+  flat_gradients_ = torch::zeros({total}, torch::kFloat32);
+  std::int64_t offset = 0;
+  actor_ = make_mlp("actor", observation_size, config.actor_hidden_sizes, action_size, offset);
+  critic_ = make_mlp("critic", observation_size, config.critic_hidden_sizes, 1, offset);
+  log_std_ = register_parameter("log_std", torch::zeros({action_size}));
+  log_std_.set_data(flat_parameters_.narrow(0, offset, action_size));
+  log_std_.mutable_grad() = flat_gradients_.narrow(0, offset, action_size);
+  offset += action_size;
+
+  torch::NoGradGuard no_grad;
+  at::Generator generator = at::make_generator<at::CPUGeneratorImpl>(seed);
+  const double hidden_gain = std::sqrt(2.0);
+  for (std::size_t i = 0; i < actor_.size(); ++i) {
+    orthogonal_init(actor_[i].weight, i + 1 < actor_.size() ? hidden_gain : 0.01, generator);
+  }
+  for (std::size_t i = 0; i < critic_.size(); ++i) {
+    orthogonal_init(critic_[i].weight, i + 1 < critic_.size() ? hidden_gain : 1.0, generator);
+  }
+  log_std_.fill_(config.log_std_init);
+}
+
+std::vector<DenseLayer> ActorCritic::make_mlp(const std::string& name, std::int64_t input_size,
+                                              const std::vector<std::int64_t>& hidden_sizes,
+                                              std::int64_t output_size, std::int64_t& offset) {
+  // Each parameter is a standalone leaf whose storage is moved into the flat buffers, so
+  // autograd accumulates gradients straight into flat_gradients_.
+  auto make = [&](const std::string& parameter_name, std::vector<std::int64_t> shape) {
+    std::int64_t numel = 1;
+    for (std::int64_t size : shape) numel *= size;
+    torch::Tensor parameter = register_parameter(parameter_name, torch::zeros(shape));
+    parameter.set_data(flat_parameters_.narrow(0, offset, numel).view(shape));
+    parameter.mutable_grad() = flat_gradients_.narrow(0, offset, numel).view(shape);
+    offset += numel;
+    return parameter;
+  };
+  std::vector<DenseLayer> layers;
+  std::int64_t in = input_size;
+  std::vector<std::int64_t> sizes = hidden_sizes;
+  sizes.push_back(output_size);
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const std::string prefix = name + "_" + std::to_string(i) + "_";
+    DenseLayer layer;
+    layer.weight = make(prefix + "weight", {sizes[i], in});
+    layer.bias = make(prefix + "bias", {sizes[i]});
+    layers.push_back(layer);
+    in = sizes[i];
+  }
+  return layers;
+}
+
+torch::Tensor ActorCritic::run_mlp(const std::vector<DenseLayer>& layers, torch::Tensor x) const {
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    x = torch::addmm(layers[i].bias, x, layers[i].weight.t());
+    if (i + 1 < layers.size()) {
+      x = config_.activation == Activation::kReLU ? torch::relu(x) : torch::tanh(x);
+    }
+  }
+  return x;
+}
+
+torch::Tensor ActorCritic::action_mean(const torch::Tensor& observations) const {
+  return run_mlp(actor_, observations);
+}
+
+torch::Tensor ActorCritic::value(const torch::Tensor& observations) const {
+  return run_mlp(critic_, observations).view({-1});
+}
+
+ActionEvaluation ActorCritic::evaluate_actions(const torch::Tensor& observations,
+                                               const torch::Tensor& actions) const {
+  const torch::Tensor mean = action_mean(observations);
+  // log N(a; μ, σ) = −½((a − μ)/σ)² − log σ − ½log 2π, summed over components.
+  const torch::Tensor z = (actions - mean) * torch::exp(-log_std_);
+  ActionEvaluation out;
+  out.log_prob = (z.square().sum(1)).mul(-0.5) -
+                 (log_std_.sum() + kHalfLog2Pi * static_cast<double>(action_size_));
+  out.entropy = (log_std_ + (0.5 + kHalfLog2Pi)).sum();
+  out.values = value(observations);
+  return out;
+}
+
+PolicyInference::PolicyInference(const ActorCritic& policy, std::int64_t batch_size)
+    : policy_(policy), batch_size_(batch_size) {
+  torch::NoGradGuard no_grad;
+  input_ = torch::zeros({batch_size, policy.observation_size()});
+  for (const DenseLayer& layer : policy.actor_layers()) {
+    actor_weights_t_.push_back(layer.weight.t());
+    actor_outputs_.push_back(torch::zeros({batch_size, layer.weight.size(0)}));
+  }
+  for (const DenseLayer& layer : policy.critic_layers()) {
+    critic_weights_t_.push_back(layer.weight.t());
+    critic_outputs_.push_back(torch::zeros({batch_size, layer.weight.size(0)}));
+  }
+}
+
+void PolicyInference::forward(const std::vector<DenseLayer>& layers,
+                              const std::vector<torch::Tensor>& weights_t,
+                              std::vector<torch::Tensor>& outputs) {
+  const bool relu = policy_.config().activation == Activation::kReLU;
+  const torch::Tensor* x = &input_;
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    at::mm_out(outputs[i], *x, weights_t[i]);
+    outputs[i].add_(layers[i].bias);
+    if (i + 1 < layers.size()) {
+      if (relu) {
+        outputs[i].relu_();
+      } else {
+        outputs[i].tanh_();
+      }
+    }
+    x = &outputs[i];
+  }
+}
+
+void PolicyInference::run_actor(std::span<const float> observations) {
+  torch::NoGradGuard no_grad;
+  if (static_cast<std::int64_t>(observations.size()) != input_.numel()) {
+    throw std::invalid_argument("PolicyInference: expected " + std::to_string(input_.numel()) +
+                                " observation values, got " + std::to_string(observations.size()));
+  }
+  std::memcpy(input_.data_ptr<float>(), observations.data(), observations.size_bytes());
+  forward(policy_.actor_layers(), actor_weights_t_, actor_outputs_);
+}
+
+void PolicyInference::run_critic(std::span<const float> observations) {
+  torch::NoGradGuard no_grad;
+  if (static_cast<std::int64_t>(observations.size()) != input_.numel()) {
+    throw std::invalid_argument("PolicyInference: expected " + std::to_string(input_.numel()) +
+                                " observation values, got " + std::to_string(observations.size()));
+  }
+  std::memcpy(input_.data_ptr<float>(), observations.data(), observations.size_bytes());
+  forward(policy_.critic_layers(), critic_weights_t_, critic_outputs_);
+}
+
+void PolicyInference::run(std::span<const float> observations) {
+  run_actor(observations);
+  torch::NoGradGuard no_grad;
+  forward(policy_.critic_layers(), critic_weights_t_, critic_outputs_);
+}
+
+std::span<const float> PolicyInference::means() const {
+  const torch::Tensor& out = actor_outputs_.back();
+  return {out.data_ptr<float>(), static_cast<std::size_t>(out.numel())};
+}
+
+std::span<const float> PolicyInference::values() const {
+  const torch::Tensor& out = critic_outputs_.back();
+  return {out.data_ptr<float>(), static_cast<std::size_t>(out.numel())};
+}
+
+}  // namespace upkie_rl

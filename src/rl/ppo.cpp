@@ -1,0 +1,275 @@
+#include "rl/ppo.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+#include "rl/ppo_loss.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+constexpr double kHalfLog2Pi = 0.91893853320467274178;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+const TrainingConfig& validated(const TrainingConfig& config) {
+  config.validate();
+  return config;
+}
+
+std::int64_t checked_size(std::size_t size, const char* what) {
+  if (size == 0)
+    throw std::invalid_argument(std::string("PPO: the environment has an empty ") + what);
+  return static_cast<std::int64_t>(size);
+}
+
+}  // namespace
+
+Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
+    : env_(env),
+      config_(validated(config)),
+      observation_size_(checked_size(env.observation_space().size(), "observation space")),
+      action_size_(checked_size(env.action_space().size(), "action space")),
+      num_envs_(static_cast<std::int64_t>(env.num_envs())),
+      policy_(std::make_unique<ActorCritic>(observation_size_, action_size_, config.policy,
+                                            config.seed)),
+      optimizer_(policy_->flat_parameters(), policy_->flat_gradients(),
+                 AdamConfig{config.ppo.learning_rate_initial, 0.9, 0.999, config.ppo.adam_eps}),
+      learning_rate_{config.ppo.learning_rate_initial, config.ppo.learning_rate_final},
+      buffer_(config.steps_per_env(), num_envs_, observation_size_, action_size_),
+      inference_(*policy_, num_envs_),
+      rng_(config.seed),
+      last_observations_(num_envs_ * observation_size_),
+      clipped_actions_(num_envs_ * action_size_),
+      last_values_(num_envs_),
+      action_low_(env.action_space().low),
+      action_high_(env.action_space().high) {
+  if (num_envs_ != config.num_envs) {
+    throw std::invalid_argument("PPO: the vector env has " + std::to_string(num_envs_) +
+                                " envs but config key 'env.num_envs' says " +
+                                std::to_string(config.num_envs));
+  }
+  if (action_low_.size() != static_cast<std::size_t>(action_size_) ||
+      action_high_.size() != static_cast<std::size_t>(action_size_)) {
+    throw std::invalid_argument("PPO: action space bounds do not match its size");
+  }
+  permutation_.resize(static_cast<std::size_t>(buffer_.size()));
+}
+
+void Ppo::reset_environments(std::uint64_t seed) {
+  const auto start = Clock::now();
+  const std::span<const float> observations = env_.reset(seed);
+  if (observations.size() != last_observations_.size()) {
+    throw std::runtime_error("PPO: reset returned " + std::to_string(observations.size()) +
+                             " observation values, expected " +
+                             std::to_string(last_observations_.size()));
+  }
+  std::copy(observations.begin(), observations.end(), last_observations_.begin());
+  timings_.env_seconds += seconds_since(start);
+  started_ = true;
+}
+
+void Ppo::collect_rollout() {
+  if (!started_) throw std::logic_error("PPO: call reset_environments() before collecting");
+  const double gamma = config_.ppo.gamma;
+  // σ is constant during a rollout.
+  std::vector<double> stds(action_size_);
+  double log_normaliser = 0.0;
+  {
+    const float* log_std = policy_->log_std().data_ptr<float>();
+    for (std::int64_t j = 0; j < action_size_; ++j) {
+      stds[j] = std::exp(static_cast<double>(log_std[j]));
+      log_normaliser += log_std[j] + kHalfLog2Pi;
+    }
+  }
+  const std::size_t observation_bytes = last_observations_.size() * sizeof(float);
+  for (std::int64_t t = 0; t < buffer_.num_steps(); ++t) {
+    auto start = Clock::now();
+    inference_.run(last_observations_);
+    const std::span<const float> means = inference_.means();
+    const std::span<const float> values = inference_.values();
+    float* actions = buffer_.actions(t);
+    float* log_probs = buffer_.log_probs(t);
+    for (std::int64_t i = 0; i < num_envs_; ++i) {
+      double squared_noise = 0.0;
+      for (std::int64_t j = 0; j < action_size_; ++j) {
+        const std::size_t k = static_cast<std::size_t>(i * action_size_ + j);
+        const double noise = normal_(rng_);
+        squared_noise += noise * noise;
+        const float action = static_cast<float>(means[k] + stds[j] * noise);
+        actions[k] = action;
+        clipped_actions_[k] = std::clamp(action, action_low_[j], action_high_[j]);
+      }
+      log_probs[i] = static_cast<float>(-0.5 * squared_noise - log_normaliser);
+    }
+    std::memcpy(buffer_.observations(t), last_observations_.data(), observation_bytes);
+    std::memcpy(buffer_.values(t), values.data(), values.size_bytes());
+    timings_.inference_seconds += seconds_since(start);
+
+    start = Clock::now();
+    const VectorStep& step = env_.step(clipped_actions_);
+    timings_.env_seconds += seconds_since(start);
+
+    start = Clock::now();
+    float* rewards = buffer_.rewards(t);
+    float* dones = buffer_.dones(t);
+    bool any_truncated = false;
+    for (std::int64_t i = 0; i < num_envs_; ++i) {
+      const bool terminated = step.terminated[i] != 0;
+      const bool truncated = step.truncated[i] != 0 && !terminated;
+      rewards[i] = step.rewards[i];
+      dones[i] = (terminated || truncated) ? 1.0f : 0.0f;
+      any_truncated = any_truncated || truncated;
+      if (terminated || step.truncated[i] != 0) {
+        episodes_.add(step.episode_returns[i], step.episode_lengths[i]);
+      }
+    }
+    if (any_truncated) {
+      // Time limits are not failures: bootstrap with the current critic's value of the
+      // episode's last observation.
+      inference_.run_critic(step.final_observations);
+      const std::span<const float> final_values = inference_.values();
+      for (std::int64_t i = 0; i < num_envs_; ++i) {
+        if (step.truncated[i] != 0 && step.terminated[i] == 0) {
+          rewards[i] = static_cast<float>(rewards[i] + gamma * final_values[i]);
+        }
+      }
+    }
+    std::copy(step.observations.begin(), step.observations.end(), last_observations_.begin());
+    num_timesteps_ += num_envs_;
+    timings_.inference_seconds += seconds_since(start);
+  }
+  const auto start = Clock::now();
+  inference_.run_critic(last_observations_);
+  std::copy(inference_.values().begin(), inference_.values().end(), last_values_.begin());
+  buffer_.compute_returns_and_advantages(last_values_, gamma, config_.ppo.gae_lambda);
+  ++iterations_;
+  timings_.update_seconds += seconds_since(start);
+}
+
+double Ppo::learning_rate_at(std::int64_t timesteps) const {
+  return learning_rate_(LinearSchedule::progress_remaining(timesteps, config_.ppo.total_timesteps));
+}
+
+PpoUpdateStatistics Ppo::update() {
+  const auto start = Clock::now();
+  const PpoConfig& ppo = config_.ppo;
+  PpoUpdateStatistics statistics;
+  statistics.learning_rate = learning_rate_at(num_timesteps_);
+  optimizer_.set_learning_rate(statistics.learning_rate);
+  statistics.clip_range = ppo.clip_range;
+
+  const torch::Tensor observations = buffer_.flat_observations();
+  const torch::Tensor actions = buffer_.flat_actions();
+  const torch::Tensor old_log_probs = buffer_.flat_log_probs();
+  const torch::Tensor old_values = buffer_.flat_values();
+  const torch::Tensor advantages = buffer_.flat_advantages();
+  const torch::Tensor returns = buffer_.flat_returns();
+  const std::int64_t size = buffer_.size();
+  double sum_pg = 0.0, sum_value = 0.0, sum_entropy = 0.0, sum_kl = 0.0, sum_clip = 0.0;
+  std::int64_t minibatches = 0;
+  for (std::int64_t epoch = 0; epoch < ppo.n_epochs; ++epoch) {
+    // A fresh permutation each epoch (Fisher-Yates on our own generator, for
+    // reproducibility and checkpointing), applied once so minibatches are slices.
+    for (std::int64_t i = 0; i < size; ++i) permutation_[i] = i;
+    for (std::int64_t i = size - 1; i > 0; --i) {
+      std::uniform_int_distribution<std::int64_t> pick(0, i);
+      std::swap(permutation_[i], permutation_[pick(rng_)]);
+    }
+    const torch::Tensor index = torch::from_blob(permutation_.data(), {size}, torch::kInt64);
+    const PpoMinibatch shuffled{
+        observations.index_select(0, index),  actions.index_select(0, index),
+        old_log_probs.index_select(0, index), old_values.index_select(0, index),
+        advantages.index_select(0, index),    returns.index_select(0, index)};
+    for (std::int64_t begin = 0; begin < size; begin += ppo.batch_size) {
+      const std::int64_t length = std::min(ppo.batch_size, size - begin);
+      const PpoMinibatch batch{shuffled.observations.narrow(0, begin, length),
+                               shuffled.actions.narrow(0, begin, length),
+                               shuffled.old_log_prob.narrow(0, begin, length),
+                               shuffled.old_values.narrow(0, begin, length),
+                               shuffled.advantages.narrow(0, begin, length),
+                               shuffled.returns.narrow(0, begin, length)};
+      const ActionEvaluation evaluation =
+          policy_->evaluate_actions(batch.observations, batch.actions);
+      const PpoLoss loss = compute_ppo_loss(evaluation, batch, ppo);
+      policy_->zero_gradients();
+      loss.total.backward();
+      clip_gradient_norm(policy_->flat_gradients(), ppo.max_grad_norm);
+      optimizer_.step();
+      sum_pg += loss.policy_gradient_loss.item<double>();
+      sum_value += loss.value_loss.item<double>();
+      sum_entropy += loss.entropy_loss.item<double>();
+      sum_kl += loss.approx_kl.item<double>();
+      sum_clip += loss.clip_fraction.item<double>();
+      statistics.loss = loss.total.item<double>();
+      ++minibatches;
+    }
+  }
+  n_updates_ += ppo.n_epochs;
+  const double count = static_cast<double>(minibatches);
+  statistics.policy_gradient_loss = sum_pg / count;
+  statistics.value_loss = sum_value / count;
+  statistics.entropy_loss = sum_entropy / count;
+  statistics.approx_kl = sum_kl / count;
+  statistics.clip_fraction = sum_clip / count;
+  statistics.explained_variance = explained_variance(old_values, returns);
+  {
+    torch::NoGradGuard no_grad;
+    statistics.std = torch::exp(policy_->log_std()).mean().item<double>();
+  }
+  statistics.n_updates = n_updates_;
+  timings_.update_seconds += seconds_since(start);
+  return statistics;
+}
+
+PpoUpdateStatistics Ppo::iterate() {
+  collect_rollout();
+  return update();
+}
+
+nlohmann::json Ppo::counters_state() const {
+  std::ostringstream random_state;
+  random_state << rng_ << ' ' << normal_;
+  return {{"num_timesteps", num_timesteps_},
+          {"iterations", iterations_},
+          {"n_updates", n_updates_},
+          {"random_state", random_state.str()},
+          {"episodes", episodes_.state()}};
+}
+
+void Ppo::load_counters_state(const nlohmann::json& state) {
+  try {
+    const auto num_timesteps = state.at("num_timesteps").get<std::int64_t>();
+    const auto iterations = state.at("iterations").get<std::int64_t>();
+    const auto n_updates = state.at("n_updates").get<std::int64_t>();
+    std::istringstream random_state(state.at("random_state").get<std::string>());
+    std::mt19937_64 rng;
+    std::normal_distribution<double> normal;
+    random_state >> rng >> normal;
+    if (!random_state) throw std::invalid_argument("unreadable random_state");
+    if (num_timesteps < 0 || iterations < 0 || n_updates < 0) {
+      throw std::invalid_argument("negative counter");
+    }
+    EpisodeStatistics episodes;
+    episodes.load_state(state.at("episodes"));
+    num_timesteps_ = num_timesteps;
+    iterations_ = iterations;
+    n_updates_ = n_updates;
+    rng_ = rng;
+    normal_ = normal;
+    episodes_ = episodes;
+  } catch (const nlohmann::json::exception& error) {
+    throw std::invalid_argument(std::string("training counters: ") + error.what());
+  }
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,113 @@
+#pragma once
+/// @file
+/// Proximal Policy Optimisation with SB3 semantics on a VectorEnv: rollout collection with
+/// truncation bootstrapping, GAE, and clipped updates of an ActorCritic with FlatAdam.
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "rl/actor_critic.hpp"
+#include "rl/episode_statistics.hpp"
+#include "rl/flat_adam.hpp"
+#include "rl/linear_schedule.hpp"
+#include "rl/rollout_buffer.hpp"
+#include "rl/training_config.hpp"
+#include "vec/vector_env.hpp"
+
+namespace upkie_rl {
+
+/// What one update logs (SB3 `train/*` names in comments).
+struct PpoUpdateStatistics {
+  double loss = 0.0;                  ///< train/loss (last minibatch).
+  double policy_gradient_loss = 0.0;  ///< train/policy_gradient_loss (mean of minibatches).
+  double value_loss = 0.0;            ///< train/value_loss.
+  double entropy_loss = 0.0;          ///< train/entropy_loss.
+  double approx_kl = 0.0;             ///< train/approx_kl.
+  double clip_fraction = 0.0;         ///< train/clip_fraction.
+  double explained_variance = 0.0;    ///< train/explained_variance.
+  double learning_rate = 0.0;         ///< train/learning_rate.
+  double std = 0.0;                   ///< train/std: mean of σ.
+  double clip_range = 0.0;            ///< train/clip_range.
+  std::int64_t n_updates = 0;         ///< train/n_updates: epochs so far.
+};
+
+/// Wall time spent in each part of training, in seconds.
+struct PpoTimings {
+  double env_seconds = 0.0;        ///< Inside VectorEnv::step and reset.
+  double inference_seconds = 0.0;  ///< Policy forward passes and sampling in rollouts.
+  double update_seconds = 0.0;     ///< GAE and gradient updates.
+};
+
+/// The PPO learner. It does not own the environment; the caller keeps it alive.
+class Ppo {
+ public:
+  /// Builds the policy (initialised from config.seed) and optimiser for `env`'s spaces.
+  /// Throws std::invalid_argument if the config does not fit the environment.
+  Ppo(VectorEnv& env, const TrainingConfig& config);
+
+  /// Resets every environment (env i with seed + i) and starts new episodes.
+  void reset_environments(std::uint64_t seed);
+
+  /// Collects steps_per_env() x num_envs transitions with the stochastic policy, then
+  /// computes advantages and returns. Requires reset_environments() first.
+  void collect_rollout();
+
+  /// Sets the learning rate from the progress so far and runs n_epochs over the rollout.
+  PpoUpdateStatistics update();
+
+  /// One iteration: collect_rollout() then update().
+  PpoUpdateStatistics iterate();
+
+  std::int64_t num_timesteps() const { return num_timesteps_; }
+  std::int64_t iterations() const { return iterations_; }
+  std::int64_t n_updates() const { return n_updates_; }
+  const TrainingConfig& config() const { return config_; }
+  const VectorEnv& env() const { return env_; }
+  ActorCritic& policy() { return *policy_; }
+  const ActorCritic& policy() const { return *policy_; }
+  FlatAdam& optimizer() { return optimizer_; }
+  const FlatAdam& optimizer() const { return optimizer_; }
+  const EpisodeStatistics& episodes() const { return episodes_; }
+  const PpoTimings& timings() const { return timings_; }
+  const RolloutBuffer& buffer() const { return buffer_; }
+  /// The learning rate the schedule gives after `timesteps`.
+  double learning_rate_at(std::int64_t timesteps) const;
+
+  /// Counters and random state for checkpoints (the weights and optimiser moments are
+  /// saved from policy() and optimizer()).
+  nlohmann::json counters_state() const;
+  /// Restores counters_state(); throws std::invalid_argument on a malformed state.
+  void load_counters_state(const nlohmann::json& state);
+
+ private:
+  VectorEnv& env_;
+  TrainingConfig config_;
+  std::int64_t observation_size_;
+  std::int64_t action_size_;
+  std::int64_t num_envs_;
+  std::unique_ptr<ActorCritic> policy_;
+  FlatAdam optimizer_;
+  LinearSchedule learning_rate_;
+  RolloutBuffer buffer_;
+  PolicyInference inference_;
+  EpisodeStatistics episodes_;
+  PpoTimings timings_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_;
+  bool started_ = false;
+  std::int64_t num_timesteps_ = 0;
+  std::int64_t iterations_ = 0;
+  std::int64_t n_updates_ = 0;
+  // Rollout scratch, sized once.
+  std::vector<float> last_observations_;
+  std::vector<float> clipped_actions_;
+  std::vector<float> last_values_;
+  std::vector<float> action_low_;
+  std::vector<float> action_high_;
+  std::vector<std::int64_t> permutation_;
+};
+
+}  // namespace upkie_rl

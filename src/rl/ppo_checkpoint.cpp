@@ -1,0 +1,141 @@
+#include "rl/ppo_checkpoint.hpp"
+
+#include <cmath>
+
+namespace upkie_rl {
+
+namespace {
+
+nlohmann::json bound_to_json(float value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return value;
+}
+
+float bound_from_json(const nlohmann::json& json) {
+  if (json.is_string()) {
+    if (json == "inf") return INFINITY;
+    if (json == "-inf") return -INFINITY;
+    throw CheckpointError("malformed space bound " + json.dump());
+  }
+  return json.get<float>();
+}
+
+nlohmann::json policy_shape(const Ppo& ppo) {
+  const PolicyConfig& policy = ppo.policy().config();
+  return {{"observation_size", ppo.policy().observation_size()},
+          {"action_size", ppo.policy().action_size()},
+          {"actor_hidden_sizes", policy.actor_hidden_sizes},
+          {"critic_hidden_sizes", policy.critic_hidden_sizes},
+          {"activation", activation_name(policy.activation)}};
+}
+
+}  // namespace
+
+nlohmann::json space_to_json(const BoxSpace& space) {
+  nlohmann::json low = nlohmann::json::array();
+  nlohmann::json high = nlohmann::json::array();
+  for (std::size_t i = 0; i < space.size(); ++i) {
+    low.push_back(bound_to_json(space.low[i]));
+    high.push_back(bound_to_json(space.high[i]));
+  }
+  return {{"low", low}, {"high", high}, {"names", space.names}};
+}
+
+BoxSpace space_from_json(const nlohmann::json& json) {
+  try {
+    BoxSpace space;
+    for (const auto& value : json.at("low")) space.low.push_back(bound_from_json(value));
+    for (const auto& value : json.at("high")) space.high.push_back(bound_from_json(value));
+    space.names = json.at("names").get<std::vector<std::string>>();
+    if (space.high.size() != space.low.size() ||
+        (!space.names.empty() && space.names.size() != space.low.size())) {
+      throw CheckpointError("space bounds and names differ in size");
+    }
+    return space;
+  } catch (const nlohmann::json::exception& error) {
+    throw CheckpointError(std::string("malformed space: ") + error.what());
+  }
+}
+
+void check_same_space(const BoxSpace& expected, const BoxSpace& actual, const std::string& what) {
+  if (expected.size() != actual.size()) {
+    throw CheckpointError("the model's " + what + " has " + std::to_string(expected.size()) +
+                          " components, the environment's has " + std::to_string(actual.size()));
+  }
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const std::string name = i < expected.names.size() ? expected.names[i] : std::to_string(i);
+    if (i < expected.names.size() && i < actual.names.size() &&
+        expected.names[i] != actual.names[i]) {
+      throw CheckpointError("the model's " + what + " component " + std::to_string(i) + " is '" +
+                            expected.names[i] + "', the environment's is '" + actual.names[i] +
+                            "'");
+    }
+    if (expected.low[i] != actual.low[i] || expected.high[i] != actual.high[i]) {
+      throw CheckpointError("the model's " + what + " component '" + name + "' has bounds [" +
+                            std::to_string(expected.low[i]) + ", " +
+                            std::to_string(expected.high[i]) + "], the environment's [" +
+                            std::to_string(actual.low[i]) + ", " + std::to_string(actual.high[i]) +
+                            "]");
+    }
+  }
+}
+
+Checkpoint make_ppo_checkpoint(const Ppo& ppo, const nlohmann::json& normalization,
+                               const nlohmann::json& extra) {
+  Checkpoint checkpoint;
+  checkpoint.header = extra;
+  checkpoint.header["format"] = "upkie-rl checkpoint";
+  checkpoint.header["version"] = 1;
+  checkpoint.header["config"] = to_yaml(ppo.config());
+  checkpoint.header["counters"] = ppo.counters_state();
+  checkpoint.header["optimizer"] = {{"step_count", ppo.optimizer().step_count()}};
+  checkpoint.header["normalization"] = normalization;
+  checkpoint.header["policy"] = policy_shape(ppo);
+  checkpoint.header["observation_space"] = space_to_json(ppo.env().observation_space());
+  checkpoint.header["action_space"] = space_to_json(ppo.env().action_space());
+  checkpoint.tensors["policy.parameters"] = ppo.policy().flat_parameters().detach().clone();
+  checkpoint.tensors["optimizer.exp_avg"] = ppo.optimizer().exp_avg().clone();
+  checkpoint.tensors["optimizer.exp_avg_sq"] = ppo.optimizer().exp_avg_sq().clone();
+  return checkpoint;
+}
+
+std::string checkpoint_config_yaml(const Checkpoint& checkpoint) {
+  const auto found = checkpoint.header.find("config");
+  if (found == checkpoint.header.end() || !found->is_string()) {
+    throw CheckpointError("checkpoint has no configuration");
+  }
+  return found->get<std::string>();
+}
+
+void restore_ppo_checkpoint(Ppo& ppo, const Checkpoint& checkpoint) {
+  const nlohmann::json& header = checkpoint.header;
+  if (header.value("format", "") != "upkie-rl checkpoint" || header.value("version", 0) != 1) {
+    throw CheckpointError("not an upkie-rl checkpoint of version 1");
+  }
+  if (!header.contains("policy") || header.at("policy") != policy_shape(ppo)) {
+    throw CheckpointError("the checkpoint's policy " +
+                          header.value("policy", nlohmann::json()).dump() +
+                          " differs from the configured one " + policy_shape(ppo).dump());
+  }
+  check_same_space(space_from_json(header.at("observation_space")), ppo.env().observation_space(),
+                   "observation space");
+  check_same_space(space_from_json(header.at("action_space")), ppo.env().action_space(),
+                   "action space");
+  const std::int64_t count = ppo.policy().flat_parameters().numel();
+  const torch::Tensor& parameters = checkpoint.tensor("policy.parameters", count);
+  const torch::Tensor& exp_avg = checkpoint.tensor("optimizer.exp_avg", count);
+  const torch::Tensor& exp_avg_sq = checkpoint.tensor("optimizer.exp_avg_sq", count);
+  try {
+    ppo.optimizer().load_state(exp_avg, exp_avg_sq,
+                               header.at("optimizer").at("step_count").get<std::int64_t>());
+    ppo.load_counters_state(header.at("counters"));
+  } catch (const std::invalid_argument& error) {
+    throw CheckpointError(error.what());
+  } catch (const nlohmann::json::exception& error) {
+    throw CheckpointError(std::string("malformed checkpoint header: ") + error.what());
+  }
+  torch::NoGradGuard no_grad;
+  ppo.policy().flat_parameters().copy_(parameters.view({-1}));
+}
+
+}  // namespace upkie_rl

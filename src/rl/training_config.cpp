@@ -1,0 +1,343 @@
+#include "rl/training_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+namespace upkie_rl {
+
+namespace {
+
+std::string trim(const std::string& text) {
+  const auto begin = text.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) return "";
+  const auto end = text.find_last_not_of(" \t\r\n");
+  return text.substr(begin, end - begin + 1);
+}
+
+[[noreturn]] void bad_value(const std::string& key, const std::string& value,
+                            const std::string& expected) {
+  throw std::invalid_argument("config key '" + key + "': expected " + expected + ", got '" + value +
+                              "'");
+}
+
+template <typename T>
+T parse_integer(const std::string& key, const std::string& raw) {
+  const std::string text = trim(raw);
+  T value{};
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    bad_value(key, raw, "an integer");
+  }
+  return value;
+}
+
+double parse_double(const std::string& key, const std::string& raw) {
+  const std::string text = trim(raw);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    bad_value(key, raw, "a number");
+  }
+  return value;
+}
+
+bool parse_bool(const std::string& key, const std::string& raw) {
+  std::string text = trim(raw);
+  std::transform(text.begin(), text.end(), text.begin(), ::tolower);
+  if (text == "true" || text == "yes" || text == "on" || text == "1") return true;
+  if (text == "false" || text == "no" || text == "off" || text == "0") return false;
+  bad_value(key, raw, "true or false");
+}
+
+std::vector<std::int64_t> parse_sizes(const std::string& key, const std::string& raw) {
+  std::string text = trim(raw);
+  if (text.size() >= 2 && text.front() == '[' && text.back() == ']') {
+    text = text.substr(1, text.size() - 2);
+  }
+  std::vector<std::int64_t> sizes;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    if (trim(item).empty()) continue;
+    const auto size = parse_integer<std::int64_t>(key, item);
+    if (size <= 0) bad_value(key, raw, "positive layer sizes");
+    sizes.push_back(size);
+  }
+  return sizes;
+}
+
+std::string format_double(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  std::string text(buffer, result.ptr);
+  // Keep it a YAML float (e.g. "1" would read back fine, but "1.0" says what it is).
+  if (text.find_first_of(".einn") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string format_sizes(const std::vector<std::int64_t>& sizes) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    text += (i ? ", " : "") + std::to_string(sizes[i]);
+  }
+  return text + "]";
+}
+
+// One scalar setting: its dotted key, how to set it from text and how to print it.
+struct Field {
+  std::string key;
+  std::function<void(const std::string&)> set;
+  std::function<std::string()> get;
+};
+
+std::vector<Field> fields(TrainingConfig& c) {
+  std::vector<Field> out;
+  auto integer = [&out](const std::string& key, std::int64_t& value) {
+    out.push_back(
+        {key,
+         [&value, key](const std::string& text) { value = parse_integer<std::int64_t>(key, text); },
+         [&value] { return std::to_string(value); }});
+  };
+  auto real = [&out](const std::string& key, double& value) {
+    out.push_back({key, [&value, key](const std::string& text) { value = parse_double(key, text); },
+                   [&value] { return format_double(value); }});
+  };
+  auto boolean = [&out](const std::string& key, bool& value) {
+    out.push_back({key, [&value, key](const std::string& text) { value = parse_bool(key, text); },
+                   [&value] { return std::string(value ? "true" : "false"); }});
+  };
+  auto sizes = [&out](const std::string& key, std::vector<std::int64_t>& value) {
+    out.push_back({key, [&value, key](const std::string& text) { value = parse_sizes(key, text); },
+                   [&value] { return format_sizes(value); }});
+  };
+  out.push_back({"env.id", [&c](const std::string& text) { c.env_id = trim(text); },
+                 [&c] { return c.env_id; }});
+  integer("env.num_envs", c.num_envs);
+  integer("env.threads", c.env_threads);
+  boolean("normalize.observations", c.normalize.observations);
+  boolean("normalize.rewards", c.normalize.rewards);
+  real("normalize.clip_observations", c.normalize.clip_observations);
+  real("normalize.clip_rewards", c.normalize.clip_rewards);
+  real("normalize.gamma", c.normalize.gamma);
+  real("normalize.epsilon", c.normalize.epsilon);
+  sizes("policy.actor_hidden_sizes", c.policy.actor_hidden_sizes);
+  sizes("policy.critic_hidden_sizes", c.policy.critic_hidden_sizes);
+  out.push_back({"policy.activation",
+                 [&c](const std::string& text) {
+                   try {
+                     c.policy.activation = parse_activation(trim(text));
+                   } catch (const std::invalid_argument&) {
+                     bad_value("policy.activation", text, "relu or tanh");
+                   }
+                 },
+                 [&c] { return std::string(activation_name(c.policy.activation)); }});
+  real("policy.log_std_init", c.policy.log_std_init);
+  integer("ppo.total_timesteps", c.ppo.total_timesteps);
+  integer("ppo.n_steps", c.ppo.n_steps);
+  integer("ppo.batch_size", c.ppo.batch_size);
+  integer("ppo.n_epochs", c.ppo.n_epochs);
+  real("ppo.gamma", c.ppo.gamma);
+  real("ppo.gae_lambda", c.ppo.gae_lambda);
+  real("ppo.clip_range", c.ppo.clip_range);
+  real("ppo.clip_range_vf", c.ppo.clip_range_vf);
+  real("ppo.ent_coef", c.ppo.ent_coef);
+  real("ppo.vf_coef", c.ppo.vf_coef);
+  real("ppo.max_grad_norm", c.ppo.max_grad_norm);
+  real("ppo.learning_rate_initial", c.ppo.learning_rate_initial);
+  real("ppo.learning_rate_final", c.ppo.learning_rate_final);
+  real("ppo.adam_eps", c.ppo.adam_eps);
+  boolean("ppo.normalize_advantage", c.ppo.normalize_advantage);
+  out.push_back(
+      {"seed",
+       [&c](const std::string& text) { c.seed = parse_integer<std::uint64_t>("seed", text); },
+       [&c] { return std::to_string(c.seed); }});
+  integer("checkpoint_every", c.checkpoint_every);
+  integer("torch_threads", c.torch_threads);
+  return out;
+}
+
+constexpr const char* kEnvOptionsPrefix = "env.options.";
+
+void set_env_option(TrainingConfig& config, const std::string& name, const std::string& value) {
+  if (name.empty()) throw std::invalid_argument("config key 'env.options': empty option name");
+  for (auto& [key, existing] : config.env_options) {
+    if (key == name) {
+      existing = value;
+      return;
+    }
+  }
+  config.env_options.emplace_back(name, value);
+}
+
+void set_key(TrainingConfig& config, std::vector<Field>& table, const std::string& key,
+             const std::string& value) {
+  if (key.rfind(kEnvOptionsPrefix, 0) == 0) {
+    set_env_option(config, key.substr(std::string(kEnvOptionsPrefix).size()), trim(value));
+    return;
+  }
+  for (Field& field : table) {
+    if (field.key == key) {
+      field.set(value);
+      return;
+    }
+  }
+  throw std::invalid_argument("unknown config key '" + key + "'");
+}
+
+std::string node_text(const YAML::Node& node, const std::string& key) {
+  if (node.IsScalar()) return node.Scalar();
+  if (node.IsNull()) bad_value(key, "", "a value");
+  if (node.IsSequence()) {
+    std::string text;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      if (!node[i].IsScalar()) bad_value(key, "nested list", "a flat list");
+      text += (i ? "," : "") + node[i].Scalar();
+    }
+    return text;
+  }
+  bad_value(key, "a mapping", "a value");
+}
+
+void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& config,
+          std::vector<Field>& table) {
+  for (const auto& item : node) {
+    const std::string name = item.first.as<std::string>();
+    const std::string key = prefix.empty() ? name : prefix + "." + name;
+    const YAML::Node& value = item.second;
+    if (key == "env.options") {
+      if (value.IsNull()) continue;
+      if (!value.IsMap()) bad_value(key, "not a mapping", "a mapping of option names to values");
+      for (const auto& option : value) {
+        const std::string option_name = option.first.as<std::string>();
+        set_env_option(config, option_name, node_text(option.second, key + "." + option_name));
+      }
+    } else if (value.IsMap()) {
+      if (prefix.empty() && name != "env" && name != "normalize" && name != "policy" &&
+          name != "ppo") {
+        throw std::invalid_argument("unknown config section '" + key + "'");
+      }
+      walk(value, key, config, table);
+    } else {
+      set_key(config, table, key, node_text(value, key));
+    }
+  }
+}
+
+}  // namespace
+
+Activation parse_activation(const std::string& name) {
+  if (name == "relu" || name == "ReLU") return Activation::kReLU;
+  if (name == "tanh" || name == "Tanh") return Activation::kTanh;
+  throw std::invalid_argument("unknown activation '" + name + "' (expected relu or tanh)");
+}
+
+const char* activation_name(Activation activation) {
+  return activation == Activation::kReLU ? "relu" : "tanh";
+}
+
+std::int64_t TrainingConfig::steps_per_env() const {
+  return std::max<std::int64_t>(1, ppo.n_steps / std::max<std::int64_t>(1, num_envs));
+}
+
+void TrainingConfig::validate() const {
+  auto require = [](bool condition, const std::string& key, const std::string& what) {
+    if (!condition) throw std::invalid_argument("config key '" + key + "': " + what);
+  };
+  require(!env_id.empty(), "env.id", "must not be empty");
+  require(num_envs >= 1, "env.num_envs", "must be at least 1");
+  require(env_threads >= 0, "env.threads", "must be >= 0");
+  require(normalize.clip_observations > 0, "normalize.clip_observations", "must be > 0");
+  require(normalize.clip_rewards > 0, "normalize.clip_rewards", "must be > 0");
+  require(normalize.gamma > 0 && normalize.gamma <= 1, "normalize.gamma", "must be in (0, 1]");
+  require(normalize.epsilon > 0, "normalize.epsilon", "must be > 0");
+  require(!policy.actor_hidden_sizes.empty(), "policy.actor_hidden_sizes", "must not be empty");
+  require(!policy.critic_hidden_sizes.empty(), "policy.critic_hidden_sizes", "must not be empty");
+  require(ppo.total_timesteps >= 1, "ppo.total_timesteps", "must be at least 1");
+  require(ppo.n_steps >= num_envs, "ppo.n_steps", "must be at least env.num_envs");
+  require(ppo.batch_size >= 1, "ppo.batch_size", "must be at least 1");
+  require(ppo.batch_size <= steps_per_env() * num_envs, "ppo.batch_size",
+          "must not exceed the steps per update");
+  require(ppo.n_epochs >= 1, "ppo.n_epochs", "must be at least 1");
+  require(ppo.gamma > 0 && ppo.gamma <= 1, "ppo.gamma", "must be in (0, 1]");
+  require(ppo.gae_lambda >= 0 && ppo.gae_lambda <= 1, "ppo.gae_lambda", "must be in [0, 1]");
+  require(ppo.clip_range > 0, "ppo.clip_range", "must be > 0");
+  require(ppo.vf_coef >= 0, "ppo.vf_coef", "must be >= 0");
+  require(ppo.max_grad_norm > 0, "ppo.max_grad_norm", "must be > 0");
+  require(ppo.learning_rate_initial > 0, "ppo.learning_rate_initial", "must be > 0");
+  require(ppo.learning_rate_final >= 0, "ppo.learning_rate_final", "must be >= 0");
+  require(ppo.adam_eps > 0, "ppo.adam_eps", "must be > 0");
+  require(checkpoint_every >= 0, "checkpoint_every", "must be >= 0");
+  require(torch_threads >= 1, "torch_threads", "must be at least 1");
+}
+
+TrainingConfig parse_training_config(const std::string& yaml_text) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& error) {
+    throw std::invalid_argument(std::string("malformed YAML: ") + error.what());
+  }
+  TrainingConfig config;
+  if (root.IsNull()) return config;
+  if (!root.IsMap()) throw std::invalid_argument("config: expected a mapping at the top level");
+  std::vector<Field> table = fields(config);
+  walk(root, "", config, table);
+  return config;
+}
+
+TrainingConfig load_training_config(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw std::invalid_argument("cannot read config file '" + path + "'");
+  std::stringstream text;
+  text << file.rdbuf();
+  try {
+    return parse_training_config(text.str());
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(path + ": " + error.what());
+  }
+}
+
+void apply_overrides(TrainingConfig& config, const std::vector<std::string>& overrides) {
+  std::vector<Field> table = fields(config);
+  for (const std::string& item : overrides) {
+    const auto equal = item.find('=');
+    if (equal == std::string::npos || equal == 0) {
+      throw std::invalid_argument("override '" + item + "': expected key=value");
+    }
+    set_key(config, table, trim(item.substr(0, equal)), item.substr(equal + 1));
+  }
+}
+
+std::string to_yaml(const TrainingConfig& const_config) {
+  TrainingConfig config = const_config;  // the field table binds mutable references
+  std::vector<Field> table = fields(config);
+  std::string out;
+  std::string section;
+  for (const Field& field : table) {
+    const auto dot = field.key.find('.');
+    const std::string field_section = dot == std::string::npos ? "" : field.key.substr(0, dot);
+    const std::string name = dot == std::string::npos ? field.key : field.key.substr(dot + 1);
+    if (field_section != section) {
+      if (section == "env") {
+        out += "  options:" + std::string(config.env_options.empty() ? " {}" : "") + "\n";
+        for (const auto& [key, value] : config.env_options) {
+          out += "    " + key + ": " + YAML::Dump(YAML::Node(value)) + "\n";
+        }
+      }
+      section = field_section;
+      if (!section.empty()) out += section + ":\n";
+    }
+    const std::string value = field.get();
+    out += (section.empty() ? "" : "  ") + name + ": " +
+           (field.key == "env.id" ? YAML::Dump(YAML::Node(value)) : value) + "\n";
+  }
+  return out;
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,96 @@
+#pragma once
+/// @file
+/// The configuration of a training run, read from YAML (configs/pendulum.yaml,
+/// configs/servos.yaml) with `key=value` overrides on dotted keys (`ppo.batch_size=64`).
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace upkie_rl {
+
+/// Activation of the hidden layers of the policy and value networks.
+enum class Activation { kReLU, kTanh };
+
+/// Parses "relu" or "tanh"; throws std::invalid_argument otherwise.
+Activation parse_activation(const std::string& name);
+const char* activation_name(Activation activation);
+
+/// Separate actor and critic MLPs (SB3 `net_arch=dict(pi=..., vf=...)`).
+struct PolicyConfig {
+  std::vector<std::int64_t> actor_hidden_sizes{64, 64};
+  std::vector<std::int64_t> critic_hidden_sizes{64, 64};
+  Activation activation = Activation::kReLU;
+  double log_std_init = 0.0;  ///< Initial log standard deviation of the Gaussian.
+};
+
+/// PPO hyperparameters with SB3 names and defaults of the seed.
+struct PpoConfig {
+  std::int64_t total_timesteps = 1'000'000;
+  /// Steps per update, all environments together: each env collects n_steps / num_envs.
+  std::int64_t n_steps = 2048;
+  std::int64_t batch_size = 128;
+  std::int64_t n_epochs = 5;
+  double gamma = 0.99;
+  double gae_lambda = 0.95;
+  double clip_range = 0.2;
+  double clip_range_vf = 0.2;  ///< Value clipping range; <= 0 disables value clipping.
+  double ent_coef = 0.0;
+  double vf_coef = 0.5;
+  double max_grad_norm = 0.5;
+  double learning_rate_initial = 2e-4;  ///< Linear schedule from this...
+  double learning_rate_final = 1e-5;    ///< ...to this at the end of training.
+  double adam_eps = 1e-5;
+  bool normalize_advantage = true;
+};
+
+/// Observation and reward normalisation (SB3 VecNormalize).
+struct NormalizationConfig {
+  bool observations = true;
+  bool rewards = true;
+  double clip_observations = 10.0;
+  double clip_rewards = 10.0;
+  double gamma = 0.99;
+  double epsilon = 1e-8;
+};
+
+/// Everything a training run needs.
+struct TrainingConfig {
+  std::string env_id = "Upkie-Bullet-Pendulum";
+  /// Environment options as key=value strings, passed to the environment registry.
+  std::vector<std::pair<std::string, std::string>> env_options;
+  std::int64_t num_envs = 10;
+  /// Worker threads of the vector environment (0: synchronous stepping).
+  std::int64_t env_threads = 2;
+  NormalizationConfig normalize;
+  PolicyConfig policy;
+  PpoConfig ppo;
+  std::uint64_t seed = 0;
+  std::int64_t checkpoint_every = 50'000;  ///< Timesteps between checkpoints (0: none).
+  /// Intra-op threads of libtorch. 1 by default: the networks are tiny, so threading costs
+  /// more than it saves, and the cores are needed by the environment workers.
+  std::int64_t torch_threads = 1;
+
+  /// Steps each environment collects per update: n_steps / num_envs (at least 1).
+  std::int64_t steps_per_env() const;
+
+  /// Throws std::invalid_argument naming the key of the first inconsistent value.
+  void validate() const;
+};
+
+/// Parses YAML text. Unknown keys, malformed values and missing sections raise
+/// std::invalid_argument naming the dotted key. Keys absent from the text keep defaults.
+TrainingConfig parse_training_config(const std::string& yaml_text);
+
+/// Reads a YAML file (errors name the file and the key).
+TrainingConfig load_training_config(const std::string& path);
+
+/// Applies overrides "dotted.key=value" (`env.options.NAME=value` adds an env option).
+/// Unknown keys and malformed values raise std::invalid_argument naming the key.
+void apply_overrides(TrainingConfig& config, const std::vector<std::string>& overrides);
+
+/// The full, resolved configuration as YAML, readable by parse_training_config.
+std::string to_yaml(const TrainingConfig& config);
+
+}  // namespace upkie_rl

@@ -1,0 +1,116 @@
+#include "rl/training_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace upkie_rl {
+namespace {
+
+std::string config_path(const std::string& name) {
+  return std::string(UPKIE_RL_SOURCE_DIR) + "/configs/" + name;
+}
+
+void expect_error_mentions(const std::function<void()>& action, const std::string& text) {
+  try {
+    action();
+    FAIL() << "expected an error mentioning '" << text << "'";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
+  }
+}
+
+TEST(TrainingConfig, PendulumFileHoldsTheSeedConfiguration) {
+  const TrainingConfig config = load_training_config(config_path("pendulum.yaml"));
+  EXPECT_EQ(config.env_id, "Upkie-Bullet-Pendulum");
+  EXPECT_EQ(config.num_envs, 10);
+  EXPECT_EQ(config.ppo.total_timesteps, 1'000'000);
+  EXPECT_EQ(config.policy.actor_hidden_sizes, (std::vector<std::int64_t>{64, 64}));
+  EXPECT_EQ(config.policy.critic_hidden_sizes, (std::vector<std::int64_t>{64, 64}));
+  EXPECT_EQ(config.policy.activation, Activation::kReLU);
+  EXPECT_DOUBLE_EQ(config.ppo.learning_rate_initial, 2e-4);
+  EXPECT_DOUBLE_EQ(config.ppo.learning_rate_final, 1e-5);
+  EXPECT_EQ(config.ppo.n_steps, 2048);
+  EXPECT_EQ(config.steps_per_env(), 204);
+  EXPECT_EQ(config.ppo.batch_size, 128);
+  EXPECT_EQ(config.ppo.n_epochs, 5);
+  EXPECT_DOUBLE_EQ(config.ppo.gamma, 0.99);
+  EXPECT_DOUBLE_EQ(config.ppo.gae_lambda, 0.95);
+  EXPECT_DOUBLE_EQ(config.ppo.clip_range, 0.2);
+  EXPECT_DOUBLE_EQ(config.ppo.clip_range_vf, 0.2);
+  EXPECT_DOUBLE_EQ(config.ppo.ent_coef, 0.0);
+  EXPECT_DOUBLE_EQ(config.ppo.vf_coef, 0.5);
+  EXPECT_DOUBLE_EQ(config.ppo.max_grad_norm, 0.5);
+  EXPECT_TRUE(config.normalize.observations);
+  EXPECT_TRUE(config.normalize.rewards);
+  EXPECT_DOUBLE_EQ(config.normalize.clip_observations, 10.0);
+  EXPECT_EQ(config.checkpoint_every, 50'000);
+  ASSERT_EQ(config.env_options.size(), 1u);
+  EXPECT_EQ(config.env_options[0].first, "frequency");
+  EXPECT_EQ(config.env_options[0].second, "200");
+  EXPECT_NO_THROW(config.validate());
+}
+
+TEST(TrainingConfig, ServosFileHoldsTheSeedConfiguration) {
+  const TrainingConfig config = load_training_config(config_path("servos.yaml"));
+  EXPECT_EQ(config.num_envs, 8);
+  EXPECT_EQ(config.ppo.total_timesteps, 2'000'000);
+  EXPECT_EQ(config.policy.actor_hidden_sizes, (std::vector<std::int64_t>{128, 128}));
+  EXPECT_EQ(config.steps_per_env(), 256);
+  EXPECT_NO_THROW(config.validate());
+}
+
+TEST(TrainingConfig, ResolvedYamlReadsBackIdentically) {
+  TrainingConfig config = load_training_config(config_path("pendulum.yaml"));
+  apply_overrides(config, {"ppo.learning_rate_initial=0.000123", "policy.activation=tanh",
+                           "env.options.fall_pitch=0.8", "seed=42"});
+  const std::string yaml = to_yaml(config);
+  const TrainingConfig again = parse_training_config(yaml);
+  EXPECT_EQ(to_yaml(again), yaml);
+  EXPECT_DOUBLE_EQ(again.ppo.learning_rate_initial, 0.000123);
+  EXPECT_EQ(again.policy.activation, Activation::kTanh);
+  EXPECT_EQ(again.seed, 42u);
+  ASSERT_EQ(again.env_options.size(), 2u);
+  EXPECT_EQ(again.env_options[1].first, "fall_pitch");
+  EXPECT_EQ(again.env_options[1].second, "0.8");
+}
+
+TEST(TrainingConfig, UnknownKeysAreRefusedByName) {
+  expect_error_mentions([] { parse_training_config("ppo:\n  batch_sise: 64\n"); },
+                        "ppo.batch_sise");
+  expect_error_mentions([] { parse_training_config("learning_rate: 1\n"); }, "learning_rate");
+  expect_error_mentions([] { parse_training_config("optimizer:\n  lr: 1\n"); }, "optimizer");
+  TrainingConfig config;
+  expect_error_mentions([&] { apply_overrides(config, {"ppo.n_epoch=3"}); }, "ppo.n_epoch");
+  expect_error_mentions([&] { apply_overrides(config, {"no_equal_sign"}); }, "key=value");
+}
+
+TEST(TrainingConfig, MalformedValuesNameTheirKey) {
+  expect_error_mentions([] { parse_training_config("ppo:\n  batch_size: many\n"); },
+                        "ppo.batch_size");
+  expect_error_mentions([] { parse_training_config("ppo:\n  gamma: [1, 2]\n"); }, "ppo.gamma");
+  expect_error_mentions([] { parse_training_config("policy:\n  activation: sigmoid\n"); },
+                        "policy.activation");
+  expect_error_mentions([] { parse_training_config("policy:\n  actor_hidden_sizes: [64, -1]\n"); },
+                        "policy.actor_hidden_sizes");
+  expect_error_mentions([] { parse_training_config("normalize:\n  rewards: maybe\n"); },
+                        "normalize.rewards");
+  expect_error_mentions([] { parse_training_config("ppo: [1, 2\n"); }, "malformed YAML");
+  TrainingConfig config;
+  expect_error_mentions([&] { apply_overrides(config, {"ppo.n_epochs=3.5"}); }, "ppo.n_epochs");
+}
+
+TEST(TrainingConfig, ValidateNamesTheInconsistentKey) {
+  TrainingConfig config;
+  config.ppo.batch_size = 0;
+  expect_error_mentions([&] { config.validate(); }, "ppo.batch_size");
+  config = TrainingConfig{};
+  config.ppo.batch_size = 4096;  // more than one rollout
+  expect_error_mentions([&] { config.validate(); }, "ppo.batch_size");
+  config = TrainingConfig{};
+  config.num_envs = 0;
+  expect_error_mentions([&] { config.validate(); }, "env.num_envs");
+}
+
+}  // namespace
+}  // namespace upkie_rl
