@@ -8,4 +8,7 @@
 
 namespace upkie_rl::apps {
 
+/// `upkie-rl spine`: a Bullet simulation served over the shared-memory spine link.
+void add_spine_command(CLI::App& app);
+
 }  // namespace upkie_rl::apps

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
       "the open-source wheeled biped."};
   app.require_subcommand(1);
   app.fallthrough(false);
+  upkie_rl::apps::add_spine_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <thread>
+#include <utility>
 
 #include "sim/observation_dict.hpp"
 #include "spine/reset_config.hpp"
@@ -22,9 +23,11 @@ constexpr auto kIdleSleep = std::chrono::microseconds(50);
 
 }  // namespace
 
-SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config)
+SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config,
+                         BrakeStep brake_step)
     : simulation_(simulation),
       config_(config),
+      brake_step_(std::move(brake_step)),
       memory_(SharedMemory::create(config.shm_name, config.shm_size)),
       machine_(config.nb_stop_cycles),
       unpacker_(memory_.max_payload_size()),
@@ -76,7 +79,14 @@ void SpineServer::process_state() {
       break;
     case SpineState::kSendStops:
     case SpineState::kShutdown:
-      if (config_.real_time && simulation_ready_) advance(stop_action_);
+      if (config_.real_time && simulation_ready_) {
+        if (brake_step_) {
+          brake_step_();
+          ++nb_simulation_steps_;
+        } else {
+          advance(stop_action_);
+        }
+      }
       break;
     case SpineState::kOver:
       break;

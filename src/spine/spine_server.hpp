@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <msgpack.hpp>
 #include <string>
 
@@ -30,7 +31,8 @@ struct SpineServerConfig {
   /// Joint effort limits [N.m]: an action whose maximum_torque leaves [0, effort] is an
   /// error that shuts the spine down, as on the real robot.
   std::array<double, kNumServos> maximum_torques = {16.0, 16.0, 1.7, 16.0, 16.0, 1.7};
-  /// Stop command of a stopped joint: velocity 0, no position term, kd scaled by this.
+  /// Stop command of a stopped joint, when the server has no brake step: velocity 0, no
+  /// position term, kd scaled by this.
   double brake_kd_scale = 10.0;
   /// Torque clamp of the stop command [N.m] (the simulation's effort clamp applies on top).
   double brake_maximum_torque = 100.0;
@@ -45,9 +47,17 @@ struct SpineServerConfig {
 /// and sends the spine to Shutdown, then Over; it never escapes cycle().
 class SpineServer {
  public:
+  /// Steps the simulation once with every joint braked (e.g. BulletSimulation's
+  /// step_braked(), which brakes beyond the servo effort clamp).
+  using BrakeStep = std::function<void()>;
+
   /// @param simulation Backend served; must outlive the server.
+  /// @param brake_step How stopped joints are stepped in real-time mode; when empty, the
+  ///        simulation steps with a stop command per joint (position NaN, velocity 0,
+  ///        kd_scale brake_kd_scale, maximum_torque brake_maximum_torque), which the
+  ///        simulation's servo law clamps to the joint effort.
   /// @throws SpineError when the shared memory cannot be created.
-  SpineServer(Simulation& simulation, const SpineServerConfig& config);
+  SpineServer(Simulation& simulation, const SpineServerConfig& config, BrakeStep brake_step = {});
 
   /// Runs one cycle (no waiting).
   void cycle();
@@ -78,6 +88,7 @@ class SpineServer {
 
   Simulation& simulation_;
   SpineServerConfig config_;
+  BrakeStep brake_step_;
   SharedMemory memory_;
   SpineStateMachine machine_;
   PayloadUnpacker unpacker_;

@@ -1,0 +1,120 @@
+/// @file
+/// `upkie-rl spine`: a simulation spine backed by our Bullet simulation, serving agents
+/// (ours through SpineBackend, or the public `upkie` Python environments) over the
+/// shared-memory spine link.
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "apps/commands.hpp"
+#include "model/robot_model.hpp"
+#include "sim/bullet_simulation.hpp"
+#include "spine/spine_server.hpp"
+
+namespace upkie_rl::apps {
+namespace {
+
+/// Set by SIGINT/SIGTERM. A signal handler can only reach a static; this one is written
+/// by the handler and read by the spine loop, nothing else.
+std::atomic<bool> interrupt_requested{false};
+
+extern "C" void request_interrupt(int) { interrupt_requested.store(true); }
+
+/// Installs the SIGINT/SIGTERM handlers for the lifetime of the object, then restores the
+/// previous ones.
+class InterruptHandlers {
+ public:
+  InterruptHandlers() {
+    interrupt_requested.store(false);
+    struct sigaction action {};
+    action.sa_handler = &request_interrupt;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(SIGINT, &action, &previous_int_);
+    ::sigaction(SIGTERM, &action, &previous_term_);
+  }
+  ~InterruptHandlers() {
+    ::sigaction(SIGINT, &previous_int_, nullptr);
+    ::sigaction(SIGTERM, &previous_term_, nullptr);
+  }
+  InterruptHandlers(const InterruptHandlers&) = delete;
+  InterruptHandlers& operator=(const InterruptHandlers&) = delete;
+
+ private:
+  struct sigaction previous_int_ {};
+  struct sigaction previous_term_ {};
+};
+
+struct SpineOptions {
+  std::string shm_name = "/upkie";
+  double spine_frequency = 1000.0;
+  int nb_substeps = 0;
+};
+
+void run_spine(const SpineOptions& options) {
+  if (!(options.spine_frequency > 0.0)) {
+    throw std::invalid_argument("--spine-frequency must be positive");
+  }
+  const bool real_time = options.nb_substeps == 0;
+  std::shared_ptr<const RobotModel> model = RobotModel::default_model();
+
+  // One physics step per cycle in real time; K physics steps per Action otherwise.
+  BulletConfig bullet;
+  bullet.physics_timestep = 1.0 / options.spine_frequency;
+  bullet.nb_substeps = real_time ? 1 : options.nb_substeps;
+  BulletSimulation simulation(model, bullet);
+
+  SpineServerConfig config;
+  config.shm_name = options.shm_name;
+  config.real_time = real_time;
+  config.frequency = options.spine_frequency;
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    config.maximum_torques[i] = model->servo_limits(i).effort;
+  }
+
+  std::string error;
+  {
+    InterruptHandlers handlers;
+    SpineServer server(simulation, config, [&simulation] { simulation.step_braked(); });
+    if (real_time) {
+      spdlog::info("spine {}: real time, {} Hz, one {} ms physics step per cycle", options.shm_name,
+                   options.spine_frequency, 1e3 * bullet.physics_timestep);
+    } else {
+      spdlog::info("spine {}: on request, {} physics steps of {} ms per action", options.shm_name,
+                   bullet.nb_substeps, 1e3 * bullet.physics_timestep);
+    }
+    server.run(interrupt_requested);
+    error = server.error();
+    spdlog::info("spine {}: over after {} cycles, {} simulation steps", options.shm_name,
+                 server.nb_cycles(), server.nb_simulation_steps());
+  }  // the shared memory is unlinked here
+  if (!error.empty()) throw std::runtime_error("spine shut down: " + error);
+}
+
+}  // namespace
+
+void add_spine_command(CLI::App& app) {
+  auto options = std::make_shared<SpineOptions>();
+  CLI::App* command = app.add_subcommand(
+      "spine",
+      "Run a simulation spine: Bullet served over shared memory to an agent (SpineBackend, "
+      "or the upkie Python package). Ctrl-C stops it and removes the shared memory.");
+  command->add_option("--shm-name", options->shm_name, "Shared-memory name")->capture_default_str();
+  command
+      ->add_option("--spine-frequency", options->spine_frequency,
+                   "Cycles per second in real time, and 1/physics timestep [Hz]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--nb-substeps", options->nb_substeps,
+                   "0: real-time loop; K > 0: advance only on actions, K physics steps each")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  command->callback([options] { run_spine(*options); });
+}
+
+}  // namespace upkie_rl::apps
