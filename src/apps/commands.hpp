@@ -11,4 +11,11 @@ namespace upkie_rl::apps {
 /// `upkie-rl spine`: a Bullet simulation served over the shared-memory spine link.
 void add_spine_command(CLI::App& app);
 
+/// `upkie-rl envs`: the environment ids with their spaces (envs_command.cpp).
+void add_envs_command(CLI::App& app);
+/// `upkie-rl rollout`: episodes of an environment with a controller (rollout_command.cpp).
+void add_rollout_command(CLI::App& app);
+/// `upkie-rl bench`: steps per second of a vector environment (bench_command.cpp).
+void add_bench_command(CLI::App& app);
+
 }  // namespace upkie_rl::apps

@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
       "the open-source wheeled biped."};
   app.require_subcommand(1);
   app.fallthrough(false);
+  upkie_rl::apps::add_envs_command(app);
+  upkie_rl::apps::add_rollout_command(app);
+  upkie_rl::apps::add_bench_command(app);
   upkie_rl::apps::add_spine_command(app);
   try {
     app.parse(argc, argv);

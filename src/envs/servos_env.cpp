@@ -89,7 +89,7 @@ const Observation& ServosEnv::step_servos(const ServoAction& action) {
   return simulation_->step(clamped_buffer_);
 }
 
-ServoAction ServosEnv::neutral_servo_action() const {
+ServoAction neutral_servo_action(const RobotModel& model) {
   ServoAction action{};
   for (std::size_t i = 0; i < kNumServos; ++i) {
     action[i].position = std::numeric_limits<double>::quiet_NaN();
@@ -97,7 +97,7 @@ ServoAction ServosEnv::neutral_servo_action() const {
     action[i].feedforward_torque = 0.0;
     action[i].kp_scale = 1.0;
     action[i].kd_scale = 1.0;
-    action[i].maximum_torque = model_->servo_limits(i).effort;
+    action[i].maximum_torque = model.servo_limits(i).effort;
   }
   return action;
 }

@@ -21,6 +21,10 @@ inline constexpr std::array<const char*, 6> kServoActionKeys = {
 inline constexpr std::array<const char*, 5> kServoObservationKeys = {
     "position", "velocity", "torque", "temperature", "voltage"};
 
+/// Position NaN, velocity 0, feedforward 0, gain scales 1, maximum torque = effort: the
+/// neutral servo commands (the zero controller of the servos environment).
+ServoAction neutral_servo_action(const RobotModel& model);
+
 /// The servos environment (environments.md section 2): typed ServoAction in, Observation
 /// out, reward 0, never terminates.
 ///
@@ -54,8 +58,8 @@ class ServosEnv final : public Env {
   /// The clamped version of `action` (what step_servos sends).
   void clamp_servo_action(const ServoAction& action, ServoAction& clamped) const;
 
-  /// Position NaN, velocity 0, feedforward 0, gain scales 1, maximum torque = effort.
-  ServoAction neutral_servo_action() const;
+  /// upkie_rl::neutral_servo_action() of this model.
+  ServoAction neutral_servo_action() const { return upkie_rl::neutral_servo_action(*model_); }
 
   /// The action space as one Box per joint (keys kServoActionKeys).
   const DictSpace& action_dict_space() const { return action_dict_space_; }

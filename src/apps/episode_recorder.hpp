@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// EpisodeRecorder: the CSV file of `upkie-rl rollout --record`.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <span>
+#include <vector>
+
+#include "envs/env.hpp"
+
+namespace upkie_rl::apps {
+
+/// One row per step: episode, step, t, each observation component by name, each action
+/// component by name, reward, terminated, truncated, then the simulator's ground truth
+/// base_x, base_y, base_z, base_qw, base_qx, base_qy, base_qz and the six joint angles by
+/// joint name (NaN when the backend has no ground truth). A row holds the observation the
+/// controller saw at time t, the ground truth at that time, the action it chose, and the
+/// reward and flags of the step that action made.
+class EpisodeRecorder {
+ public:
+  /// Opens (truncates) `path`, so that a bad path is refused before anything runs.
+  /// @throws std::runtime_error naming the path when it cannot be written.
+  explicit EpisodeRecorder(const std::filesystem::path& path);
+
+  /// Writes the header row for `env`'s spaces.
+  void write_header(const Env& env);
+
+  /// Remembers t, the observation and the ground truth before a step.
+  void before_step(const Env& env, std::span<const float> observation);
+
+  /// Writes the row of the step.
+  void after_step(int episode, int step, std::span<const float> action, const StepResult& result);
+
+  /// Flushes; @throws std::runtime_error naming the path on a write error.
+  void close();
+
+ private:
+  std::filesystem::path path_;
+  std::ofstream out_;
+  std::vector<float> observation_;
+  double time_ = 0.0;
+  std::array<double, 7 + 6> ground_truth_{};
+};
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,125 @@
+/// @file
+/// `upkie-rl rollout`: runs episodes of an environment with a controller and reports their
+/// returns (the seed's rollout_policy.py).
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/commands.hpp"
+#include "apps/episode_recorder.hpp"
+#include "envs/builtin_controllers.hpp"
+#include "envs/registry.hpp"
+
+namespace upkie_rl::apps {
+
+namespace {
+
+struct RolloutOptions {
+  std::string env_id;
+  std::string controller = "zero";
+  int episodes = 1;
+  std::uint64_t seed = 0;
+  int max_steps = 1000;
+  std::vector<std::string> env_options;
+  std::string record_path;
+  bool json = false;
+};
+
+std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options,
+                                                    const Env& env) {
+  // Trained policies plug in here: `if (!options.model.empty()) return ...;`.
+  return make_builtin_controller(options.controller, env);
+}
+
+void run_rollout(const RolloutOptions& options) {
+  const EnvOptions env_options = parse_env_options(options.env_options);
+  std::optional<EpisodeRecorder> recorder;  // Opened first: a bad path is refused at once.
+  if (!options.record_path.empty()) recorder.emplace(options.record_path);
+  std::unique_ptr<Env> env = make_env(options.env_id, env_options);
+  std::unique_ptr<Controller> controller = make_rollout_controller(options, *env);
+  if (recorder) recorder->write_header(*env);
+
+  std::vector<float> observation(env->observation_space().size());
+  std::vector<float> action(env->action_space().size());
+  std::vector<double> returns;
+  std::vector<int> lengths;
+  for (int episode = 0; episode < options.episodes; ++episode) {
+    env->reset(options.seed + static_cast<std::uint64_t>(episode), observation);
+    controller->reset();
+    double total = 0.0;
+    int length = 0;
+    const char* ending = "max-steps";
+    while (length < options.max_steps) {
+      controller->act(observation, action);
+      if (recorder) recorder->before_step(*env, observation);
+      const StepResult result = env->step(action, observation);
+      if (recorder) recorder->after_step(episode, length, action, result);
+      total += result.reward;
+      ++length;
+      if (result.terminated || result.truncated) {
+        ending = result.terminated ? "terminated" : "truncated";
+        break;
+      }
+    }
+    returns.push_back(total);
+    lengths.push_back(length);
+    std::cout << "episode " << episode << ": return " << total << ", length " << length << " ("
+              << ending << ")" << std::endl;
+  }
+  if (recorder) recorder->close();
+
+  const double n = static_cast<double>(returns.size());
+  double mean = 0.0, mean_length = 0.0, variance = 0.0;
+  for (std::size_t e = 0; e < returns.size(); ++e) {
+    mean += returns[e] / n;
+    mean_length += lengths[e] / n;
+  }
+  for (double value : returns) variance += (value - mean) * (value - mean) / n;
+  const double std_return = std::sqrt(variance);
+  std::cout << "mean return " << mean << " +- " << std_return << " over " << returns.size()
+            << " episodes, mean length " << mean_length << std::endl;
+  if (options.json) {
+    const nlohmann::json summary = {{"episodes", returns.size()}, {"mean_return", mean},
+                                    {"std_return", std_return},   {"mean_length", mean_length},
+                                    {"returns", returns},         {"lengths", lengths}};
+    std::cout << summary.dump() << std::endl;
+  }
+}
+
+}  // namespace
+
+void add_rollout_command(CLI::App& app) {
+  auto options = std::make_shared<RolloutOptions>();
+  CLI::App* command = app.add_subcommand(
+      "rollout", "Run episodes of an environment with a controller and report their returns");
+  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")
+      ->required();
+  command
+      ->add_option("--controller", options->controller,
+                   "zero (neutral action) or linear:k1,k2,k3,k4 (ground velocity = "
+                   "k.[theta, p, theta_dot, p_dot])")
+      ->capture_default_str();
+  command->add_option("--episodes", options->episodes, "Number of episodes")
+      ->check(CLI::Range(1, 1'000'000))
+      ->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of the first episode; episode e uses seed + e")
+      ->capture_default_str();
+  command
+      ->add_option("--max-steps", options->max_steps,
+                   "Also end an episode after this many steps (the env's own limit applies)")
+      ->check(CLI::Range(1, 1'000'000'000))
+      ->capture_default_str();
+  command->add_option("--env-option", options->env_options,
+                      "Environment option key=value (repeatable)");
+  command->add_option("--record", options->record_path,
+                      "Write one CSV row per step to this file");
+  command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
+  command->callback([options] { run_rollout(*options); });
+}
+
+}  // namespace upkie_rl::apps
