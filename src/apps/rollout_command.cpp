@@ -14,6 +14,7 @@
 #include "apps/episode_recorder.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/registry.hpp"
+#include "sim/observation_dict.hpp"
 
 namespace upkie_rl::apps {
 
@@ -28,6 +29,7 @@ struct RolloutOptions {
   std::vector<std::string> env_options;
   std::string record_path;
   bool json = false;
+  bool info = false;
 };
 
 std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options,
@@ -70,6 +72,10 @@ void run_rollout(const RolloutOptions& options) {
     lengths.push_back(length);
     std::cout << "episode " << episode << ": return " << total << ", length " << length << " ("
               << ending << ")" << std::endl;
+    if (options.info) {
+      const Observation* full = env->full_observation();
+      std::cout << "info: " << (full ? observation_to_json(*full).dump() : "{}") << std::endl;
+    }
   }
   if (recorder) recorder->close();
 
@@ -119,6 +125,8 @@ void add_rollout_command(CLI::App& app) {
   command->add_option("--record", options->record_path,
                       "Write one CSV row per step to this file");
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
+  command->add_flag("--info", options->info,
+                    "Print each episode's last info (the full observation dictionary)");
   command->callback([options] { run_rollout(*options); });
 }
 

@@ -78,6 +78,21 @@ TEST(RolloutCommand, ServosEnvWithTheNeutralAction) {
   EXPECT_DOUBLE_EQ(summary["mean_return"].get<double>(), 0.0);
 }
 
+TEST(RolloutCommand, InfoPrintsTheObservationDictionary) {
+  const auto result =
+      run_cli("rollout --env Upkie-Bullet-Gyropod --max-steps 5 --info --json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::string info;
+  for (const std::string& line : result.lines()) {
+    if (line.rfind("info: ", 0) == 0) info = line.substr(6);
+  }
+  ASSERT_FALSE(info.empty()) << result.output;
+  const nlohmann::json dictionary = nlohmann::json::parse(info);
+  EXPECT_TRUE(dictionary["servo"]["left_wheel"].contains("velocity")) << info;
+  EXPECT_TRUE(dictionary["base_orientation"].contains("pitch")) << info;
+  EXPECT_EQ(last_line_json(result)["lengths"][0], 5);
+}
+
 TEST(RolloutCommand, BadInputGivesClearErrors) {
   auto unwritable = run_cli(
       "rollout --env Upkie-Bullet-Pendulum --record /nonexistent-dir/record.csv");
