@@ -5,7 +5,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 PYTHON ?= python3
 
-.PHONY: all deps configure build test test-cpp test-python bench train sanitize format tidy clean
+.PHONY: all deps configure build test test-cpp test-python bench train sanitize fuzz format tidy clean
 
 all: build
 
@@ -39,6 +39,19 @@ sanitize: deps
 	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE=ON -DUPKIE_RL_BUILD_BENCH=OFF
 	cmake --build $(SANITIZE_DIR) -j $(JOBS)
 	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# libFuzzer + ASan on the spine's message decoding; FUZZ_RUNS inputs (1e6 by default).
+FUZZ_DIR ?= build-fuzz
+FUZZ_RUNS ?= 1000000
+fuzz:
+	UPKIE_RL_FUZZ=1 bash scripts/install-deps.sh
+	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_CXX_COMPILER=clang++-14 -DUPKIE_RL_BUILD_FUZZ=ON \
+	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target spine_message_fuzzer
+	mkdir -p $(FUZZ_DIR)/corpus
+	$(FUZZ_DIR)/fuzz/spine_message_fuzzer -runs=$(FUZZ_RUNS) -max_len=4096 \
+	  -print_final_stats=1 $(FUZZ_DIR)/corpus fuzz/corpus
 
 format:
 	find src tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i

@@ -10,7 +10,12 @@ DEBIAN_PACKAGES=(
   libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
 )
-PYTHON_PACKAGES=(pytest numpy gymnasium msgpack)
+# upkie: the public agent side, for the spine interoperability tests.
+PYTHON_PACKAGES=(pytest numpy gymnasium msgpack upkie)
+# Fuzzing (`make fuzz` sets UPKIE_RL_FUZZ=1): clang and its libFuzzer runtime.
+if [ "${UPKIE_RL_FUZZ:-0}" = "1" ]; then
+  DEBIAN_PACKAGES+=(clang-14 libclang-rt-14-dev)
+fi
 
 if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
 

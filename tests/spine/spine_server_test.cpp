@@ -181,6 +181,29 @@ TEST_F(SpineServerTest, RealTimeModeStepsEveryCycleAndBrakesWhenStopped) {
   EXPECT_DOUBLE_EQ(brake.maximum_torque, 100.0);
 }
 
+TEST(SpineServer, BrakeStepReplacesStopCommands) {
+  FakeSimulation simulation;
+  SpineServerConfig config;
+  config.shm_name = testing::unique_shm_name("brake");
+  int brake_steps = 0;
+  SpineServer server(simulation, config, [&brake_steps] { ++brake_steps; });
+  SharedMemory agent = SharedMemory::open(config.shm_name);
+  msgpack::sbuffer start;
+  write_start_config_msgpack(ResetState{}, {}, start);
+  agent.write_payload({start.data(), start.size()});
+  agent.set_request(Request::kStart);
+  for (int i = 0; i < 6; ++i) server.cycle();
+  ASSERT_EQ(server.state(), SpineState::kIdle);
+  EXPECT_EQ(brake_steps, 0);  // not before the first reset
+  agent.set_request(Request::kStop);
+  for (int i = 0; i < 3; ++i) server.cycle();
+  EXPECT_EQ(brake_steps, 3);
+  server.interrupt();
+  for (int i = 0; i < 5; ++i) server.cycle();
+  EXPECT_EQ(brake_steps, 8);  // Shutdown brakes too
+  EXPECT_EQ(server.state(), SpineState::kOver);
+}
+
 TEST_F(SpineServerTest, StartWhileIdleIsIgnoredAndCleared) {
   make_server(false);
   start();

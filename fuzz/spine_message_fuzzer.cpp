@@ -1,0 +1,79 @@
+/// @file
+/// libFuzzer target: every message decoding path of the spine link. Each input is taken
+/// as a shared-memory payload and decoded as the spine decodes a Start configuration and
+/// an Action (merged into a dictionary holding the default action, so that type changes
+/// are exercised), and as an agent decodes an observation. Refusing an input with a
+/// SpineError is the expected outcome; anything else (a crash, an ASan report, another
+/// exception, a leak) is a bug.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "sim/observation.hpp"
+#include "spine/dictionary.hpp"
+#include "spine/observation_reader.hpp"
+#include "spine/payload_unpacker.hpp"
+#include "spine/reset_config.hpp"
+#include "spine/servo_action_message.hpp"
+#include "spine/spine_error.hpp"
+
+namespace {
+
+using upkie_rl::Dictionary;
+using upkie_rl::SpineError;
+
+constexpr std::array<double, upkie_rl::kNumServos> kEfforts = {16.0, 16.0, 1.7, 16.0, 16.0, 1.7};
+
+void decode_as_configuration(const msgpack::object& object) {
+  Dictionary configuration;
+  try {
+    configuration.update(object);
+    upkie_rl::reset_state_from_config(configuration);
+  } catch (const SpineError&) {
+  }
+}
+
+void decode_as_action(const msgpack::object& object, const msgpack::object& defaults) {
+  Dictionary action_dictionary;
+  action_dictionary.update(defaults);
+  upkie_rl::ServoAction action = upkie_rl::spine_default_servo_action();
+  try {
+    action_dictionary.update(object);
+    upkie_rl::read_servo_action(action_dictionary, action, &kEfforts);
+  } catch (const SpineError&) {
+  }
+}
+
+void decode_as_observation(const msgpack::object& object) {
+  upkie_rl::Observation observation;
+  try {
+    upkie_rl::read_observation(object, observation);
+  } catch (const SpineError&) {
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  // The default action message, decoded once (its own unpacker keeps it alive).
+  static msgpack::sbuffer default_message = [] {
+    msgpack::sbuffer buffer;
+    upkie_rl::write_servo_action_msgpack(upkie_rl::spine_default_servo_action(), buffer);
+    return buffer;
+  }();
+  static upkie_rl::PayloadUnpacker default_unpacker;
+  static const msgpack::object& defaults =
+      default_unpacker.unpack({default_message.data(), default_message.size()});
+  static upkie_rl::PayloadUnpacker unpacker;  // reused, as by the spine and the agent
+
+  const msgpack::object* object = nullptr;
+  try {
+    object = &unpacker.unpack({reinterpret_cast<const char*>(data), size});
+  } catch (const SpineError&) {
+    return 0;
+  }
+  decode_as_configuration(*object);
+  decode_as_action(*object, defaults);
+  decode_as_observation(*object);
+  return 0;
+}
