@@ -1,0 +1,126 @@
+#include "rl/scalar_csv_writer.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace upkie_rl {
+
+namespace {
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream stream(line);
+  std::string cell;
+  while (std::getline(stream, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+std::string join(const std::vector<std::string>& cells) {
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) line += (i ? "," : "") + cells[i];
+  return line;
+}
+
+std::string format_value(float value) {
+  if (std::isnan(value)) return "";
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+double parse_cell(const std::string& cell, const std::string& where) {
+  if (cell.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
+  if (error != std::errc() || end != cell.data() + cell.size()) {
+    throw std::runtime_error(where + ": not a number: '" + cell + "'");
+  }
+  return value;
+}
+
+}  // namespace
+
+ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
+                                 std::vector<std::string> columns,
+                                 std::optional<std::int64_t> resume_from_step)
+    : path_(path), columns_(std::move(columns)) {
+  std::vector<std::string> kept;
+  if (resume_from_step && std::filesystem::exists(path)) {
+    std::ifstream existing(path);
+    std::string line;
+    std::getline(existing, line);
+    if (line != join(columns_)) {
+      throw std::runtime_error(path.string() + ": existing header differs from the logged tags");
+    }
+    while (std::getline(existing, line)) {
+      if (line.empty()) continue;
+      const std::vector<std::string> cells = split(line);
+      if (cells.empty() || cells[0].empty()) continue;
+      double step = 0.0;
+      try {
+        step = parse_cell(cells[0], path.string());
+      } catch (const std::runtime_error&) {
+        continue;  // a line cut by a kill: drop it
+      }
+      if (cells.size() == columns_.size() && step <= static_cast<double>(*resume_from_step)) {
+        kept.push_back(line);
+      }
+    }
+  }
+  file_.open(path, std::ios::trunc);
+  if (!file_) throw std::runtime_error("cannot write " + path.string());
+  file_ << join(columns_) << '\n';
+  for (const std::string& line : kept) file_ << line << '\n';
+  file_.flush();
+}
+
+void ScalarCsvWriter::write_row(std::span<const ScalarValue> scalars) {
+  std::vector<std::string> cells(columns_.size());
+  for (const ScalarValue& scalar : scalars) {
+    for (std::size_t i = 0; i < columns_.size(); ++i) {
+      if (columns_[i] == scalar.tag) cells[i] = format_value(scalar.value);
+    }
+  }
+  file_ << join(cells) << '\n';
+  file_.flush();
+  if (!file_) throw std::runtime_error("cannot write " + path_.string());
+}
+
+std::size_t ScalarTable::index(const std::string& column) const {
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (columns[i] == column) return i;
+  }
+  throw std::runtime_error("no column '" + column + "' in the scalar log");
+}
+
+ScalarTable read_scalar_csv(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error("cannot read " + path.string());
+  ScalarTable table;
+  std::string line;
+  if (!std::getline(file, line) || line.empty()) {
+    throw std::runtime_error(path.string() + ": empty file, no header");
+  }
+  table.columns = split(line);
+  int line_number = 1;
+  while (std::getline(file, line)) {
+    ++line_number;
+    if (line.empty()) continue;
+    const std::string where = path.string() + ":" + std::to_string(line_number);
+    const std::vector<std::string> cells = split(line);
+    if (cells.size() != table.columns.size()) {
+      throw std::runtime_error(where + ": expected " + std::to_string(table.columns.size()) +
+                               " cells, got " + std::to_string(cells.size()));
+    }
+    std::vector<double> row;
+    for (const std::string& cell : cells) row.push_back(parse_cell(cell, where));
+    table.rows.push_back(std::move(row));
+  }
+  return table;
+}
+
+}  // namespace upkie_rl

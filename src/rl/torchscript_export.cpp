@@ -1,0 +1,88 @@
+#include "rl/torchscript_export.hpp"
+
+#include <torch/script.h>
+
+#include <charconv>
+#include <stdexcept>
+
+#include "rl/ppo_checkpoint.hpp"
+#include "rl/saved_policy.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+std::string literal(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  std::string text(buffer, result.ptr);
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+torch::Tensor to_tensor(const std::vector<double>& values) {
+  std::vector<float> floats(values.begin(), values.end());
+  return torch::tensor(floats, torch::kFloat32);
+}
+
+// Builds the module's parameters and the TorchScript source of its forward().
+std::string add_layers(torch::jit::Module& module, const std::vector<DenseLayer>& layers,
+                       const std::string& name, Activation activation) {
+  std::string source;
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const std::string weight = name + "_" + std::to_string(i) + "_weight";
+    const std::string bias = name + "_" + std::to_string(i) + "_bias";
+    module.register_parameter(weight, layers[i].weight.detach().clone(), false);
+    module.register_parameter(bias, layers[i].bias.detach().clone(), false);
+    std::string affine = "torch.matmul(x, self." + weight + ".t()) + self." + bias;
+    if (i + 1 < layers.size()) {
+      affine = (activation == Activation::kReLU ? "torch.relu(" : "torch.tanh(") + affine + ")";
+    }
+    source += "    x = " + affine + "\n";
+  }
+  return source;
+}
+
+}  // namespace
+
+void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& normalizer,
+                        const BoxSpace& observation_space, const BoxSpace& action_space,
+                        const std::string& env_id, const std::filesystem::path& path) {
+  torch::NoGradGuard no_grad;
+  torch::jit::Module module("UpkiePolicy");
+  std::string source = "def forward(self, observation: Tensor) -> Tensor:\n";
+  source += "    x = observation.to(torch.float32)\n";
+  if (normalizer.enabled()) {
+    module.register_buffer("observation_mean", to_tensor(normalizer.mean()));
+    module.register_buffer("observation_var", to_tensor(normalizer.var()));
+    source +=
+        "    x = torch.clamp((x - self.observation_mean) / torch.sqrt(self.observation_var + " +
+        literal(normalizer.epsilon()) + "), " + literal(-normalizer.clip()) + ", " +
+        literal(normalizer.clip()) + ")\n";
+  }
+  source += add_layers(module, policy.actor_layers(), "actor", policy.config().activation);
+  module.register_buffer("action_low", torch::tensor(action_space.low, torch::kFloat32));
+  module.register_buffer("action_high", torch::tensor(action_space.high, torch::kFloat32));
+  source += "    return torch.max(torch.min(x, self.action_high), self.action_low)\n";
+  module.define(source);
+
+  const nlohmann::json metadata = {{"env_id", env_id},
+                                   {"observation_space", space_to_json(observation_space)},
+                                   {"action_space", space_to_json(action_space)},
+                                   {"deterministic", true}};
+  torch::jit::ExtraFilesMap extra_files{{"metadata.json", metadata.dump()}};
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  try {
+    module.save(path.string(), extra_files);
+  } catch (const c10::Error& error) {
+    throw std::runtime_error("cannot write TorchScript model " + path.string() + ": " +
+                             error.what_without_backtrace());
+  }
+}
+
+void export_torchscript(const SavedPolicy& saved, const std::filesystem::path& path) {
+  export_torchscript(saved.policy(), saved.normalizer(), saved.observation_space(),
+                     saved.action_space(), saved.env_id(), path);
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// Export of the deterministic policy, with its frozen observation normalisation and action
+/// clipping, as a TorchScript module that Python loads with `torch.jit.load(path)`:
+/// `module(observations)` maps raw observations (obs_size, or batch x obs_size, float32)
+/// to actions. The file also carries `metadata.json` (env id, spaces) as an extra file.
+
+#include <filesystem>
+#include <string>
+
+#include "envs/box_space.hpp"
+#include "rl/actor_critic.hpp"
+#include "rl/observation_normalizer.hpp"
+
+namespace upkie_rl {
+
+class SavedPolicy;
+
+/// Writes the TorchScript module to `path`. Throws std::runtime_error on failure.
+void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& normalizer,
+                        const BoxSpace& observation_space, const BoxSpace& action_space,
+                        const std::string& env_id, const std::filesystem::path& path);
+
+/// Same, from a loaded model.
+void export_torchscript(const SavedPolicy& saved, const std::filesystem::path& path);
+
+}  // namespace upkie_rl

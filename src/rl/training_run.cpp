@@ -1,0 +1,245 @@
+#include "rl/training_run.hpp"
+
+#include <ATen/Parallel.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "rl/checkpoint.hpp"
+#include "rl/observation_normalizer.hpp"
+#include "rl/ppo_checkpoint.hpp"
+#include "rl/torchscript_export.hpp"
+#include "vec/make_vector_env.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double wall_time() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+std::string timestamp() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char buffer[32];
+  std::strftime(buffer, sizeof(buffer), "%Y%m%d-%H%M%S", &local);
+  return buffer;
+}
+
+NormalizeConfig normalize_config(const NormalizationConfig& config) {
+  NormalizeConfig out;
+  out.observations = config.observations;
+  out.rewards = config.rewards;
+  out.clip_observations = config.clip_observations;
+  out.clip_rewards = config.clip_rewards;
+  out.gamma = config.gamma;
+  out.epsilon = config.epsilon;
+  return out;
+}
+
+std::string checkpoint_name(std::int64_t timesteps) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "checkpoint_%09lld_steps.ckpt",
+                static_cast<long long>(timesteps));
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<std::string> TrainingRun::logged_tags() {
+  return {"time/total_timesteps",
+          "time/iterations",
+          "time/fps",
+          "time/time_elapsed",
+          "rollout/ep_rew_mean",
+          "rollout/ep_len_mean",
+          "train/loss",
+          "train/policy_gradient_loss",
+          "train/value_loss",
+          "train/entropy_loss",
+          "train/approx_kl",
+          "train/clip_fraction",
+          "train/explained_variance",
+          "train/learning_rate",
+          "train/std",
+          "train/clip_range",
+          "train/n_updates",
+          "time/env_seconds",
+          "time/inference_seconds",
+          "time/update_seconds"};
+}
+
+TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir)
+    : TrainingRun(ResumeTag{}, config, run_dir) {
+  if (std::filesystem::exists(run_dir_ / "config.yaml")) {
+    throw std::runtime_error("run directory " + run_dir_.string() +
+                             " already holds a run; choose another --run-dir or --resume a "
+                             "checkpoint");
+  }
+  std::filesystem::create_directories(run_dir_);
+  std::ofstream file(run_dir_ / "config.yaml");
+  file << to_yaml(config_);
+  if (!file) throw std::runtime_error("cannot write " + (run_dir_ / "config.yaml").string());
+}
+
+TrainingRun::TrainingRun(ResumeTag, const TrainingConfig& config,
+                         const std::filesystem::path& run_dir)
+    : config_(config), run_dir_(run_dir) {
+  config_.validate();
+  // The networks are tiny (minibatches of 128 through 64x64 layers): intra-op threads
+  // would cost more in synchronisation than they save, and the cores are needed by the
+  // environment workers. One thread also makes reductions independent of the machine.
+  at::set_num_threads(static_cast<int>(config_.torch_threads));
+  make_learner();
+}
+
+void TrainingRun::make_learner() {
+  auto inner = make_vector_env(config_.env_id, config_.env_options,
+                               static_cast<std::size_t>(config_.num_envs),
+                               static_cast<std::size_t>(config_.env_threads));
+  auto normalize =
+      std::make_unique<VecNormalize>(std::move(inner), normalize_config(config_.normalize));
+  normalize_ = normalize.get();
+  env_ = std::move(normalize);
+  ppo_ = std::make_unique<Ppo>(*env_, config_);
+}
+
+std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& checkpoint_path,
+                                                 std::optional<std::filesystem::path> run_dir) {
+  const Checkpoint checkpoint = load_checkpoint(checkpoint_path);
+  TrainingConfig config;
+  try {
+    config = parse_training_config(checkpoint_config_yaml(checkpoint));
+  } catch (const std::invalid_argument& error) {
+    throw CheckpointError("checkpoint " + checkpoint_path.string() +
+                          ": bad configuration: " + error.what());
+  }
+  if (!run_dir) {
+    const std::filesystem::path directory = checkpoint_path.parent_path();
+    run_dir = directory.filename() == "checkpoints" ? directory.parent_path() : directory;
+  }
+  std::unique_ptr<TrainingRun> run(new TrainingRun(ResumeTag{}, config, *run_dir));
+  std::filesystem::create_directories(run->run_dir_);
+  const std::string where = "checkpoint " + checkpoint_path.string() + ": ";
+  try {
+    restore_ppo_checkpoint(*run->ppo_, checkpoint);
+    run->normalize_->load_state(checkpoint.header.at("normalization"));
+    run->checkpoints_saved_ =
+        checkpoint.header.at("run").at("checkpoints_saved").get<std::int64_t>();
+  } catch (const CheckpointError& error) {
+    throw CheckpointError(where + error.what());
+  } catch (const std::invalid_argument& error) {
+    throw CheckpointError(where + "normalisation statistics: " + error.what());
+  } catch (const nlohmann::json::exception& error) {
+    throw CheckpointError(where + "malformed header: " + error.what());
+  }
+  run->resumed_at_ = run->ppo_->num_timesteps();
+  if (!std::filesystem::exists(run->run_dir_ / "config.yaml")) {
+    std::ofstream(run->run_dir_ / "config.yaml") << to_yaml(config);
+  }
+  return run;
+}
+
+std::uint64_t TrainingRun::segment_seed() const {
+  return config_.seed + static_cast<std::uint64_t>(checkpoints_saved_ * config_.num_envs);
+}
+
+void TrainingRun::save_checkpoint_now() {
+  ++checkpoints_saved_;
+  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
+  const std::filesystem::path path =
+      run_dir_ / "checkpoints" / checkpoint_name(ppo_->num_timesteps());
+  save_checkpoint(make_ppo_checkpoint(*ppo_, normalize_->state(), extra), path);
+  last_checkpoint_ = path;
+}
+
+std::filesystem::path TrainingRun::save_final_model() {
+  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
+  const std::string stem = "model_" + timestamp();
+  const std::filesystem::path path = run_dir_ / (stem + ".ckpt");
+  save_checkpoint(make_ppo_checkpoint(*ppo_, normalize_->state(), extra), path);
+  torchscript_path_ = run_dir_ / (stem + ".pt");
+  export_torchscript(
+      ppo_->policy(),
+      ObservationNormalizer::from_state(normalize_->state(), env_->observation_space().size()),
+      env_->observation_space(), env_->action_space(), config_.env_id, torchscript_path_);
+  return path;
+}
+
+std::filesystem::path TrainingRun::train(
+    const std::function<void(const TrainingProgress&)>& on_progress) {
+  TensorBoardWriter events(run_dir_);
+  ScalarCsvWriter csv(run_dir_ / "progress.csv", logged_tags(), resumed_at_);
+  const std::int64_t total = config_.ppo.total_timesteps;
+  const std::int64_t every = config_.checkpoint_every;
+  const std::int64_t start_timesteps = ppo_->num_timesteps();
+  std::int64_t next_checkpoint =
+      every > 0 ? (checkpoints_saved_ + 1) * every : std::numeric_limits<std::int64_t>::max();
+  while (next_checkpoint <= start_timesteps) next_checkpoint += every;
+  const auto start = Clock::now();
+  ppo_->reset_environments(segment_seed());
+  std::vector<ScalarValue> scalars;
+  while (ppo_->num_timesteps() < total) {
+    const PpoUpdateStatistics update = ppo_->iterate();
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    TrainingProgress progress;
+    progress.timesteps = ppo_->num_timesteps();
+    progress.total_timesteps = total;
+    progress.iterations = ppo_->iterations();
+    progress.elapsed_seconds = elapsed;
+    progress.steps_per_second =
+        static_cast<double>(progress.timesteps - start_timesteps) / std::max(elapsed, 1e-9);
+    progress.mean_return = ppo_->episodes().mean_return();
+    progress.mean_length = ppo_->episodes().mean_length();
+    progress.update = update;
+
+    const PpoTimings& timings = ppo_->timings();
+    auto f = [](double value) { return static_cast<float>(value); };
+    scalars = {{"time/total_timesteps", f(progress.timesteps)},
+               {"time/iterations", f(progress.iterations)},
+               {"time/fps", f(std::floor(progress.steps_per_second))},
+               {"time/time_elapsed", f(elapsed)},
+               {"train/loss", f(update.loss)},
+               {"train/policy_gradient_loss", f(update.policy_gradient_loss)},
+               {"train/value_loss", f(update.value_loss)},
+               {"train/entropy_loss", f(update.entropy_loss)},
+               {"train/approx_kl", f(update.approx_kl)},
+               {"train/clip_fraction", f(update.clip_fraction)},
+               {"train/explained_variance", f(update.explained_variance)},
+               {"train/learning_rate", f(update.learning_rate)},
+               {"train/std", f(update.std)},
+               {"train/clip_range", f(update.clip_range)},
+               {"train/n_updates", f(static_cast<double>(update.n_updates))},
+               {"time/env_seconds", f(timings.env_seconds)},
+               {"time/inference_seconds", f(timings.inference_seconds)},
+               {"time/update_seconds", f(timings.update_seconds)}};
+    if (ppo_->episodes().size() > 0) {
+      scalars.push_back({"rollout/ep_rew_mean", f(progress.mean_return)});
+      scalars.push_back({"rollout/ep_len_mean", f(progress.mean_length)});
+    }
+    events.add_scalars(progress.timesteps, scalars, wall_time());
+    csv.write_row(scalars);
+
+    if (progress.timesteps >= next_checkpoint && progress.timesteps < total) {
+      events.flush();
+      save_checkpoint_now();
+      while (next_checkpoint <= progress.timesteps) next_checkpoint += every;
+      // Start fresh episodes so that a run resumed from this checkpoint continues
+      // exactly like this one.
+      ppo_->reset_environments(segment_seed());
+    }
+    if (on_progress) on_progress(progress);
+  }
+  events.flush();
+  return save_final_model();
+}
+
+}  // namespace upkie_rl

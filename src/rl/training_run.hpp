@@ -1,0 +1,91 @@
+#pragma once
+/// @file
+/// A training run: the environments (vector env + VecNormalize), the PPO learner, and the
+/// run directory with the resolved config, TensorBoard events, a CSV of the same scalars,
+/// periodic checkpoints and the final model.
+///
+/// Run directory layout:
+///   config.yaml                        the resolved configuration
+///   events.out.tfevents.*              TensorBoard scalars (SB3 tag names)
+///   progress.csv                       the same scalars, one row per update
+///   checkpoints/checkpoint_<N>_steps.ckpt  every `checkpoint_every` timesteps
+///   model_<YYYYmmdd-HHMMSS>.ckpt       the final model (a full checkpoint)
+///   model_<YYYYmmdd-HHMMSS>.pt         the deterministic policy as TorchScript
+///
+/// Resuming: every environment is reset (with a seed derived from the run's seed and the
+/// checkpoint count) right after each checkpoint, in uninterrupted runs too. A run resumed
+/// from a checkpoint therefore continues exactly as the uninterrupted run did, given the
+/// same thread counts.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "rl/ppo.hpp"
+#include "rl/scalar_csv_writer.hpp"
+#include "rl/tensorboard_writer.hpp"
+#include "rl/training_config.hpp"
+#include "vec/vec_normalize.hpp"
+
+namespace upkie_rl {
+
+/// What the run reports after each update (for progress bars).
+struct TrainingProgress {
+  std::int64_t timesteps = 0;
+  std::int64_t total_timesteps = 0;
+  std::int64_t iterations = 0;
+  double elapsed_seconds = 0.0;   ///< Since this process started training.
+  double steps_per_second = 0.0;  ///< Over this process's training.
+  double mean_return = 0.0;       ///< Raw, last 100 episodes; NaN before the first.
+  double mean_length = 0.0;       ///< NaN before the first episode.
+  PpoUpdateStatistics update;     ///< The last update's statistics.
+};
+
+class TrainingRun {
+ public:
+  /// Prepares a new run in `run_dir` (created if needed). Throws std::invalid_argument on
+  /// a bad config or environment, std::runtime_error if `run_dir` already holds a run.
+  TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir);
+
+  /// Continues the run saved in `checkpoint`, in `run_dir` (default: the run directory the
+  /// checkpoint belongs to). Throws CheckpointError on a bad checkpoint.
+  static std::unique_ptr<TrainingRun> resume(const std::filesystem::path& checkpoint,
+                                             std::optional<std::filesystem::path> run_dir = {});
+
+  /// Trains until config.ppo.total_timesteps, calling `on_progress` after each update, and
+  /// saves the final model. Returns the path of the final model checkpoint.
+  std::filesystem::path train(const std::function<void(const TrainingProgress&)>& on_progress = {});
+
+  const TrainingConfig& config() const { return config_; }
+  const std::filesystem::path& run_dir() const { return run_dir_; }
+  const Ppo& ppo() const { return *ppo_; }
+  /// Path of the last checkpoint written by this run, if any.
+  const std::optional<std::filesystem::path>& last_checkpoint() const { return last_checkpoint_; }
+  /// The TorchScript export of the final model (after train()).
+  const std::filesystem::path& torchscript_path() const { return torchscript_path_; }
+
+  /// Tags of progress.csv, in order.
+  static std::vector<std::string> logged_tags();
+
+ private:
+  struct ResumeTag {};
+  TrainingRun(ResumeTag, const TrainingConfig& config, const std::filesystem::path& run_dir);
+  void make_learner();
+  void save_checkpoint_now();
+  std::uint64_t segment_seed() const;
+  std::filesystem::path save_final_model();
+
+  TrainingConfig config_;
+  std::filesystem::path run_dir_;
+  VecNormalize* normalize_ = nullptr;  // owned by env_
+  std::unique_ptr<VectorEnv> env_;
+  std::unique_ptr<Ppo> ppo_;
+  std::int64_t checkpoints_saved_ = 0;
+  std::optional<std::int64_t> resumed_at_;
+  std::optional<std::filesystem::path> last_checkpoint_;
+  std::filesystem::path torchscript_path_;
+};
+
+}  // namespace upkie_rl
