@@ -72,7 +72,8 @@ void run_bench(const BenchOptions& options) {
   const double elapsed = seconds_since(start);
   const double env_steps_per_s = options.steps * static_cast<double>(options.num_envs) / elapsed;
   const double physics_steps_per_s = env_steps_per_s * probe->physics_steps_per_step();
-  const std::size_t threads = options.threads == 0 ? 0 : std::min(options.threads, options.num_envs);
+  const std::size_t threads =
+      options.threads == 0 ? 0 : std::min(options.threads, options.num_envs);
 
   std::cout << options.env_id << ": " << options.num_envs << " envs, "
             << (threads == 0 ? std::string("synchronous") : std::to_string(threads) + " threads")
@@ -84,8 +85,8 @@ void run_bench(const BenchOptions& options) {
                             {"threads", threads}};
   if (options.raw) {
     const double raw = raw_simulation_steps_per_s(options.steps);
-    std::cout << "raw BulletSimulation (neutral commands, default settings): " << raw
-              << " steps/s" << std::endl;
+    std::cout << "raw BulletSimulation (neutral commands, default settings): " << raw << " steps/s"
+              << std::endl;
     summary["raw_sim_steps_per_s"] = raw;
   }
   if (options.json) std::cout << summary.dump() << std::endl;
@@ -97,8 +98,7 @@ void add_bench_command(CLI::App& app) {
   auto options = std::make_shared<BenchOptions>();
   CLI::App* command =
       app.add_subcommand("bench", "Measure environment steps per second of a vector environment");
-  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")
-      ->required();
+  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
   command->add_option("--num-envs", options->num_envs, "Number of environments")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();

@@ -55,8 +55,8 @@ void list_envs(bool with_options) {
 
 void add_envs_command(CLI::App& app) {
   auto with_options = std::make_shared<bool>(false);
-  CLI::App* command =
-      app.add_subcommand("envs", "List the environment ids with their observation and action spaces");
+  CLI::App* command = app.add_subcommand(
+      "envs", "List the environment ids with their observation and action spaces");
   command->add_flag("--options", *with_options, "Also list the options each id accepts");
   command->callback([with_options] { list_envs(*with_options); });
 }

@@ -12,6 +12,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/episode_recorder.hpp"
+#include "apps/policy_controller.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/registry.hpp"
 #include "sim/observation_dict.hpp"
@@ -23,6 +24,7 @@ namespace {
 struct RolloutOptions {
   std::string env_id;
   std::string controller = "zero";
+  std::string model;  // a trained policy (`upkie-rl train`), replaces --controller
   int episodes = 1;
   std::uint64_t seed = 0;
   int max_steps = 1000;
@@ -32,9 +34,8 @@ struct RolloutOptions {
   bool info = false;
 };
 
-std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options,
-                                                    const Env& env) {
-  // Trained policies plug in here: `if (!options.model.empty()) return ...;`.
+std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options, const Env& env) {
+  if (!options.model.empty()) return make_policy_controller(options.model, env);
   return make_builtin_controller(options.controller, env);
 }
 
@@ -103,13 +104,16 @@ void add_rollout_command(CLI::App& app) {
   auto options = std::make_shared<RolloutOptions>();
   CLI::App* command = app.add_subcommand(
       "rollout", "Run episodes of an environment with a controller and report their returns");
-  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")
-      ->required();
+  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
   command
       ->add_option("--controller", options->controller,
                    "zero (neutral action) or linear:k1,k2,k3,k4 (ground velocity = "
                    "k.[theta, p, theta_dot, p_dot])")
       ->capture_default_str();
+  command->add_option("--model", options->model,
+                      "Trained model (model_*.ckpt or a checkpoint of `upkie-rl train`): "
+                      "deterministic policy with its frozen normalisation; replaces --controller")
+      ->check(CLI::ExistingFile);
   command->add_option("--episodes", options->episodes, "Number of episodes")
       ->check(CLI::Range(1, 1'000'000))
       ->capture_default_str();
@@ -122,8 +126,7 @@ void add_rollout_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value (repeatable)");
-  command->add_option("--record", options->record_path,
-                      "Write one CSV row per step to this file");
+  command->add_option("--record", options->record_path, "Write one CSV row per step to this file");
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
   command->add_flag("--info", options->info,
                     "Print each episode's last info (the full observation dictionary)");

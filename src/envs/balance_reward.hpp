@@ -41,10 +41,11 @@ class BalanceReward {
     const double change_of_change = change - previous_action_change_;
     previous_action_ = action;
     previous_action_change_ = change;
-    return 1.0 - (weights_.w_theta * pitch * pitch + weights_.w_theta_dot * pitch_rate * pitch_rate +
-                  weights_.w_p_dot * ground_velocity * ground_velocity +
-                  weights_.w_a * action * action + weights_.w_s * change * change +
-                  weights_.w_accel * change_of_change * change_of_change);
+    return 1.0 -
+           (weights_.w_theta * pitch * pitch + weights_.w_theta_dot * pitch_rate * pitch_rate +
+            weights_.w_p_dot * ground_velocity * ground_velocity + weights_.w_a * action * action +
+            weights_.w_s * change * change +
+            weights_.w_accel * change_of_change * change_of_change);
   }
 
   const BalanceRewardWeights& weights() const { return weights_; }

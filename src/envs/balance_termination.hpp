@@ -8,10 +8,10 @@ namespace upkie_rl {
 
 /// Thresholds of the termination conditions.
 struct BalanceTermination {
-  double fall_pitch = 1.0;            ///< |θ| above it: fall [rad].
-  double max_position_drift = 5.0;    ///< |p - p0| above it: drift [m].
+  double fall_pitch = 1.0;             ///< |θ| above it: fall [rad].
+  double max_position_drift = 5.0;     ///< |p - p0| above it: drift [m].
   double max_angular_velocity = 10.0;  ///< |θ̇| above it [rad/s].
-  double max_linear_velocity = 2.0;   ///< |ṗ| above it [m/s].
+  double max_linear_velocity = 2.0;    ///< |ṗ| above it [m/s].
 
   /// Why an episode ended, in the order the conditions are checked.
   enum class Reason { kNone = 0, kFall, kPositionDrift, kAngularVelocity, kLinearVelocity };
@@ -31,11 +31,16 @@ struct BalanceTermination {
 /// "fall", "position_drift", "angular_velocity", "linear_velocity" or "none".
 constexpr const char* to_string(BalanceTermination::Reason reason) {
   switch (reason) {
-    case BalanceTermination::Reason::kFall: return "fall";
-    case BalanceTermination::Reason::kPositionDrift: return "position_drift";
-    case BalanceTermination::Reason::kAngularVelocity: return "angular_velocity";
-    case BalanceTermination::Reason::kLinearVelocity: return "linear_velocity";
-    default: return "none";
+    case BalanceTermination::Reason::kFall:
+      return "fall";
+    case BalanceTermination::Reason::kPositionDrift:
+      return "position_drift";
+    case BalanceTermination::Reason::kAngularVelocity:
+      return "angular_velocity";
+    case BalanceTermination::Reason::kLinearVelocity:
+      return "linear_velocity";
+    default:
+      return "none";
   }
 }
 

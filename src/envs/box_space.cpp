@@ -37,8 +37,8 @@ void clamp_to_space(const BoxSpace& space, std::span<const float> action, std::s
       }
       clamped[i] = value;
     } else if (std::isinf(value)) {
-      throw std::invalid_argument("action component " + std::to_string(i) + " (" +
-                                  space.names[i] + ") is infinite");
+      throw std::invalid_argument("action component " + std::to_string(i) + " (" + space.names[i] +
+                                  ") is infinite");
     } else {
       clamped[i] = std::clamp(value, space.low[i], space.high[i]);
     }

@@ -11,8 +11,8 @@ namespace upkie_rl {
 
 /// Gymnasium's Box with float32 bounds, one dimension.
 struct BoxSpace {
-  std::vector<float> low;   ///< Lower bound of each component (may be -inf).
-  std::vector<float> high;  ///< Upper bound of each component (may be +inf).
+  std::vector<float> low;          ///< Lower bound of each component (may be -inf).
+  std::vector<float> high;         ///< Upper bound of each component (may be +inf).
   std::vector<std::string> names;  ///< Name of each component, for records and listings.
 
   /// Number of components.

@@ -79,8 +79,7 @@ std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, con
   if (spec == "zero") return std::make_unique<ZeroController>(env);
   constexpr std::string_view linear = "linear:";
   if (spec.rfind(linear, 0) == 0) {
-    return std::make_unique<LinearController>(env,
-                                              parse_gains(spec, spec.substr(linear.size())));
+    return std::make_unique<LinearController>(env, parse_gains(spec, spec.substr(linear.size())));
   }
   throw std::invalid_argument("unknown controller \"" + spec + "\"; " + kValidSpecs);
 }

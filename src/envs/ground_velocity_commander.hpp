@@ -12,10 +12,10 @@ namespace upkie_rl {
 
 /// Settings of the leg and wheel commands.
 struct GroundVelocityCommanderConfig {
-  double leg_gain_scale = 1.0;         ///< kp_scale and kd_scale of hips and knees.
-  double leg_maximum_torque = 16.0;    ///< [N.m]
-  double leg_time_constant = 1.0;      ///< Of the low-pass filter toward 0 [s].
-  double wheel_maximum_torque = 1.7;   ///< [N.m]
+  double leg_gain_scale = 1.0;        ///< kp_scale and kd_scale of hips and knees.
+  double leg_maximum_torque = 16.0;   ///< [N.m]
+  double leg_time_constant = 1.0;     ///< Of the low-pass filter toward 0 [s].
+  double wheel_maximum_torque = 1.7;  ///< [N.m]
 };
 
 /// Wheels: position NaN, ω_left = +v/r + k·ψ̇, ω_right = -v/r + k·ψ̇ with k = (track/2)/r,
@@ -38,7 +38,7 @@ class GroundVelocityCommander {
 
  private:
   double wheel_radius_;
-  double yaw_factor_;  // (track / 2) / r
+  double yaw_factor_;   // (track / 2) / r
   double filter_gain_;  // dt / T, at most 1
   ServoAction action_{};
 };

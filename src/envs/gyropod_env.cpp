@@ -23,8 +23,9 @@ GroundVelocityCommanderConfig commander_config(const GyropodConfig& config) {
 GyropodEnv::GyropodEnv(std::unique_ptr<ServosEnv> servos, const GyropodConfig& config)
     : servos_(std::move(servos)),
       config_(config),
-      commander_(servos_ ? servos_->model() : throw std::invalid_argument("GyropodEnv: null servos"),
-                 servos_->timestep(), commander_config(config)) {
+      commander_(
+          servos_ ? servos_->model() : throw std::invalid_argument("GyropodEnv: null servos"),
+          servos_->timestep(), commander_config(config)) {
   if (!(config_.max_ground_velocity > 0.0) || !(config_.max_yaw_velocity > 0.0)) {
     throw std::invalid_argument(
         "GyropodEnv: max_ground_velocity and max_yaw_velocity must be positive");

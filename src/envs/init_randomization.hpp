@@ -12,11 +12,12 @@ namespace upkie_rl {
 /// Half-widths of uniform distributions around the default initial state. All zero (the
 /// default) gives the deterministic reset: base at (0, 0, 0.6), upright, at rest.
 struct InitRandomization {
-  double roll = 0.0;     ///< Base roll drawn in [-roll, roll] [rad].
-  double pitch = 0.0;    ///< Base pitch drawn in [-pitch, pitch] [rad] (ZYX, yaw 0).
-  double x = 0.0;        ///< Base x position offset in [-x, x] [m].
-  double z = 0.0;        ///< Base height raised by [0, z] [m] (never lowered).
-  double omega_x = 0.0;  ///< Base angular velocity about x in [-omega_x, omega_x], base frame [rad/s].
+  double roll = 0.0;   ///< Base roll drawn in [-roll, roll] [rad].
+  double pitch = 0.0;  ///< Base pitch drawn in [-pitch, pitch] [rad] (ZYX, yaw 0).
+  double x = 0.0;      ///< Base x position offset in [-x, x] [m].
+  double z = 0.0;      ///< Base height raised by [0, z] [m] (never lowered).
+  double omega_x =
+      0.0;  ///< Base angular velocity about x in [-omega_x, omega_x], base frame [rad/s].
   double omega_y = 0.0;  ///< Same about y [rad/s].
   double v_x = 0.0;      ///< Base linear velocity along x in [-v_x, v_x], world frame [m/s].
   double v_y = 0.0;      ///< Same along y [m/s].

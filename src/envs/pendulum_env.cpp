@@ -22,8 +22,9 @@ GroundVelocityCommanderConfig commander_config(const PendulumConfig& config) {
 PendulumEnv::PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig& config)
     : servos_(std::move(servos)),
       config_(config),
-      commander_(servos_ ? servos_->model() : throw std::invalid_argument("PendulumEnv: null servos"),
-                 servos_->timestep(), commander_config(config)),
+      commander_(
+          servos_ ? servos_->model() : throw std::invalid_argument("PendulumEnv: null servos"),
+          servos_->timestep(), commander_config(config)),
       reward_(config.reward) {
   if (!(config_.max_ground_velocity > 0.0)) {
     throw std::invalid_argument("PendulumEnv: max_ground_velocity must be positive");

@@ -16,7 +16,6 @@
 #include "sim/mock_simulation.hpp"
 #include "spine/spine_backend.hpp"
 
-
 namespace upkie_rl {
 
 namespace {
@@ -69,8 +68,9 @@ EnvId parse_id(const std::string& id) {
       }
     }
   }
-  throw std::invalid_argument("environment id \"" + id + "\" not found; registered ids: " +
-                              registered_list() + " (Upkie-PyBullet-* is an alias of Upkie-Bullet-*)");
+  throw std::invalid_argument("environment id \"" + id +
+                              "\" not found; registered ids: " + registered_list() +
+                              " (Upkie-PyBullet-* is an alias of Upkie-Bullet-*)");
 }
 
 /// Everything the options of an id set, with the defaults of each kind.
@@ -101,8 +101,7 @@ void add_balance_options(OptionTable& table, BalanceRewardWeights& reward,
   table.add_double("w_theta", &reward.w_theta, -kHuge, kHuge, "reward weight of pitch^2");
   table.add_double("w_theta_dot", &reward.w_theta_dot, -kHuge, kHuge,
                    "reward weight of pitch rate^2");
-  table.add_double("w_p_dot", &reward.w_p_dot, -kHuge, kHuge,
-                   "reward weight of ground velocity^2");
+  table.add_double("w_p_dot", &reward.w_p_dot, -kHuge, kHuge, "reward weight of ground velocity^2");
   table.add_double("w_a", &reward.w_a, -kHuge, kHuge, "reward weight of action^2");
   table.add_double("w_s", &reward.w_s, -kHuge, kHuge, "reward weight of (action change)^2");
   table.add_double("w_accel", &reward.w_accel, -kHuge, kHuge,
@@ -186,9 +185,10 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
 std::unique_ptr<Simulation> make_simulation(Backend backend, const EnvSettings& settings,
                                             const std::shared_ptr<const RobotModel>& model,
                                             int& physics_steps_per_step) {
-  const int nb_substeps = settings.nb_substeps > 0
-                              ? settings.nb_substeps
-                              : std::max(1, static_cast<int>(std::lround(1000.0 / settings.frequency)));
+  const int nb_substeps =
+      settings.nb_substeps > 0
+          ? settings.nb_substeps
+          : std::max(1, static_cast<int>(std::lround(1000.0 / settings.frequency)));
   switch (backend) {
     case Backend::kBullet: {
       BulletConfig config;

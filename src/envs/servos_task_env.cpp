@@ -15,8 +15,8 @@ ServosTaskEnv::ServosTaskEnv(std::unique_ptr<ServosEnv> servos, const ServosTask
     const BoxSpace& servo_observation = servos_->observation_dict_space().entries[i].second;
     action_space_.add(joint, -1.0f, 1.0f);
     for (std::size_t key = 0; key < 2; ++key) {  // position, velocity
-      observation_space_.add(joint + "." + servo_observation.names[key],
-                             servo_observation.low[key], servo_observation.high[key]);
+      observation_space_.add(joint + "." + servo_observation.names[key], servo_observation.low[key],
+                             servo_observation.high[key]);
     }
   }
 }
@@ -52,8 +52,7 @@ double ServosTaskEnv::action_magnitude(const ServoAction& action) {
   return magnitude;
 }
 
-void ServosTaskEnv::write_observation(const Observation& full,
-                                      std::span<float> observation) const {
+void ServosTaskEnv::write_observation(const Observation& full, std::span<float> observation) const {
   if (observation.size() != 2 * kNumServos) {
     throw std::invalid_argument("ServosTaskEnv: observation buffer has " +
                                 std::to_string(observation.size()) + " components, expected 12");

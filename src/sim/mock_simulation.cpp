@@ -12,9 +12,9 @@ namespace {
 // frame (x forward, y right, z down) when the base is upright: a half turn about z.
 const Eigen::Quaterniond kUprightImuOrientation{0.0, 0.0, 0.0, 1.0};
 
-constexpr double kGravity = 9.81;             // [m/s^2]
-constexpr double kServoTemperature = 42.0;    // [deg C]
-constexpr double kServoVoltage = 18.0;        // [V]
+constexpr double kGravity = 9.81;              // [m/s^2]
+constexpr double kServoTemperature = 42.0;     // [deg C]
+constexpr double kServoVoltage = 18.0;         // [V]
 constexpr double kStandingBaseHeight = 0.557;  // Base origin above the floor [m].
 
 }  // namespace
@@ -52,8 +52,8 @@ const Observation& MockSimulation::step(const ServoAction& action) {
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const ServoCommand& command = action[i];
     ServoObservation& servo = observation_.servo[i];
-    servo.position = std::isnan(command.position) ? servo.position + command.velocity * dt
-                                                  : command.position;
+    servo.position =
+        std::isnan(command.position) ? servo.position + command.velocity * dt : command.position;
     servo.velocity = command.velocity;
     const double torque_limit = std::min(command.maximum_torque, model_->servo_limits(i).effort);
     servo.torque = std::clamp(command.feedforward_torque, -torque_limit, torque_limit);
@@ -62,7 +62,8 @@ const Observation& MockSimulation::step(const ServoAction& action) {
   const double r = model_->wheel_radius();
   WheelOdometryObservation& odometry = observation_.wheel_odometry;
   odometry.velocity =
-      0.5 * r * (observation_.servo[kLeftWheel].velocity - observation_.servo[kRightWheel].velocity);
+      0.5 * r *
+      (observation_.servo[kLeftWheel].velocity - observation_.servo[kRightWheel].velocity);
   odometry.position += odometry.velocity * dt;
   observation_.time += dt;
   return observation_;

@@ -38,8 +38,8 @@ class ThreadPoolVectorEnv final : public VectorEnv {
  private:
   enum class Task { kReset, kStep, kStop };
 
-  void run(Task task);                 // Runs `task` on every worker and waits.
-  void work(std::size_t worker);       // Does the current task for one worker's block.
+  void run(Task task);            // Runs `task` on every worker and waits.
+  void work(std::size_t worker);  // Does the current task for one worker's block.
   void worker_loop(std::size_t worker);
   std::size_t block_begin(std::size_t worker) const {
     return worker * batch_.size() / num_threads_;

@@ -15,11 +15,11 @@ namespace upkie_rl {
 
 /// Settings of VecNormalize (SB3's defaults, the seed's values).
 struct NormalizeConfig {
-  bool observations = true;        ///< Normalise observations.
-  bool rewards = true;             ///< Normalise rewards (by the std of discounted returns).
+  bool observations = true;  ///< Normalise observations.
+  bool rewards = true;       ///< Normalise rewards (by the std of discounted returns).
   double clip_observations = 10.0;
   double clip_rewards = 10.0;
-  double gamma = 0.99;             ///< Discount of the returns whose variance scales rewards.
+  double gamma = 0.99;  ///< Discount of the returns whose variance scales rewards.
   double epsilon = 1e-8;
 };
 

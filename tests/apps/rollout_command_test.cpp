@@ -33,8 +33,8 @@ TEST(RolloutCommand, LinearControllerBalancesThePendulumForTheWholeEpisode) {
 }
 
 TEST(RolloutCommand, ZeroControllerFallsAndPyBulletAliasWorks) {
-  const auto result = run_cli(
-      "rollout --env Upkie-PyBullet-Pendulum --controller zero --episodes 1 --json");
+  const auto result =
+      run_cli("rollout --env Upkie-PyBullet-Pendulum --controller zero --episodes 1 --json");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = last_line_json(result);
   EXPECT_LT(summary["lengths"][0].get<int>(), 300);
@@ -49,7 +49,8 @@ TEST(RolloutCommand, RecordsOneCsvRowPerStep) {
       std::filesystem::temp_directory_path() / "upkie_rl_rollout_record_test.csv";
   const auto result = run_cli(
       "rollout --env Upkie-Bullet-Pendulum --controller linear:10,1,0,0.1 --episodes 2 "
-      "--max-steps 20 --record " + path.string());
+      "--max-steps 20 --record " +
+      path.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::ifstream file(path);
   std::string header;
@@ -79,8 +80,7 @@ TEST(RolloutCommand, ServosEnvWithTheNeutralAction) {
 }
 
 TEST(RolloutCommand, InfoPrintsTheObservationDictionary) {
-  const auto result =
-      run_cli("rollout --env Upkie-Bullet-Gyropod --max-steps 5 --info --json");
+  const auto result = run_cli("rollout --env Upkie-Bullet-Gyropod --max-steps 5 --info --json");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::string info;
   for (const std::string& line : result.lines()) {
@@ -94,8 +94,8 @@ TEST(RolloutCommand, InfoPrintsTheObservationDictionary) {
 }
 
 TEST(RolloutCommand, BadInputGivesClearErrors) {
-  auto unwritable = run_cli(
-      "rollout --env Upkie-Bullet-Pendulum --record /nonexistent-dir/record.csv");
+  auto unwritable =
+      run_cli("rollout --env Upkie-Bullet-Pendulum --record /nonexistent-dir/record.csv");
   EXPECT_EQ(unwritable.exit_code, 1);
   EXPECT_NE(unwritable.output.find("cannot write the record file /nonexistent-dir/record.csv"),
             std::string::npos)

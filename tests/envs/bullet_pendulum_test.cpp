@@ -31,8 +31,7 @@ Episode run_linear(Env& env, const std::array<float, 4>& gains, std::uint64_t se
     for (std::size_t i = 0; i < 4; ++i) velocity += gains[i] * observation[i];
     const std::array<float, 1> action{velocity};
     const StepResult result = env.step(action, observation);
-    episode.observations.insert(episode.observations.end(), observation.begin(),
-                                observation.end());
+    episode.observations.insert(episode.observations.end(), observation.begin(), observation.end());
     episode.total_reward += result.reward;
     episode.terminated = result.terminated;
     episode.truncated = result.truncated;

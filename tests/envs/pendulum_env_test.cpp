@@ -154,9 +154,9 @@ TEST(PendulumEnv, RegistryTruncatesAt300Steps) {
 }
 
 TEST(PendulumEnv, OptionsChangeTheTask) {
-  auto env = make_env("Upkie-Mock-Pendulum",
-                      {{"max_ground_velocity", "2.5"}, {"max_episode_steps", "3"},
-                       {"frequency", "100"}});
+  auto env =
+      make_env("Upkie-Mock-Pendulum",
+               {{"max_ground_velocity", "2.5"}, {"max_episode_steps", "3"}, {"frequency", "100"}});
   EXPECT_FLOAT_EQ(env->action_space().high[0], 2.5f);
   EXPECT_DOUBLE_EQ(env->timestep(), 0.01);
   std::array<float, 4> observation{};

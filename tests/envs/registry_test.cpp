@@ -48,8 +48,9 @@ TEST(Registry, PyBulletIsAnAliasOfBullet) {
 }
 
 TEST(Registry, UnknownOptionListsTheValidOnes) {
-  const std::string message =
-      error_of([] { make_env("Upkie-Mock-Pendulum", {{"max_ground_speed", "2"}}); });
+  const std::string message = error_of([] {
+    make_env("Upkie-Mock-Pendulum", {{"max_ground_speed", "2"}});
+  });
   EXPECT_TRUE(contains(message, "unknown option \"max_ground_speed\"")) << message;
   EXPECT_TRUE(contains(message, "max_ground_velocity")) << message;
   EXPECT_TRUE(contains(message, "fall_pitch")) << message;
@@ -58,17 +59,26 @@ TEST(Registry, UnknownOptionListsTheValidOnes) {
 }
 
 TEST(Registry, BadlyTypedValuesAreNamed) {
-  const std::string message =
-      error_of([] { make_env("Upkie-Mock-Pendulum", {{"fall_pitch", "abc"}}); });
+  const std::string message = error_of([] {
+    make_env("Upkie-Mock-Pendulum", {{"fall_pitch", "abc"}});
+  });
   EXPECT_TRUE(contains(message, "fall_pitch")) << message;
   EXPECT_TRUE(contains(message, "not a finite number")) << message;
-  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Mock-Servos", {{"nb_substeps", "2.5"}}); }),
+  EXPECT_TRUE(contains(error_of([] {
+                         make_env("Upkie-Mock-Servos", {{"nb_substeps", "2.5"}});
+                       }),
                        "not an integer"));
-  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Mock-Servos", {{"frequency", "-5"}}); }),
+  EXPECT_TRUE(contains(error_of([] {
+                         make_env("Upkie-Mock-Servos", {{"frequency", "-5"}});
+                       }),
                        "outside"));
-  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Mock-Servos", {{"inertia", "cube"}}); }),
+  EXPECT_TRUE(contains(error_of([] {
+                         make_env("Upkie-Mock-Servos", {{"inertia", "cube"}});
+                       }),
                        "box, urdf"));
-  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Mock-Servos", {{"frequency", "nan"}}); }),
+  EXPECT_TRUE(contains(error_of([] {
+                         make_env("Upkie-Mock-Servos", {{"frequency", "nan"}});
+                       }),
                        "not a finite number"));
 }
 
@@ -98,18 +108,24 @@ TEST(Registry, OptionsAcceptedByEveryKind) {
 TEST(Registry, SpineOptionsAreTheirOwn) {
   // A spine that is not there: a clear error after one attempt, not a hang.
   try {
-    make_env("Upkie-Spine-Pendulum", {{"shm_name", "/upkie-rl-no-such-spine"}, {"open_tries", "1"}});
+    make_env("Upkie-Spine-Pendulum",
+             {{"shm_name", "/upkie-rl-no-such-spine"}, {"open_tries", "1"}});
     FAIL() << "expected an exception";
   } catch (const std::runtime_error& error) {
     EXPECT_TRUE(contains(error.what(), "upkie-rl-no-such-spine")) << error.what();
   }
-  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Spine-Servos", {{"nb_substeps", "5"}}); }),
+  EXPECT_TRUE(contains(error_of([] {
+                         make_env("Upkie-Spine-Servos", {{"nb_substeps", "5"}});
+                       }),
                        "unknown option \"nb_substeps\""));
-  EXPECT_TRUE(contains(error_of([] { make_env("Upkie-Mock-Servos", {{"shm_name", "/x"}}); }),
+  EXPECT_TRUE(contains(error_of([] {
+                         make_env("Upkie-Mock-Servos", {{"shm_name", "/x"}});
+                       }),
                        "unknown option"));
-  EXPECT_TRUE(contains(
-      error_of([] { make_env("Upkie-Spine-Servos", {{"regulate_frequency", "maybe"}}); }),
-      "true, false"));
+  EXPECT_TRUE(contains(error_of([] {
+                         make_env("Upkie-Spine-Servos", {{"regulate_frequency", "maybe"}});
+                       }),
+                       "true, false"));
 }
 
 TEST(Registry, InitRandomizationIsSeeded) {

@@ -28,9 +28,9 @@ TEST(ServosEnv, SpacesHaveSixJointsWithTheDocumentedKeys) {
     EXPECT_EQ(actions.entries[i].second.names,
               (std::vector<std::string>{"position", "velocity", "feedforward_torque", "kp_scale",
                                         "kd_scale", "maximum_torque"}));
-    EXPECT_EQ(observations.entries[i].second.names,
-              (std::vector<std::string>{"position", "velocity", "torque", "temperature",
-                                        "voltage"}));
+    EXPECT_EQ(
+        observations.entries[i].second.names,
+        (std::vector<std::string>{"position", "velocity", "torque", "temperature", "voltage"}));
   }
   EXPECT_EQ(env->action_space().size(), 36u);
   EXPECT_EQ(env->observation_space().size(), 30u);
@@ -129,7 +129,7 @@ TEST(ServosEnv, FlatObservationMatchesTheFullObservation) {
   env->reset(0, observation);
   std::vector<float> action(36);
   env->neutral_action(action);
-  action[0] = 0.25f;  // left_hip.position
+  action[0] = 0.25f;         // left_hip.position
   action[6 * 2 + 1] = 3.0f;  // left_wheel.velocity
   const StepResult result = env->step(action, observation);
   EXPECT_EQ(result.reward, 0.0);

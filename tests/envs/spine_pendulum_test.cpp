@@ -28,14 +28,14 @@ TEST(SpinePendulum, LinearControllerBalancesThroughTheSpine) {
   int length = 0;
   bool terminated = false, truncated = false;
   {
-    auto env = make_env("Upkie-Spine-Pendulum",
-                        {{"shm_name", shm_name}, {"regulate_frequency", "false"},
-                         {"open_tries", "3"}, {"request_timeout", "5"}});
+    auto env = make_env("Upkie-Spine-Pendulum", {{"shm_name", shm_name},
+                                                 {"regulate_frequency", "false"},
+                                                 {"open_tries", "3"},
+                                                 {"request_timeout", "5"}});
     std::array<float, 4> observation{};
     env->reset(0, observation);
     while (!terminated && !truncated) {
-      const float velocity =
-          10.0f * observation[0] + 1.0f * observation[1] + 0.1f * observation[3];
+      const float velocity = 10.0f * observation[0] + 1.0f * observation[1] + 0.1f * observation[3];
       const std::array<float, 1> action{velocity};
       const StepResult result = env->step(action, observation);
       terminated = result.terminated;

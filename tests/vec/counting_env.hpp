@@ -22,8 +22,10 @@ class CountingEnv final : public Env {
   const BoxSpace& observation_space() const override { return observation_space_; }
   const BoxSpace& action_space() const override { return action_space_; }
   void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override {
-    if (seed) seed_ = static_cast<float>(*seed);
-    else seed_ += 1000.0f;  // Unseeded resets continue the "generator".
+    if (seed)
+      seed_ = static_cast<float>(*seed);
+    else
+      seed_ += 1000.0f;  // Unseeded resets continue the "generator".
     step_ = 0;
     observation[0] = seed_;
     observation[1] = 0.0f;

@@ -56,9 +56,8 @@ void expect_same(const Trace& a, const Trace& b) {
 }
 
 TEST(ThreadPoolVectorEnv, BitIdenticalToSynchronousOnBullet) {
-  const EnvOptions options = {{"init_rand_pitch", "0.2"},
-                              {"init_rand_omega_y", "0.5"},
-                              {"max_episode_steps", "40"}};
+  const EnvOptions options = {
+      {"init_rand_pitch", "0.2"}, {"init_rand_omega_y", "0.5"}, {"max_episode_steps", "40"}};
   auto sync = make_vector_env("Upkie-Bullet-Pendulum", options, 5, 0);
   const Trace expected = run(*sync, 120, 7);
   ASSERT_FALSE(expected.returns.empty());  // episodes ended and auto-reset

@@ -28,9 +28,9 @@ TEST(VecNormalize, HandComputedObservationsAndRewards) {
   EXPECT_EQ(first[1], 0.0f);
   const std::array<float, 2> actions{1.0f, 3.0f};
   const VectorStep& step = venv->step(actions);
-  const std::array<double, 6> expected{-0.9999249871902265, 0.9999749834395859,
+  const std::array<double, 6> expected{-0.9999249871902265,   0.9999749834395859,
                                        2.041181911479199e-05, 0.9999749834395861,
-                                       0.9999749834395859, 1.633006764645958};
+                                       0.9999749834395859,    1.633006764645958};
   for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(step.observations[k], expected[k], 1e-6) << k;
   EXPECT_NEAR(step.rewards[0], 0.9999000199952511, 1e-6);
   EXPECT_NEAR(step.rewards[1], 2.999700059985753, 1e-6);
