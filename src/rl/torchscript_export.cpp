@@ -51,7 +51,7 @@ void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& 
   torch::NoGradGuard no_grad;
   torch::jit::Module module("UpkiePolicy");
   std::string source = "def forward(self, observation: Tensor) -> Tensor:\n";
-  source += "    x = observation.to(torch.float32)\n";
+  source += "    x = observation.float()\n";
   if (normalizer.enabled()) {
     module.register_buffer("observation_mean", to_tensor(normalizer.mean()));
     module.register_buffer("observation_var", to_tensor(normalizer.var()));

@@ -1,0 +1,91 @@
+#include "apps/gnuplot_figure.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+namespace upkie_rl::apps {
+
+namespace {
+
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+bool has_cairo(const std::string& gnuplot) {
+  const std::string command = gnuplot + " -e 'set terminal' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return false;
+  std::string output;
+  std::array<char, 4096> buffer{};
+  std::size_t read = 0;
+  while ((read = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    output.append(buffer.data(), read);
+  pclose(pipe);
+  return output.find("pngcairo") != std::string::npos;
+}
+
+}  // namespace
+
+std::string find_gnuplot() {
+  const char* path = std::getenv("PATH");
+  std::stringstream directories(path != nullptr ? path : "/usr/bin:/bin");
+  for (std::string directory; std::getline(directories, directory, ':');) {
+    if (directory.empty()) continue;
+    const std::string candidate = directory + "/gnuplot";
+    if (access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  throw std::runtime_error(
+      "gnuplot not found on PATH: install it (Debian: apt-get install gnuplot-nox, or run "
+      "scripts/install-deps.sh)");
+}
+
+void draw_trend_figures(const std::vector<TrendFigure>& figures) {
+  const std::string gnuplot = find_gnuplot();
+  std::ostringstream script;
+  script << (has_cairo(gnuplot) ? "set terminal pngcairo size 900,540 font 'sans,11'\n"
+                                : "set terminal png truecolor size 900,540\n");
+  script << "set grid\nset key top right\nset datafile missing 'NaN'\n";
+  for (std::size_t f = 0; f < figures.size(); ++f) {
+    const TrendFigure& figure = figures[f];
+    const std::string block = "$data" + std::to_string(f);
+    script << block << " << EOD\n";
+    for (std::size_t i = 0; i < figure.x.size(); ++i) {
+      if (std::isnan(figure.raw[i])) continue;
+      script << figure.x[i] << ' ' << figure.raw[i] << ' ' << figure.smoothed[i] << '\n';
+    }
+    script << "EOD\n";
+    script << "set output " << quoted(figure.output.string()) << '\n';
+    script << "set title " << quoted(figure.title) << '\n';
+    script << "set xlabel " << quoted(figure.x_label) << '\n';
+    script << "set ylabel " << quoted(figure.y_label) << '\n';
+    // Colours are #AARRGGBB: alpha 0x99 draws the raw values semi-transparent.
+    script << "plot " << block << " using 1:2 with lines lc rgb '#991f77b4' lw 1 title 'raw', "
+           << block << " using 1:3 with lines lc rgb '#d62728' lw 2.5 title "
+           << quoted(figure.smoothed_label) << '\n';
+    script << "unset output\n";
+  }
+  const std::string command = gnuplot + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "w");
+  if (pipe == nullptr) throw std::runtime_error("cannot start " + gnuplot);
+  const std::string text = script.str();
+  const std::size_t written = fwrite(text.data(), 1, text.size(), pipe);
+  const int status = pclose(pipe);
+  if (written != text.size() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error("gnuplot failed (exit status " +
+                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+  }
+}
+
+}  // namespace upkie_rl::apps

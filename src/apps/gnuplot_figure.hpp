@@ -1,0 +1,32 @@
+#pragma once
+/// @file
+/// Line figures drawn by gnuplot (pngcairo, or png when cairo is missing), fed through a
+/// pipe: a raw series drawn semi-transparent and its rolling mean on top.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace upkie_rl::apps {
+
+/// One figure: y against x, raw and smoothed.
+struct TrendFigure {
+  std::filesystem::path output;  ///< PNG file to write.
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  std::vector<double> x;
+  std::vector<double> raw;       ///< NaN values are left out.
+  std::vector<double> smoothed;  ///< Same size as raw.
+  std::string smoothed_label;    ///< e.g. "rolling mean (50)".
+};
+
+/// Full path of the gnuplot executable on PATH; throws std::runtime_error saying how to
+/// install it when there is none.
+std::string find_gnuplot();
+
+/// Draws the figures in one gnuplot session. Throws std::runtime_error if gnuplot is
+/// missing or fails.
+void draw_trend_figures(const std::vector<TrendFigure>& figures);
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,35 @@
+#include "apps/policy_controller.hpp"
+
+#include "rl/checkpoint.hpp"
+#include "rl/saved_policy.hpp"
+
+namespace upkie_rl::apps {
+
+namespace {
+
+class PolicyController final : public Controller {
+ public:
+  explicit PolicyController(SavedPolicy policy) : policy_(std::move(policy)) {}
+  void act(std::span<const float> observation, std::span<float> action) override {
+    policy_.act(observation, action);
+  }
+
+ private:
+  SavedPolicy policy_;
+};
+
+}  // namespace
+
+std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& model,
+                                                   const Env& env) {
+  SavedPolicy policy = SavedPolicy::load(model);
+  try {
+    policy.check_spaces(env.observation_space(), env.action_space());
+  } catch (const CheckpointError& error) {
+    throw CheckpointError("model " + model.string() + " (trained on " + policy.env_id() +
+                          ") does not fit this environment: " + error.what());
+  }
+  return std::make_unique<PolicyController>(std::move(policy));
+}
+
+}  // namespace upkie_rl::apps

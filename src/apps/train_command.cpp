@@ -1,0 +1,120 @@
+/// @file
+/// `upkie-rl train`: PPO training from a YAML configuration, with a progress bar, a run
+/// directory (config, TensorBoard events, CSV, checkpoints, final model) and resumption.
+
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/commands.hpp"
+#include "apps/progress_bar.hpp"
+#include "rl/training_config.hpp"
+#include "rl/training_run.hpp"
+
+namespace upkie_rl::apps {
+
+namespace {
+
+struct TrainOptions {
+  std::string config_path;
+  std::vector<std::string> overrides;
+  std::string run_dir;
+  std::uint64_t seed = 0;
+  CLI::Option* seed_option = nullptr;  // set when --seed was given
+  std::string resume;
+  bool quiet = false;
+};
+
+std::filesystem::path default_run_dir(const std::string& config_path) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char stamp[32];
+  std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &local);
+  return std::filesystem::path("runs") /
+         (std::filesystem::path(config_path).stem().string() + "-" + stamp);
+}
+
+void run_train(const TrainOptions& options) {
+  std::unique_ptr<TrainingRun> run;
+  if (!options.resume.empty()) {
+    if (!options.config_path.empty() || !options.overrides.empty() ||
+        options.seed_option->count() > 0) {
+      throw std::invalid_argument(
+          "--resume continues the checkpoint's own configuration; it cannot be combined with "
+          "--config, --set or --seed");
+    }
+    std::optional<std::filesystem::path> run_dir;
+    if (!options.run_dir.empty()) run_dir = options.run_dir;
+    run = TrainingRun::resume(options.resume, run_dir);
+    std::cerr << "resuming " << options.resume << " at " << run->ppo().num_timesteps() << " steps"
+              << std::endl;
+  } else {
+    if (options.config_path.empty()) {
+      throw std::invalid_argument("train needs --config FILE (or --resume CHECKPOINT)");
+    }
+    TrainingConfig config = load_training_config(options.config_path);
+    apply_overrides(config, options.overrides);
+    if (options.seed_option->count() > 0) config.seed = options.seed;
+    config.validate();
+    const std::filesystem::path run_dir = options.run_dir.empty()
+                                              ? default_run_dir(options.config_path)
+                                              : std::filesystem::path(options.run_dir);
+    run = std::make_unique<TrainingRun>(config, run_dir);
+  }
+  const TrainingConfig& config = run->config();
+  std::cerr << "training " << config.env_id << " with PPO: " << config.num_envs << " envs, "
+            << with_thousands(config.ppo.total_timesteps) << " steps, run directory "
+            << run->run_dir().string() << std::endl;
+
+  ProgressBar bar(config.ppo.total_timesteps);
+  TrainingProgress last;
+  const std::filesystem::path model = run->train([&](const TrainingProgress& progress) {
+    last = progress;
+    if (!options.quiet)
+      bar.update(progress.timesteps, progress.steps_per_second, progress.mean_return);
+  });
+  if (!options.quiet) bar.finish();
+
+  const PpoTimings& timings = run->ppo().timings();
+  const double accounted = timings.env_seconds + timings.inference_seconds + timings.update_seconds;
+  std::cout << "trained " << with_thousands(last.timesteps) << " steps in "
+            << format_duration(last.elapsed_seconds) << " ("
+            << with_thousands(static_cast<std::int64_t>(last.steps_per_second))
+            << " steps/s); mean return of the last 100 episodes " << last.mean_return
+            << ", mean length " << last.mean_length << std::endl;
+  std::cout << "time: environments " << timings.env_seconds << " s, policy inference "
+            << timings.inference_seconds << " s, updates " << timings.update_seconds << " s, other "
+            << std::max(0.0, last.elapsed_seconds - accounted) << " s" << std::endl;
+  std::cout << "run directory: " << run->run_dir().string() << std::endl;
+  std::cout << "final model: " << model.string() << std::endl;
+  std::cout << "TorchScript policy: " << run->torchscript_path().string() << std::endl;
+}
+
+}  // namespace
+
+void add_train_command(CLI::App& app) {
+  auto options = std::make_shared<TrainOptions>();
+  CLI::App* command = app.add_subcommand(
+      "train", "Train a policy with PPO from a YAML configuration (configs/pendulum.yaml)");
+  command->add_option("--config", options->config_path, "Training configuration (YAML)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--set", options->overrides,
+                      "Override a configuration key, e.g. --set ppo.total_timesteps=200000 "
+                      "(repeatable)");
+  command->add_option("--run-dir", options->run_dir,
+                      "Run directory (default: runs/<config name>-<date>-<time>; with --resume, "
+                      "the checkpoint's run)");
+  options->seed_option =
+      command->add_option("--seed", options->seed, "Random seed (overrides the config's)");
+  command->add_option("--resume", options->resume, "Continue a run from one of its checkpoints")
+      ->check(CLI::ExistingFile);
+  command->add_flag("--quiet", options->quiet, "No progress bar");
+  command->callback([options] { run_train(*options); });
+}
+
+}  // namespace upkie_rl::apps
