@@ -17,5 +17,9 @@ void add_envs_command(CLI::App& app);
 void add_rollout_command(CLI::App& app);
 /// `upkie-rl bench`: steps per second of a vector environment (bench_command.cpp).
 void add_bench_command(CLI::App& app);
+/// `upkie-rl train`: PPO training from a YAML configuration (train_command.cpp).
+void add_train_command(CLI::App& app);
+/// `upkie-rl plot`: loss, KL and return figures of a training run (plot_command.cpp).
+void add_plot_command(CLI::App& app);
 
 }  // namespace upkie_rl::apps

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   upkie_rl::apps::add_rollout_command(app);
   upkie_rl::apps::add_bench_command(app);
   upkie_rl::apps::add_spine_command(app);
+  upkie_rl::apps::add_train_command(app);
+  upkie_rl::apps::add_plot_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
