@@ -32,6 +32,25 @@ test: build
 	$(MAKE) test-cpp
 	$(MAKE) test-python
 
+# Trains the seed's pendulum policy, evaluates the final model on 10 episodes and draws
+# the training figures. TRAIN_CONFIG and RUN_DIR can be overridden.
+TRAIN_CONFIG ?= configs/pendulum.yaml
+TRAIN_ENV ?= Upkie-Bullet-Pendulum
+ifndef RUN_DIR
+RUN_DIR := runs/pendulum-$(shell date +%Y%m%d-%H%M%S)
+endif
+
+train: build
+	$(BUILD_DIR)/upkie-rl train --config $(TRAIN_CONFIG) --run-dir $(RUN_DIR)
+	@model=$$(ls -t $(RUN_DIR)/model_*.ckpt | head -n 1); \
+	  echo "evaluating $$model on 10 episodes"; \
+	  $(BUILD_DIR)/upkie-rl rollout --env $(TRAIN_ENV) --model $$model --episodes 10 \
+	    > $(RUN_DIR)/evaluation.txt 2>&1; status=$$?; cat $(RUN_DIR)/evaluation.txt; exit $$status
+	$(BUILD_DIR)/upkie-rl plot $(RUN_DIR)
+	@echo "run directory: $(RUN_DIR) (config.yaml, progress.csv, TensorBoard events," \
+	  "checkpoints/, model_*.ckpt and model_*.pt, evaluation.txt, loss.png, kl.png, return.png)"
+	@echo "TensorBoard: tensorboard --logdir $(RUN_DIR)"
+
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done
 
