@@ -27,7 +27,9 @@ PpoLoss compute_ppo_loss(const ActionEvaluation& evaluation, const PpoMinibatch&
   // The Gaussian's entropy does not depend on the state: its mean is the entropy itself.
   const torch::Tensor entropy_loss = -evaluation.entropy;
 
-  loss.total = policy_gradient_loss + config.ent_coef * entropy_loss + config.vf_coef * value_loss;
+  loss.total = policy_gradient_loss + config.vf_coef * value_loss;
+  // With the seed's ent_coef = 0 the term is left out of the graph (same value, fewer ops).
+  if (config.ent_coef != 0.0) loss.total = loss.total + config.ent_coef * entropy_loss;
   loss.policy_gradient_loss = policy_gradient_loss.detach();
   loss.value_loss = value_loss.detach();
   loss.entropy_loss = entropy_loss.detach();
