@@ -64,13 +64,13 @@ SharedMemory SharedMemory::create(const std::string& name, std::size_t size) {
   if (::shm_unlink(name.c_str()) != 0 && errno != ENOENT) {
     throw SpineError("cannot remove stale shared memory " + name + ": " + errno_text());
   }
-  // The umask would otherwise strip the group/other write bits agents need.
-  const mode_t previous_mask = ::umask(0);
   FileDescriptor fd(::shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666));
-  ::umask(previous_mask);
   if (fd.get() < 0) {
     throw SpineError("cannot create shared memory " + name + ": " + errno_text());
   }
+  // The umask strips the group/other write bits that agents of other users need; fchmod
+  // restores them without touching the process-wide umask.
+  ::fchmod(fd.get(), 0666);
   if (::ftruncate(fd.get(), static_cast<off_t>(size)) != 0) {
     const std::string reason = errno_text();
     ::shm_unlink(name.c_str());

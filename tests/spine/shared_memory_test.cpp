@@ -21,6 +21,11 @@ TEST(SharedMemory, CreateOpenAndUnlink) {
   {
     SharedMemory spine = SharedMemory::create(name);
     EXPECT_TRUE(shm_exists(name));
+    const auto permissions = std::filesystem::status("/dev/shm" + name).permissions();
+    EXPECT_EQ(permissions & std::filesystem::perms::all,
+              std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+                  std::filesystem::perms::group_read | std::filesystem::perms::group_write |
+                  std::filesystem::perms::others_read | std::filesystem::perms::others_write);
     EXPECT_EQ(spine.size(), SharedMemory::kDefaultSize);
     EXPECT_EQ(spine.request(), 0u);
     EXPECT_EQ(spine.payload_size(), 0u);
