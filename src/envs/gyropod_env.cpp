@@ -12,12 +12,6 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kMaxPitchRate = 1000.0f;  // Observation bound of θ̇ [rad/s].
 
-GroundVelocityCommanderConfig commander_config(const GyropodConfig& config) {
-  GroundVelocityCommanderConfig commander;
-  commander.leg_gain_scale = config.leg_gain_scale;
-  return commander;
-}
-
 }  // namespace
 
 GyropodEnv::GyropodEnv(std::unique_ptr<ServosEnv> servos, const GyropodConfig& config)
@@ -25,7 +19,7 @@ GyropodEnv::GyropodEnv(std::unique_ptr<ServosEnv> servos, const GyropodConfig& c
       config_(config),
       commander_(
           servos_ ? servos_->model() : throw std::invalid_argument("GyropodEnv: null servos"),
-          servos_->timestep(), commander_config(config)) {
+          servos_->timestep(), GroundVelocityCommanderConfig{config.leg_gain_scale}) {
   if (!(config_.max_ground_velocity > 0.0) || !(config_.max_yaw_velocity > 0.0)) {
     throw std::invalid_argument(
         "GyropodEnv: max_ground_velocity and max_yaw_velocity must be positive");

@@ -11,12 +11,6 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kMaxPitchRate = 1000.0f;  // Observation bound of θ̇ [rad/s] (seed eq. 4).
 
-GroundVelocityCommanderConfig commander_config(const PendulumConfig& config) {
-  GroundVelocityCommanderConfig commander;
-  commander.leg_gain_scale = config.leg_gain_scale;
-  return commander;
-}
-
 }  // namespace
 
 PendulumEnv::PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig& config)
@@ -24,8 +18,8 @@ PendulumEnv::PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig
       config_(config),
       commander_(
           servos_ ? servos_->model() : throw std::invalid_argument("PendulumEnv: null servos"),
-          servos_->timestep(), commander_config(config)),
-      reward_(config.reward) {
+          servos_->timestep(), GroundVelocityCommanderConfig{config.leg_gain_scale}),
+      task_(config.reward, config.termination) {
   if (!(config_.max_ground_velocity > 0.0)) {
     throw std::invalid_argument("PendulumEnv: max_ground_velocity must be positive");
   }
@@ -52,9 +46,7 @@ void PendulumEnv::write_observation(const Observation& full, std::span<float> ob
 void PendulumEnv::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
   const Observation& full = servos_->reset_servos(seed);
   commander_.reset(full);
-  reward_.reset();
-  initial_position_ = full.wheel_odometry.position;
-  termination_reason_ = BalanceTermination::Reason::kNone;
+  task_.reset(full);
   write_observation(full, observation);
 }
 
@@ -63,16 +55,7 @@ StepResult PendulumEnv::step(std::span<const float> action, std::span<float> obs
   clamp_to_space(action_space_, action, std::span<float>(&ground_velocity, 1));
   const Observation& full = servos_->step_servos(commander_.command(ground_velocity, 0.0));
   write_observation(full, observation);
-  const double pitch = full.base_orientation.pitch;
-  const double pitch_rate = full.base_orientation.angular_velocity.y();
-  const double position = full.wheel_odometry.position;
-  const double velocity = full.wheel_odometry.velocity;
-  StepResult result;
-  result.reward = reward_(pitch, pitch_rate, velocity, ground_velocity);
-  termination_reason_ =
-      config_.termination.check(pitch, position - initial_position_, pitch_rate, velocity);
-  result.terminated = termination_reason_ != BalanceTermination::Reason::kNone;
-  return result;
+  return task_.evaluate(full, ground_velocity);
 }
 
 }  // namespace upkie_rl

@@ -4,8 +4,7 @@
 
 #include <memory>
 
-#include "envs/balance_reward.hpp"
-#include "envs/balance_termination.hpp"
+#include "envs/balance_task.hpp"
 #include "envs/ground_velocity_commander.hpp"
 #include "envs/servos_env.hpp"
 
@@ -28,7 +27,7 @@ class PendulumEnv final : public Env {
   PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig& config = {});
 
   /// The condition that ended the last step's episode (kNone while running).
-  BalanceTermination::Reason termination_reason() const { return termination_reason_; }
+  BalanceTermination::Reason termination_reason() const { return task_.termination_reason(); }
   ServosEnv& servos() { return *servos_; }
   const PendulumConfig& config() const { return config_; }
 
@@ -48,9 +47,7 @@ class PendulumEnv final : public Env {
   BoxSpace observation_space_;
   BoxSpace action_space_;
   GroundVelocityCommander commander_;
-  BalanceReward reward_;
-  double initial_position_ = 0.0;
-  BalanceTermination::Reason termination_reason_ = BalanceTermination::Reason::kNone;
+  BalanceTask task_;
 };
 
 }  // namespace upkie_rl

@@ -8,7 +8,7 @@
 namespace upkie_rl {
 
 ServosTaskEnv::ServosTaskEnv(std::unique_ptr<ServosEnv> servos, const ServosTaskConfig& config)
-    : servos_(std::move(servos)), config_(config), reward_(config.reward) {
+    : servos_(std::move(servos)), config_(config), task_(config.reward, config.termination) {
   if (!servos_) throw std::invalid_argument("ServosTaskEnv: null servos");
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const std::string joint(kServoNames[i]);
@@ -65,9 +65,7 @@ void ServosTaskEnv::write_observation(const Observation& full, std::span<float> 
 
 void ServosTaskEnv::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
   const Observation& full = servos_->reset_servos(seed);
-  reward_.reset();
-  initial_position_ = full.wheel_odometry.position;
-  termination_reason_ = BalanceTermination::Reason::kNone;
+  task_.reset(full);
   write_observation(full, observation);
 }
 
@@ -76,15 +74,7 @@ StepResult ServosTaskEnv::step(std::span<const float> action, std::span<float> o
   servo_action_from_normalized(clamped_, servo_action_);
   const Observation& full = servos_->step_servos(servo_action_);
   write_observation(full, observation);
-  const double pitch = full.base_orientation.pitch;
-  const double pitch_rate = full.base_orientation.angular_velocity.y();
-  const double velocity = full.wheel_odometry.velocity;
-  StepResult result;
-  result.reward = reward_(pitch, pitch_rate, velocity, action_magnitude(servo_action_));
-  termination_reason_ = config_.termination.check(
-      pitch, full.wheel_odometry.position - initial_position_, pitch_rate, velocity);
-  result.terminated = termination_reason_ != BalanceTermination::Reason::kNone;
-  return result;
+  return task_.evaluate(full, action_magnitude(servo_action_));
 }
 
 }  // namespace upkie_rl

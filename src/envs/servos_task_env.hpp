@@ -5,8 +5,7 @@
 
 #include <memory>
 
-#include "envs/balance_reward.hpp"
-#include "envs/balance_termination.hpp"
+#include "envs/balance_task.hpp"
 #include "envs/servos_env.hpp"
 
 namespace upkie_rl {
@@ -41,7 +40,7 @@ class ServosTaskEnv final : public Env {
   /// Σ|wheel velocity| + Σ|leg position| of `action` (the |a| of eq. 22).
   static double action_magnitude(const ServoAction& action);
 
-  BalanceTermination::Reason termination_reason() const { return termination_reason_; }
+  BalanceTermination::Reason termination_reason() const { return task_.termination_reason(); }
   ServosEnv& servos() { return *servos_; }
 
   const BoxSpace& observation_space() const override { return observation_space_; }
@@ -59,9 +58,7 @@ class ServosTaskEnv final : public Env {
   ServosTaskConfig config_;
   BoxSpace observation_space_;
   BoxSpace action_space_;
-  BalanceReward reward_;
-  double initial_position_ = 0.0;
-  BalanceTermination::Reason termination_reason_ = BalanceTermination::Reason::kNone;
+  BalanceTask task_;
   std::array<float, kNumServos> clamped_{};
   ServoAction servo_action_{};
 };
