@@ -59,18 +59,22 @@ sanitize: deps
 	cmake --build $(SANITIZE_DIR) -j $(JOBS)
 	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer + ASan on the spine's message decoding; FUZZ_RUNS inputs (1e6 by default).
+# libFuzzer + ASan on the spine's message decoding and server cycle; FUZZ_RUNS inputs each.
 FUZZ_DIR ?= build-fuzz
 FUZZ_RUNS ?= 1000000
+# The server fuzzer's stdout (the spine's error log, one line per refused message) is
+# dropped; libFuzzer reports on stderr.
 fuzz:
 	UPKIE_RL_FUZZ=1 bash scripts/install-deps.sh
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DUPKIE_RL_BUILD_FUZZ=ON \
 	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF
-	cmake --build $(FUZZ_DIR) -j $(JOBS) --target spine_message_fuzzer
-	mkdir -p $(FUZZ_DIR)/corpus
-	$(FUZZ_DIR)/fuzz/spine_message_fuzzer -runs=$(FUZZ_RUNS) -max_len=4096 \
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target spine_message_fuzzer spine_server_fuzzer
+	mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/server_corpus
+	$(FUZZ_DIR)/fuzz/spine_message_fuzzer -runs=$(FUZZ_RUNS) -max_len=65536 \
 	  -print_final_stats=1 $(FUZZ_DIR)/corpus fuzz/corpus
+	$(FUZZ_DIR)/fuzz/spine_server_fuzzer -runs=$(FUZZ_RUNS) -max_len=8192 \
+	  -print_final_stats=1 $(FUZZ_DIR)/server_corpus fuzz/server_corpus >/dev/null
 
 format:
 	find src tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
