@@ -9,10 +9,12 @@
 
 namespace upkie_rl {
 
-/// Unpacks a payload into a msgpack object tree. The bytes are first copied out of the
-/// shared memory (the other side may write it concurrently) into a buffer reserved once,
-/// and the tree lives in a zone that is cleared and reused: once warmed up, decoding a
-/// message of the usual size allocates nothing. The tree is valid until the next call.
+/// Unpacks a payload into a msgpack object tree (msgpack-cxx's msgpack::object, decoded
+/// by our own parser: msgpack-cxx's unpack allocates parser stacks at every call). The
+/// bytes are first copied out of the shared memory (the other side may write it
+/// concurrently) into a buffer reserved once, and the tree lives in a zone that is
+/// cleared and reused: once warmed up, decoding a message of the usual size allocates
+/// nothing. Strings point into the copied bytes. The tree is valid until the next call.
 class PayloadUnpacker {
  public:
   /// Limits on any one message (containers, strings, nesting).
@@ -24,7 +26,9 @@ class PayloadUnpacker {
 
   /// Decodes exactly one msgpack object spanning all of `bytes`.
   /// @throws SpineError on an empty, truncated, malformed or oversized payload, on
-  ///         trailing bytes, or when a limit is exceeded.
+  ///         trailing bytes, or when a limit is exceeded (containers of more than
+  ///         kMaxContainerSize elements or of more elements than bytes left, nesting
+  ///         deeper than kMaxDepth).
   const msgpack::object& unpack(std::span<const char> bytes);
 
  private:

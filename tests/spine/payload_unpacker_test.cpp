@@ -55,3 +55,63 @@ TEST(PayloadUnpacker, EnforcesLimits) {
 
 }  // namespace
 }  // namespace upkie_rl
+
+namespace upkie_rl {
+namespace {
+
+/// Our decoder agrees with msgpack-cxx's on every format family.
+TEST(PayloadUnpacker, AgreesWithMsgpackCxx) {
+  msgpack::sbuffer buffer;
+  msgpack::packer<msgpack::sbuffer> packer(buffer);
+  packer.pack_map(3);
+  packer.pack(std::string("ints"));
+  packer.pack_array(14);
+  for (std::int64_t value : {0L, 1L, 127L, 128L, 255L, 65535L, 65536L, 4294967296L, -1L, -32L, -33L,
+                             -129L, -40000L, -5000000000L}) {
+    packer.pack_int64(value);
+  }
+  packer.pack(std::string("reals and more"));
+  packer.pack_array(10);
+  packer.pack_float(0.25f);
+  packer.pack_double(-1.5e300);
+  packer.pack_nil();
+  packer.pack_true();
+  packer.pack_false();
+  packer.pack(std::string(40, 's'));   // str8
+  packer.pack(std::string(300, 'S'));  // str16
+  packer.pack_bin(3);
+  packer.pack_bin_body("abc", 3);
+  packer.pack_ext(5, 7);
+  packer.pack_ext_body("12345", 5);
+  packer.pack_ext(4, -2);  // fixext4
+  packer.pack_ext_body("wxyz", 4);
+  packer.pack(std::string("big"));
+  packer.pack_array(20);  // array16
+  for (int i = 0; i < 20; ++i) {
+    packer.pack_map(1);
+    packer.pack(std::to_string(i));
+    packer.pack_uint64(std::uint64_t{1} << 63);
+  }
+  const msgpack::object_handle expected = msgpack::unpack(buffer.data(), buffer.size());
+  PayloadUnpacker unpacker;
+  const msgpack::object& actual = unpacker.unpack({buffer.data(), buffer.size()});
+  EXPECT_TRUE(actual == expected.get());
+  EXPECT_EQ(actual.via.map.ptr[1].val.via.array.ptr[0].type, msgpack::type::FLOAT32);
+  EXPECT_EQ(actual.via.map.ptr[1].val.via.array.ptr[8].via.ext.type(), 7);
+  EXPECT_EQ(std::string(actual.via.map.ptr[1].val.via.array.ptr[9].via.ext.data(), 4), "wxyz");
+}
+
+TEST(PayloadUnpacker, RefusesContainersLargerThanThePayload) {
+  PayloadUnpacker unpacker;
+  // A map16 of 1000 pairs in 3 bytes: refused before anything is allocated for it.
+  const std::string lie("\xde\x03\xe8", 3);
+  try {
+    unpacker.unpack(span_of(lie));
+    FAIL();
+  } catch (const SpineError& error) {
+    EXPECT_NE(std::string(error.what()).find("declares 1000 elements"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace upkie_rl
