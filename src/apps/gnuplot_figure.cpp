@@ -56,7 +56,7 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
   std::ostringstream script;
   script << (has_cairo(gnuplot) ? "set terminal pngcairo size 900,540 font 'sans,11'\n"
                                 : "set terminal png truecolor size 900,540\n");
-  script << "set grid\nset key top right\nset datafile missing 'NaN'\n";
+  script << "set grid\nset key top right\nset datafile missing 'NaN'\nset format x '%.1s%c'\n";
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const TrendFigure& figure = figures[f];
     const std::string block = "$data" + std::to_string(f);
