@@ -4,10 +4,13 @@
 /// an Action (merged into a dictionary holding the default action, so that type changes
 /// are exercised), and as an agent decodes an observation. Refusing an input with a
 /// SpineError is the expected outcome; anything else (a crash, an ASan report, another
-/// exception, a leak) is a bug.
+/// exception, a leak) is a bug. Differential check: whatever our msgpack decoder accepts,
+/// msgpack-cxx's decodes to the same tree.
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 
 #include "sim/observation.hpp"
 #include "spine/dictionary.hpp"
@@ -23,6 +26,33 @@ using upkie_rl::Dictionary;
 using upkie_rl::SpineError;
 
 constexpr std::array<double, upkie_rl::kNumServos> kEfforts = {16.0, 16.0, 1.7, 16.0, 16.0, 1.7};
+
+/// Structural equality with reals compared bit for bit (NaN equals itself).
+bool same(const msgpack::object& a, const msgpack::object& b) {
+  if (a.type != b.type) return false;
+  switch (a.type) {
+    case msgpack::type::FLOAT32:
+    case msgpack::type::FLOAT64:
+      return std::bit_cast<std::uint64_t>(a.via.f64) == std::bit_cast<std::uint64_t>(b.via.f64);
+    case msgpack::type::ARRAY:
+      if (a.via.array.size != b.via.array.size) return false;
+      for (std::uint32_t i = 0; i < a.via.array.size; ++i) {
+        if (!same(a.via.array.ptr[i], b.via.array.ptr[i])) return false;
+      }
+      return true;
+    case msgpack::type::MAP:
+      if (a.via.map.size != b.via.map.size) return false;
+      for (std::uint32_t i = 0; i < a.via.map.size; ++i) {
+        if (!same(a.via.map.ptr[i].key, b.via.map.ptr[i].key) ||
+            !same(a.via.map.ptr[i].val, b.via.map.ptr[i].val)) {
+          return false;
+        }
+      }
+      return true;
+    default:
+      return a == b;
+  }
+}
 
 void decode_as_configuration(const msgpack::object& object) {
   Dictionary configuration;
@@ -71,6 +101,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     object = &unpacker.unpack({reinterpret_cast<const char*>(data), size});
   } catch (const SpineError&) {
     return 0;
+  }
+  // Differential: msgpack-cxx (same limits) must decode what we accepted to the same tree.
+  try {
+    const std::size_t limit = upkie_rl::PayloadUnpacker::kMaxContainerSize;
+    const msgpack::unpack_limit limits(limit, limit, size, size, size,
+                                       upkie_rl::PayloadUnpacker::kMaxDepth + 1);
+    std::size_t offset = 0;
+    const msgpack::object_handle reference = msgpack::unpack(
+        reinterpret_cast<const char*>(data), size, offset, nullptr, nullptr, limits);
+    if (offset != size || !same(reference.get(), *object)) std::abort();
+  } catch (const msgpack::unpack_error&) {
+    std::abort();
   }
   decode_as_configuration(*object);
   decode_as_action(*object, defaults);
