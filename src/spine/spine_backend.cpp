@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <thread>
 
@@ -94,8 +95,14 @@ void SpineBackend::send(Request request) {
   memory_.set_request(request);
 }
 
-const Observation& SpineBackend::read_observation_payload() {
+const Observation& SpineBackend::read_observation_payload(bool after_reset) {
+  // A spine that writes no `time` (the robot's) gets the agent's clock instead.
+  const double previous_time = observation_.time;
+  observation_.time = std::numeric_limits<double>::quiet_NaN();
   read_observation(unpacker_.unpack(memory_.payload()), observation_);
+  if (std::isnan(observation_.time)) {
+    observation_.time = after_reset ? 0.0 : previous_time + agent_timestep();
+  }
   return observation_;
 }
 
@@ -111,7 +118,7 @@ const Observation& SpineBackend::reset(const ResetState& state) {
   send(Request::kStart);
   wait_for_spine();
   next_action_time_.reset();
-  return read_observation_payload();
+  return read_observation_payload(true);
 }
 
 void SpineBackend::regulate() {
@@ -142,7 +149,7 @@ const Observation& SpineBackend::step(const ServoAction& action) {
   wait_for_spine();
   send(Request::kAction);
   wait_for_spine();
-  return read_observation_payload();
+  return read_observation_payload(false);
 }
 
 }  // namespace upkie_rl

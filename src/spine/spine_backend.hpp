@@ -32,8 +32,10 @@ struct SpineBackendConfig {
 
 /// Talks to a spine through its shared memory (spine.md section 2): reset() is stop()
 /// then start(configuration with the reset state); step() sends the servo action and
-/// returns the observation of that step, decoded into the typed Observation. Once warmed
-/// up, a step allocates nothing. Not thread-safe. The destructor stops the spine.
+/// returns the observation of that step, decoded into the typed Observation. When the
+/// spine writes no `time` (the robot's spine), the observation's time counts agent steps
+/// from the reset. Once warmed up, a step allocates nothing. Not thread-safe. The
+/// destructor stops the spine.
 class SpineBackend final : public Simulation {
  public:
   /// Opens the spine's shared memory, trying `open_tries` times `open_retry_delay` apart.
@@ -65,7 +67,7 @@ class SpineBackend final : public Simulation {
  private:
   void wait_for_spine();
   void send(Request request);
-  const Observation& read_observation_payload();
+  const Observation& read_observation_payload(bool after_reset);
   void regulate();
 
   SpineBackendConfig config_;

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "fake_simulation.hpp"
+#include "message_builder.hpp"
 #include "spine/spine_error.hpp"
 #include "spine/spine_server.hpp"
 
@@ -125,6 +126,71 @@ TEST_F(SpineBackendTest, NonFiniteCommandsAreRefusedBeforeSending) {
   action[kRightHip].position = std::nan("");  // NaN position is "no position loop"
   EXPECT_NO_THROW(backend.step(action));
   EXPECT_EQ(simulation_->actions.size(), 1u);
+}
+
+/// A robot-like observation: no `time`, no `sim`, integer fault/mode, extra keys.
+std::string robot_observation(double wheel_velocity) {
+  testing::MessageBuilder message;
+  message.map(4);
+  message.key("base_orientation").map(2);
+  message.key("angular_velocity").array(3).real(0.0).real(0.2).real(0.0);
+  message.key("pitch").real(0.1);
+  message.key("joystick").map(1).key("cross_button").boolean(false);
+  message.key("servo").map(kNumServos);
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    message.key(kServoNames[i]).map(5);
+    message.key("fault").integer(0).key("mode").integer(10);
+    message.key("position").real(0.0).key("torque").real32(0.5f);
+    message.key("velocity").real(is_wheel(i) ? wheel_velocity : 0.0);
+  }
+  message.key("wheel_odometry").map(2).key("position").real(0.0).key("velocity").real(0.3);
+  return message.bytes();
+}
+
+TEST(SpineBackend, ReadsARobotSpineWithoutTimeOrGroundTruth) {
+  const std::string name = testing::unique_shm_name("robot");
+  SharedMemory memory = SharedMemory::create(name);
+  std::atomic<bool> done{false};
+  // Answers every request at once: Start and Action with an observation, Stop by clearing.
+  std::thread spine([&] {
+    int actions = 0;
+    while (!done) {
+      const std::uint32_t request = memory.request();
+      if (request == static_cast<std::uint32_t>(Request::kStart) ||
+          request == static_cast<std::uint32_t>(Request::kAction)) {
+        if (request == static_cast<std::uint32_t>(Request::kAction)) ++actions;
+        const std::string reply = robot_observation(actions);
+        memory.write_payload({reply.data(), reply.size()});
+        memory.set_request(Request::kNone);
+      } else if (request == static_cast<std::uint32_t>(Request::kStop)) {
+        memory.set_request(Request::kNone);
+      }
+      std::this_thread::yield();
+    }
+  });
+  {
+    SpineBackendConfig config;
+    config.shm_name = name;
+    config.regulate_frequency = false;
+    config.agent_frequency = 100.0;
+    config.open_tries = 1;
+    SpineBackend backend(config);
+    const Observation& first = backend.reset(ResetState{});
+    EXPECT_DOUBLE_EQ(first.time, 0.0);
+    EXPECT_FALSE(first.has_sim);
+    EXPECT_DOUBLE_EQ(first.base_orientation.pitch, 0.1);
+    EXPECT_DOUBLE_EQ(first.servo[kLeftKnee].torque, 0.5);  // float32 accepted
+    ServoAction action;
+    for (ServoCommand& command : action) command.maximum_torque = 1.0;
+    for (int i = 1; i <= 3; ++i) {
+      const Observation& observation = backend.step(action);
+      EXPECT_NEAR(observation.time, 0.01 * i, 1e-12);  // the agent's clock
+      EXPECT_DOUBLE_EQ(observation.servo[kRightWheel].velocity, i);
+    }
+    EXPECT_DOUBLE_EQ(backend.reset(ResetState{}).time, 0.0);
+  }
+  done = true;
+  spine.join();
 }
 
 TEST(SpineBackend, NoSpineFailsAfterTheConfiguredTries) {
