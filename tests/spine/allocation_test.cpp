@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "common/allocation_counter.hpp"
+
 #include <atomic>
-#include <cstdlib>
-#include <new>
 #include <thread>
 
 #include "fake_simulation.hpp"
@@ -14,23 +14,6 @@
 #include "spine/servo_action_message.hpp"
 #include "spine/spine_backend.hpp"
 #include "spine/spine_server.hpp"
-
-namespace {
-
-/// Allocations made by the current thread while counting is on.
-thread_local bool counting = false;
-thread_local long allocations = 0;
-
-}  // namespace
-
-// Counting replacements of the global allocation functions (for this test program).
-void* operator new(std::size_t size) {
-  if (counting) ++allocations;
-  if (void* pointer = std::malloc(size == 0 ? 1 : size)) return pointer;
-  throw std::bad_alloc();
-}
-void operator delete(void* pointer) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
 
 namespace upkie_rl {
 namespace {
@@ -62,11 +45,11 @@ TEST(SpineAllocations, ServerActionCycle) {
     write_servo_action_msgpack(moving_action(step), message);
     agent.write_payload({message.data(), message.size()});
     agent.set_request(Request::kAction);
-    counting = step >= 5;  // warm-up: buffers grow to their working size
-    allocations = 0;
+    const std::size_t before = testing::this_thread_allocations;
     server.cycle();
-    counting = false;
-    during_steps += allocations;
+    if (step >= 5) {  // warm-up: buffers grow to their working size
+      during_steps += static_cast<long>(testing::this_thread_allocations - before);
+    }
     ASSERT_EQ(agent.request(), 0u);
   }
   EXPECT_EQ(during_steps, 0);
@@ -93,11 +76,9 @@ TEST(SpineAllocations, BackendStep) {
     backend.reset(ResetState{});
     for (int step = 0; step < 50; ++step) {
       const ServoAction action = moving_action(step);
-      counting = step >= 5;
-      allocations = 0;
+      const std::size_t before = testing::this_thread_allocations;
       backend.step(action);
-      counting = false;
-      during_steps += allocations;
+      if (step >= 5) during_steps += static_cast<long>(testing::this_thread_allocations - before);
     }
     EXPECT_NEAR(backend.observation().time, 50 * 0.005, 1e-12);
   }

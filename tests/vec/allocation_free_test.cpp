@@ -2,25 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include "common/allocation_counter.hpp"
+
 #include <vector>
 
 #include "vec/make_vector_env.hpp"
 #include "vec/vec_normalize.hpp"
-
-namespace {
-std::atomic<std::size_t> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* pointer = std::malloc(size == 0 ? 1 : size)) return pointer;
-  throw std::bad_alloc();
-}
-void operator delete(void* pointer) noexcept { std::free(pointer); }
-void operator delete(void* pointer, std::size_t) noexcept { std::free(pointer); }
 
 namespace upkie_rl {
 namespace {
@@ -29,9 +16,9 @@ std::size_t allocations_over_steps(VectorEnv& venv, int steps) {
   std::vector<float> actions(venv.num_envs() * venv.action_space().size(), 0.0f);
   venv.reset(0);
   venv.step(actions);  // warm-up
-  const std::size_t before = g_allocations.load();
+  const std::size_t before = testing::all_threads_allocations.load();
   for (int step = 0; step < steps; ++step) venv.step(actions);
-  return g_allocations.load() - before;
+  return testing::all_threads_allocations.load() - before;
 }
 
 TEST(AllocationFree, VectorStepsAllocateNothing) {
