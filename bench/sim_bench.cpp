@@ -11,10 +11,10 @@ namespace {
 
 /// Balancing law v = 10 theta + p + 0.1 p_dot, legs held straight.
 ServoAction balance(const Observation& observation, double wheel_radius) {
-  const double velocity = std::clamp(10.0 * observation.base_orientation.pitch +
-                                         observation.wheel_odometry.position +
-                                         0.1 * observation.wheel_odometry.velocity,
-                                     -1.0, 1.0);
+  const double velocity =
+      std::clamp(10.0 * observation.base_orientation.pitch + observation.wheel_odometry.position +
+                     0.1 * observation.wheel_odometry.velocity,
+                 -1.0, 1.0);
   ServoAction action{};
   for (std::size_t servo : {kLeftHip, kLeftKnee, kRightHip, kRightKnee}) {
     action[servo].position = 0.0;

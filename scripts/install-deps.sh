@@ -12,7 +12,7 @@ DEBIAN_PACKAGES=(
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
 )
 # upkie: the public agent side, for the spine interoperability tests.
-PYTHON_PACKAGES=(pytest numpy gymnasium msgpack upkie)
+PYTHON_PACKAGES=(pytest numpy gymnasium msgpack upkie tensorboard)
 # Fuzzing (`make fuzz` sets UPKIE_RL_FUZZ=1): clang and its libFuzzer runtime.
 if [ "${UPKIE_RL_FUZZ:-0}" = "1" ]; then
   DEBIAN_PACKAGES+=(clang-14 libclang-rt-14-dev)

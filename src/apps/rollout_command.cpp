@@ -110,9 +110,10 @@ void add_rollout_command(CLI::App& app) {
                    "zero (neutral action) or linear:k1,k2,k3,k4 (ground velocity = "
                    "k.[theta, p, theta_dot, p_dot])")
       ->capture_default_str();
-  command->add_option("--model", options->model,
-                      "Trained model (model_*.ckpt or a checkpoint of `upkie-rl train`): "
-                      "deterministic policy with its frozen normalisation; replaces --controller")
+  command
+      ->add_option("--model", options->model,
+                   "Trained model (model_*.ckpt or a checkpoint of `upkie-rl train`): "
+                   "deterministic policy with its frozen normalisation; replaces --controller")
       ->check(CLI::ExistingFile);
   command->add_option("--episodes", options->episodes, "Number of episodes")
       ->check(CLI::Range(1, 1'000'000))

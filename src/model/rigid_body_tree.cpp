@@ -76,8 +76,8 @@ RigidBodyTree::RigidBodyTree(const RobotModel& model, InertiaSource source,
   // Links are numbered depth-first (parents first): assign each to a body.
   for (std::size_t i = 0; i < links.size(); ++i) {
     const int joint_index = links[i].parent_joint;
-    const bool merge = joint_index >= 0 && merge_fixed_links &&
-                       joints[joint_index].type == Joint::Type::kFixed;
+    const bool merge =
+        joint_index >= 0 && merge_fixed_links && joints[joint_index].type == Joint::Type::kFixed;
     if (merge) {
       const int parent_link = joints[joint_index].parent_link;
       body_of_link_[i] = body_of_link_[parent_link];

@@ -27,7 +27,7 @@ struct BodyCollision {
 
 /// One rigid body: a link, or a group of links joined by fixed joints.
 struct RigidBody {
-  std::string name;  ///< Name of its first link (the one its joint moves).
+  std::string name;      ///< Name of its first link (the one its joint moves).
   int parent_body = -1;  ///< -1 for the root body.
   /// Joint of the description that connects it to its parent body (-1 for the root).
   int joint = -1;
@@ -35,7 +35,7 @@ struct RigidBody {
   /// frame is its first link's frame, which equals the joint frame at zero angle).
   Eigen::Isometry3d joint_pose_in_parent = Eigen::Isometry3d::Identity();
   Eigen::Vector3d joint_axis = Eigen::Vector3d::UnitZ();  ///< In the body frame.
-  double mass = 0.0;  ///< [kg]
+  double mass = 0.0;                                      ///< [kg]
   /// Principal inertial frame (origin at the centre of mass) in the body frame.
   Eigen::Isometry3d principal_frame = Eigen::Isometry3d::Identity();
   Eigen::Vector3d principal_inertia = Eigen::Vector3d::Zero();  ///< [kg.m^2]

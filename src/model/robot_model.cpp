@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <map>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <numeric>
 #include <sstream>
@@ -62,8 +62,8 @@ double parse_value_attribute(const TiXmlElement& element, const std::filesystem:
                              const std::string& link_name) {
   double value = 0.0;
   if (element.QueryDoubleAttribute("value", &value) != TIXML_SUCCESS || !std::isfinite(value)) {
-    throw ModelError(path.string() + ": link '" + link_name + "': <contact><" +
-                     element.ValueStr() + "> needs a finite numeric value attribute");
+    throw ModelError(path.string() + ": link '" + link_name + "': <contact><" + element.ValueStr() +
+                     "> needs a finite numeric value attribute");
   }
   return value;
 }
@@ -216,8 +216,8 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
           const auto& inertial = *urdf_link->inertial;
           link.mass = inertial.mass;
           link.inertial_pose = to_isometry(inertial.origin);
-          link.urdf_inertia << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy,
-              inertial.iyy, inertial.iyz, inertial.ixz, inertial.iyz, inertial.izz;
+          link.urdf_inertia << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy, inertial.iyy,
+              inertial.iyz, inertial.ixz, inertial.iyz, inertial.izz;
           if (!(link.mass >= 0.0) || !link.urdf_inertia.allFinite()) {
             throw ModelError(path.string() + ": link '" + link.name +
                              "': <inertial> mass must be non-negative and values finite");
@@ -283,7 +283,8 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
     };
     visit(wheel_joint.child_link);
     if (best_radius <= 0.0) {
-      throw ModelError(path.string() + ": no tire <cylinder> collision rigidly attached to joint '" +
+      throw ModelError(path.string() +
+                       ": no tire <cylinder> collision rigidly attached to joint '" +
                        wheel_joint.name + "'");
     }
     *radius = best_radius;
@@ -292,7 +293,8 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
   double left_radius = 0.0;
   double right_radius = 0.0;
   const Eigen::Vector3d left_centre = tire_centre(kLeftWheel, &left_radius, &model.tire_links_[0]);
-  const Eigen::Vector3d right_centre = tire_centre(kRightWheel, &right_radius, &model.tire_links_[1]);
+  const Eigen::Vector3d right_centre =
+      tire_centre(kRightWheel, &right_radius, &model.tire_links_[1]);
   model.wheel_radius_ = left_radius;
   model.track_ = (left_centre - right_centre).norm();
 

@@ -7,8 +7,8 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -40,8 +40,8 @@ struct CollisionShape {
   enum class Kind { kBox, kCylinder };
   Kind kind = Kind::kBox;
   Eigen::Vector3d box_size = Eigen::Vector3d::Zero();  ///< Full side lengths (box) [m].
-  double radius = 0.0;  ///< Cylinder radius [m].
-  double length = 0.0;  ///< Cylinder length along its z axis [m].
+  double radius = 0.0;                                 ///< Cylinder radius [m].
+  double length = 0.0;                                 ///< Cylinder length along its z axis [m].
   Eigen::Isometry3d pose_in_link = Eigen::Isometry3d::Identity();
 };
 
@@ -75,7 +75,7 @@ struct Joint {
   int parent_link = -1;
   int child_link = -1;
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< Child frame in parent frame.
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();            ///< In the child frame.
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();           ///< In the child frame.
   JointLimits limits;
 };
 
@@ -112,7 +112,9 @@ class RobotModel {
   double wheel_radius() const { return wheel_radius_; }
   /// Link holding the tire (largest cylinder rigidly attached) of wheel servo `wheel`
   /// (kLeftWheel or kRightWheel).
-  int tire_link(std::size_t wheel) const { return wheel == kLeftWheel ? tire_links_[0] : tire_links_[1]; }
+  int tire_link(std::size_t wheel) const {
+    return wheel == kLeftWheel ? tire_links_[0] : tire_links_[1];
+  }
   /// Lateral distance between the two tire centres [m].
   double track() const { return track_; }
   /// Rotation from the base frame to the IMU frame, R_base_to_imu (maps IMU-frame vectors

@@ -155,7 +155,8 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
     const btQuaternion rot_parent_to_this =
         to_bullet(Eigen::Quaterniond(rotation_parent_com_to_com));
     const btVector3 parent_com_to_pivot = to_bullet(joint_in_parent_com.translation());
-    const btVector3 pivot_to_com = to_bullet(Eigen::Vector3d(com.linear().transpose() * com.translation()));
+    const btVector3 pivot_to_com =
+        to_bullet(Eigen::Vector3d(com.linear().transpose() * com.translation()));
     const int parent_link = body.parent_body - 1;
     const Joint& joint = model.joints()[body.joint];
     if (joint.type == Joint::Type::kFixed) {
@@ -187,9 +188,9 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
     auto compound = std::make_unique<btCompoundShape>();
     for (const auto& collision : body.collisions) {
       auto child = make_shape(collision.shape);
-      compound->addChildShape(
-          to_bullet(Eigen::Isometry3d(body.principal_frame.inverse() * collision.shape.pose_in_link)),
-          child.get());
+      compound->addChildShape(to_bullet(Eigen::Isometry3d(body.principal_frame.inverse() *
+                                                          collision.shape.pose_in_link)),
+                              child.get());
       bullet.shapes.push_back(std::move(child));
     }
     auto collider = std::make_unique<btMultiBodyLinkCollider>(&multibody, b - 1);
@@ -259,8 +260,9 @@ BulletSimulation::~BulletSimulation() = default;
 
 const Observation& BulletSimulation::reset(const ResetState& state) {
   if (!is_finite(state)) {
-    throw std::invalid_argument("reset state must be finite (position, orientation, velocities "
-                                "and joint angles)");
+    throw std::invalid_argument(
+        "reset state must be finite (position, orientation, velocities "
+        "and joint angles)");
   }
   if (state.orientation_base_in_world.norm() < 1e-9) {
     throw std::invalid_argument("reset state: orientation quaternion must not be zero");
@@ -393,7 +395,8 @@ void BulletSimulation::read_observation() {
   observation_.sim_base.position = base_in_world.translation();
   observation_.sim_base.orientation = base_orientation;
   observation_.sim_base.linear_velocity = base_velocity;
-  observation_.sim_base.angular_velocity = rotation_base_to_world.transpose() * angular_velocity_world;
+  observation_.sim_base.angular_velocity =
+      rotation_base_to_world.transpose() * angular_velocity_world;
 
   // Pitch as the reference PyBullet backend computes it: ZYX pitch of the base quaternion.
   const Eigen::Quaterniond& q = base_orientation;
@@ -403,7 +406,8 @@ void BulletSimulation::read_observation() {
   observation_.base_orientation.rotation_base_to_world = rotation_base_to_world;
 
   // IMU: orientation in the attitude reference frame, rates and accelerations in its frame.
-  const Eigen::Matrix3d rotation_imu_to_world = rotation_base_to_world * model_->rotation_base_to_imu();
+  const Eigen::Matrix3d rotation_imu_to_world =
+      rotation_base_to_world * model_->rotation_base_to_imu();
   observation_.imu.orientation =
       Eigen::Quaterniond(kRotationArsToWorld.transpose() * rotation_imu_to_world).normalized();
   observation_.imu.angular_velocity = rotation_imu_to_world.transpose() * angular_velocity_world;

@@ -43,9 +43,7 @@ class BulletSimulation final : public Simulation {
   const Observation& step_braked();
 
   const Observation& observation() const override { return observation_; }
-  double agent_timestep() const override {
-    return config_.physics_timestep * config_.nb_substeps;
-  }
+  double agent_timestep() const override { return config_.physics_timestep * config_.nb_substeps; }
 
   const BulletConfig& config() const { return config_; }
   const RobotModel& model() const { return *model_; }

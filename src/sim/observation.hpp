@@ -54,7 +54,7 @@ struct FloorContactObservation {
 
 /// `sim.base.*`: ground truth of the base link, simulation only.
 struct SimBaseObservation {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< Base origin in world [m].
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< Base origin in world [m].
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< Base in world.
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   ///< Of the base origin, world [m/s].
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< In the base frame [rad/s].
@@ -62,7 +62,7 @@ struct SimBaseObservation {
 
 /// Everything a backend observes after a step.
 struct Observation {
-  double time = 0.0;  ///< Simulated (or spine) time since reset [s].
+  double time = 0.0;                                 ///< Simulated (or spine) time since reset [s].
   std::array<ServoObservation, kNumServos> servo{};  ///< In the standard joint order.
   ImuObservation imu;
   BaseOrientationObservation base_orientation;

@@ -7,8 +7,8 @@ namespace upkie_rl {
 namespace {
 
 [[noreturn]] void refuse(std::size_t servo, const char* field, double value) {
-  throw InvalidCommandError("servo command for '" + std::string(kServoNames[servo]) + "': " +
-                            field + " must be finite, got " + std::to_string(value));
+  throw InvalidCommandError("servo command for '" + std::string(kServoNames[servo]) +
+                            "': " + field + " must be finite, got " + std::to_string(value));
 }
 
 }  // namespace

@@ -21,8 +21,8 @@ struct ServoGains {
 /// the position term dropped when q* is NaN.
 inline double servo_torque(const ServoCommand& command, double position, double velocity,
                            const ServoGains& gains, double effort) {
-  double torque = command.feedforward_torque +
-                  gains.kd * command.kd_scale * (command.velocity - velocity);
+  double torque =
+      command.feedforward_torque + gains.kd * command.kd_scale * (command.velocity - velocity);
   if (!std::isnan(command.position)) {
     torque += gains.kp * command.kp_scale * (command.position - position);
   }

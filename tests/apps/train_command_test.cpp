@@ -50,18 +50,21 @@ TEST(TrainCommand, TrainsEvaluatesAndResumesFromTheCommandLine) {
 
   // The resolved config records the overrides.
   std::ifstream config(run_dir / "config.yaml");
-  const std::string text((std::istreambuf_iterator<char>(config)), std::istreambuf_iterator<char>());
+  const std::string text((std::istreambuf_iterator<char>(config)),
+                         std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("total_timesteps: 256"), std::string::npos) << text;
 
   // Deterministic evaluation of the saved model.
-  const auto rollout = run_cli("rollout --env Upkie-Bullet-Pendulum --episodes 2 --max-steps 50 "
-                               "--model " + model.string());
+  const auto rollout = run_cli(
+      "rollout --env Upkie-Bullet-Pendulum --episodes 2 --max-steps 50 "
+      "--model " +
+      model.string());
   EXPECT_EQ(rollout.exit_code, 0) << rollout.output;
   EXPECT_NE(rollout.output.find("mean return"), std::string::npos) << rollout.output;
 
   // A model does not run an environment of other spaces.
-  const auto wrong = run_cli("rollout --env Upkie-Bullet-ServosTask --episodes 1 --model " +
-                             model.string());
+  const auto wrong =
+      run_cli("rollout --env Upkie-Bullet-ServosTask --episodes 1 --model " + model.string());
   EXPECT_EQ(wrong.exit_code, 1);
   EXPECT_NE(wrong.output.find("does not fit"), std::string::npos) << wrong.output;
 
@@ -80,8 +83,8 @@ TEST(TrainCommand, BadInputGivesClearErrors) {
   EXPECT_NE(result.output.find("unknown config key 'ppo.batch_sise'"), std::string::npos)
       << result.output;
 
-  result = run_cli("train --config " + kConfig + " --set ppo.gamma=high --run-dir " +
-                   run_dir.string());
+  result =
+      run_cli("train --config " + kConfig + " --set ppo.gamma=high --run-dir " + run_dir.string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find("ppo.gamma"), std::string::npos) << result.output;
 

@@ -88,7 +88,8 @@ TEST(RobotModelTest, MissingFileIsNamed) {
 }
 
 TEST(RobotModelTest, MalformedXmlGivesFileAndLine) {
-  const auto path = write_temp("upkie_rl_malformed.urdf", "<robot name='x'>\n<link name='a'>\n</robot>");
+  const auto path =
+      write_temp("upkie_rl_malformed.urdf", "<robot name='x'>\n<link name='a'>\n</robot>");
   expect_model_error(path, "upkie_rl_malformed.urdf:");
 }
 

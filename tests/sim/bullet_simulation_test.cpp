@@ -149,10 +149,9 @@ double run_pendulum_law(double duration, double gain_scale) {
   const int steps = static_cast<int>(duration / simulation.agent_timestep());
   for (int step = 0; step < steps; ++step) {
     const Observation& observation = simulation.observation();
-    const double velocity =
-        gain_scale * (10.0 * observation.base_orientation.pitch +
-                      1.0 * observation.wheel_odometry.position +
-                      0.1 * observation.wheel_odometry.velocity);
+    const double velocity = gain_scale * (10.0 * observation.base_orientation.pitch +
+                                          1.0 * observation.wheel_odometry.position +
+                                          0.1 * observation.wheel_odometry.velocity);
     simulation.step(pendulum_action(std::clamp(velocity, -1.0, 1.0), radius));
     max_pitch = std::max(max_pitch, std::abs(simulation.observation().base_orientation.pitch));
   }
