@@ -15,11 +15,10 @@ constexpr float kMaxPitchRate = 1000.0f;  // Observation bound of θ̇ [rad/s].
 }  // namespace
 
 GyropodEnv::GyropodEnv(std::unique_ptr<ServosEnv> servos, const GyropodConfig& config)
-    : servos_(std::move(servos)),
+    : ServosWrapperEnv(std::move(servos), "GyropodEnv"),
       config_(config),
-      commander_(
-          servos_ ? servos_->model() : throw std::invalid_argument("GyropodEnv: null servos"),
-          servos_->timestep(), GroundVelocityCommanderConfig{config.leg_gain_scale}) {
+      commander_(servos_->model(), servos_->timestep(),
+                 GroundVelocityCommanderConfig{config.leg_gain_scale}) {
   if (!(config_.max_ground_velocity > 0.0) || !(config_.max_yaw_velocity > 0.0)) {
     throw std::invalid_argument(
         "GyropodEnv: max_ground_velocity and max_yaw_velocity must be positive");

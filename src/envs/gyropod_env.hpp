@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "envs/ground_velocity_commander.hpp"
-#include "envs/servos_env.hpp"
+#include "envs/servos_wrapper_env.hpp"
 
 namespace upkie_rl {
 
@@ -21,27 +21,17 @@ struct GyropodConfig {
 /// clamped to ±[max_ground_velocity, max_yaw_velocity]. ψ integrates the commanded yaw
 /// rate (zero at reset) and ψ̇ is the last command. Reward 1 per step (survival);
 /// terminated when |θ| > fall_pitch after a step.
-class GyropodEnv final : public Env {
+class GyropodEnv final : public ServosWrapperEnv {
  public:
   GyropodEnv(std::unique_ptr<ServosEnv> servos, const GyropodConfig& config = {});
 
-  ServosEnv& servos() { return *servos_; }
-
-  const BoxSpace& observation_space() const override { return observation_space_; }
-  const BoxSpace& action_space() const override { return action_space_; }
   void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
   StepResult step(std::span<const float> action, std::span<float> observation) override;
-  const Observation* full_observation() const override { return servos_->full_observation(); }
-  double timestep() const override { return servos_->timestep(); }
-  int physics_steps_per_step() const override { return servos_->physics_steps_per_step(); }
 
  private:
   void write_observation(const Observation& full, std::span<float> observation) const;
 
-  std::unique_ptr<ServosEnv> servos_;
   GyropodConfig config_;
-  BoxSpace observation_space_;
-  BoxSpace action_space_;
   GroundVelocityCommander commander_;
   double yaw_ = 0.0;           // ψ [rad]
   double yaw_velocity_ = 0.0;  // ψ̇, the last command [rad/s]

@@ -14,11 +14,10 @@ constexpr float kMaxPitchRate = 1000.0f;  // Observation bound of θ̇ [rad/s] (
 }  // namespace
 
 PendulumEnv::PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig& config)
-    : servos_(std::move(servos)),
+    : ServosWrapperEnv(std::move(servos), "PendulumEnv"),
       config_(config),
-      commander_(
-          servos_ ? servos_->model() : throw std::invalid_argument("PendulumEnv: null servos"),
-          servos_->timestep(), GroundVelocityCommanderConfig{config.leg_gain_scale}),
+      commander_(servos_->model(), servos_->timestep(),
+                 GroundVelocityCommanderConfig{config.leg_gain_scale}),
       task_(config.reward, config.termination) {
   if (!(config_.max_ground_velocity > 0.0)) {
     throw std::invalid_argument("PendulumEnv: max_ground_velocity must be positive");

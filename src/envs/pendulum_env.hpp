@@ -6,7 +6,7 @@
 
 #include "envs/balance_task.hpp"
 #include "envs/ground_velocity_commander.hpp"
-#include "envs/servos_env.hpp"
+#include "envs/servos_wrapper_env.hpp"
 
 namespace upkie_rl {
 
@@ -22,30 +22,21 @@ struct PendulumConfig {
 /// [rad/s], ground velocity [m/s]), action a = [ṗ*] in [-a_max, a_max] [m/s] (clamped).
 /// Reward: seed eq. 9; terminations: seed section 1.5, checked after every step (p0 is the
 /// position at reset). Truncation at 300 steps is the TimeLimit the registry adds.
-class PendulumEnv final : public Env {
+class PendulumEnv final : public ServosWrapperEnv {
  public:
   PendulumEnv(std::unique_ptr<ServosEnv> servos, const PendulumConfig& config = {});
 
   /// The condition that ended the last step's episode (kNone while running).
   BalanceTermination::Reason termination_reason() const { return task_.termination_reason(); }
-  ServosEnv& servos() { return *servos_; }
   const PendulumConfig& config() const { return config_; }
 
-  const BoxSpace& observation_space() const override { return observation_space_; }
-  const BoxSpace& action_space() const override { return action_space_; }
   void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
   StepResult step(std::span<const float> action, std::span<float> observation) override;
-  const Observation* full_observation() const override { return servos_->full_observation(); }
-  double timestep() const override { return servos_->timestep(); }
-  int physics_steps_per_step() const override { return servos_->physics_steps_per_step(); }
 
  private:
   void write_observation(const Observation& full, std::span<float> observation) const;
 
-  std::unique_ptr<ServosEnv> servos_;
   PendulumConfig config_;
-  BoxSpace observation_space_;
-  BoxSpace action_space_;
   GroundVelocityCommander commander_;
   BalanceTask task_;
 };

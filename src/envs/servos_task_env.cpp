@@ -8,8 +8,9 @@
 namespace upkie_rl {
 
 ServosTaskEnv::ServosTaskEnv(std::unique_ptr<ServosEnv> servos, const ServosTaskConfig& config)
-    : servos_(std::move(servos)), config_(config), task_(config.reward, config.termination) {
-  if (!servos_) throw std::invalid_argument("ServosTaskEnv: null servos");
+    : ServosWrapperEnv(std::move(servos), "ServosTaskEnv"),
+      config_(config),
+      task_(config.reward, config.termination) {
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const std::string joint(kServoNames[i]);
     const BoxSpace& servo_observation = servos_->observation_dict_space().entries[i].second;

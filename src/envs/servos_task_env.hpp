@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "envs/balance_task.hpp"
-#include "envs/servos_env.hpp"
+#include "envs/servos_wrapper_env.hpp"
 
 namespace upkie_rl {
 
@@ -30,7 +30,7 @@ struct ServosTaskConfig {
 /// Reward (seed eq. 22) on θ, θ̇, ṗ from the full observation and the action magnitude
 /// |a| = Σ|wheel velocity command| + Σ|leg position command| of the servo action;
 /// terminations as the pendulum. The 300-step truncation is the TimeLimit the registry adds.
-class ServosTaskEnv final : public Env {
+class ServosTaskEnv final : public ServosWrapperEnv {
  public:
   ServosTaskEnv(std::unique_ptr<ServosEnv> servos, const ServosTaskConfig& config = {});
 
@@ -41,23 +41,14 @@ class ServosTaskEnv final : public Env {
   static double action_magnitude(const ServoAction& action);
 
   BalanceTermination::Reason termination_reason() const { return task_.termination_reason(); }
-  ServosEnv& servos() { return *servos_; }
 
-  const BoxSpace& observation_space() const override { return observation_space_; }
-  const BoxSpace& action_space() const override { return action_space_; }
   void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
   StepResult step(std::span<const float> action, std::span<float> observation) override;
-  const Observation* full_observation() const override { return servos_->full_observation(); }
-  double timestep() const override { return servos_->timestep(); }
-  int physics_steps_per_step() const override { return servos_->physics_steps_per_step(); }
 
  private:
   void write_observation(const Observation& full, std::span<float> observation) const;
 
-  std::unique_ptr<ServosEnv> servos_;
   ServosTaskConfig config_;
-  BoxSpace observation_space_;
-  BoxSpace action_space_;
   BalanceTask task_;
   std::array<float, kNumServos> clamped_{};
   ServoAction servo_action_{};
