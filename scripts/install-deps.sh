@@ -8,7 +8,7 @@ DEBIAN_PACKAGES=(
   libbullet-dev liburdfdom-dev libtinyxml-dev libeigen3-dev libtorch-dev python3-torch
   libopenblas0-serial  # single-threaded OpenBLAS for libtorch: the reference BLAS is slow
   libmsgpack-cxx-dev libboost-dev nlohmann-json3-dev libcli11-dev libyaml-cpp-dev
-  libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
+  libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox fonts-liberation
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
 )
 # upkie: the public agent side, for the spine interoperability tests.
