@@ -9,25 +9,9 @@
 namespace upkie_rl {
 namespace {
 
-using testing::ScriptedSimulation;
-
-struct ScriptedGyropod {
-  ScriptedSimulation* simulation = nullptr;
-  std::unique_ptr<GyropodEnv> env;
-};
-
-ScriptedGyropod make_scripted_gyropod() {
-  auto model = RobotModel::default_model();
-  auto simulation = std::make_unique<ScriptedSimulation>();
-  ScriptedGyropod result;
-  result.simulation = simulation.get();
-  result.env =
-      std::make_unique<GyropodEnv>(std::make_unique<ServosEnv>(std::move(simulation), model));
-  return result;
-}
 
 TEST(GyropodEnv, Spaces) {
-  auto [simulation, env] = make_scripted_gyropod();
+  auto [simulation, env] = testing::make_scripted_env<GyropodEnv>();
   EXPECT_EQ(env->observation_space().names,
             (std::vector<std::string>{"p", "theta", "psi", "p_dot", "theta_dot", "psi_dot"}));
   EXPECT_EQ(env->action_space().names,
@@ -37,7 +21,7 @@ TEST(GyropodEnv, Spaces) {
 }
 
 TEST(GyropodEnv, PureYawGivesEqualWheelVelocities) {
-  auto [simulation, env] = make_scripted_gyropod();
+  auto [simulation, env] = testing::make_scripted_env<GyropodEnv>();
   std::array<float, 6> observation{};
   env->reset(0, observation);
   const std::array<float, 2> yaw{0.0f, 0.5f};
@@ -48,7 +32,7 @@ TEST(GyropodEnv, PureYawGivesEqualWheelVelocities) {
 }
 
 TEST(GyropodEnv, YawIntegratesTheCommandAndResets) {
-  auto [simulation, env] = make_scripted_gyropod();
+  auto [simulation, env] = testing::make_scripted_env<GyropodEnv>();
   std::array<float, 6> observation{};
   env->reset(0, observation);
   const std::array<float, 2> yaw{0.0f, 0.5f};
@@ -61,7 +45,7 @@ TEST(GyropodEnv, YawIntegratesTheCommandAndResets) {
 }
 
 TEST(GyropodEnv, TorqueLimitsAndFall) {
-  auto [simulation, env] = make_scripted_gyropod();
+  auto [simulation, env] = testing::make_scripted_env<GyropodEnv>();
   std::array<float, 6> observation{};
   env->reset(0, observation);
   const std::array<float, 2> forward{1.0f, 0.0f};

@@ -15,25 +15,9 @@ namespace upkie_rl {
 namespace {
 
 using testing::pendulum_state;
-using testing::ScriptedSimulation;
-
-struct ScriptedPendulum {
-  ScriptedSimulation* simulation = nullptr;
-  std::unique_ptr<PendulumEnv> env;
-};
-
-ScriptedPendulum make_scripted_pendulum(const PendulumConfig& config = {}) {
-  auto model = RobotModel::default_model();
-  auto simulation = std::make_unique<ScriptedSimulation>();
-  ScriptedPendulum result;
-  result.simulation = simulation.get();
-  result.env = std::make_unique<PendulumEnv>(
-      std::make_unique<ServosEnv>(std::move(simulation), model), config);
-  return result;
-}
 
 TEST(PendulumEnv, SpacesAsTheSeedDefines) {
-  auto [simulation, env] = make_scripted_pendulum();
+  auto [simulation, env] = testing::make_scripted_env<PendulumEnv>();
   const BoxSpace& observation = env->observation_space();
   EXPECT_EQ(observation.names, (std::vector<std::string>{"theta", "p", "theta_dot", "p_dot"}));
   EXPECT_FLOAT_EQ(observation.high[0], static_cast<float>(M_PI));
@@ -46,7 +30,7 @@ TEST(PendulumEnv, SpacesAsTheSeedDefines) {
 }
 
 TEST(PendulumEnv, ObservationFromTheFullObservation) {
-  auto [simulation, env] = make_scripted_pendulum();
+  auto [simulation, env] = testing::make_scripted_env<PendulumEnv>();
   simulation->on_reset = pendulum_state(0.1, 0.2, 0.3, 0.4);
   std::array<float, 4> observation{};
   env->reset(0, observation);
@@ -57,7 +41,7 @@ TEST(PendulumEnv, ObservationFromTheFullObservation) {
 }
 
 TEST(PendulumEnv, RewardIsSeedEquationNineWithZeroHistoryAtReset) {
-  auto [simulation, env] = make_scripted_pendulum();
+  auto [simulation, env] = testing::make_scripted_env<PendulumEnv>();
   simulation->script = {pendulum_state(0.1, 0.0, 0.2, 0.3), pendulum_state(0.0, 0.0, 0.0, 0.0)};
   std::array<float, 4> observation{};
   env->reset(0, observation);
@@ -72,7 +56,7 @@ TEST(PendulumEnv, RewardIsSeedEquationNineWithZeroHistoryAtReset) {
 }
 
 TEST(PendulumEnv, TerminationsInTheSeedOrderRelativeToTheResetPosition) {
-  auto [simulation, env] = make_scripted_pendulum();
+  auto [simulation, env] = testing::make_scripted_env<PendulumEnv>();
   std::array<float, 4> observation{};
   const std::array<float, 1> action{0.0f};
   using Reason = BalanceTermination::Reason;
@@ -102,7 +86,7 @@ TEST(PendulumEnv, TerminationsInTheSeedOrderRelativeToTheResetPosition) {
 }
 
 TEST(PendulumEnv, HugeActionIsClampedToTheGroundVelocityBound) {
-  auto [simulation, env] = make_scripted_pendulum();
+  auto [simulation, env] = testing::make_scripted_env<PendulumEnv>();
   std::array<float, 4> observation{};
   env->reset(0, observation);
   const std::array<float, 1> huge{1111.1f};
@@ -120,7 +104,7 @@ TEST(PendulumEnv, HugeActionIsClampedToTheGroundVelocityBound) {
 }
 
 TEST(PendulumEnv, LegsStartAtTheMeasuredAnglesAndDecayTowardZero) {
-  auto [simulation, env] = make_scripted_pendulum();
+  auto [simulation, env] = testing::make_scripted_env<PendulumEnv>();
   simulation->on_reset.servo[kLeftKnee].position = 0.5;
   simulation->on_reset.servo[kRightHip].position = -0.2;
   std::array<float, 4> observation{};

@@ -3,8 +3,11 @@
 /// A test backend whose observations the test writes: to drive environments through states
 /// a mock or physics would not reach on demand (falls, drifts, spins).
 
+#include <memory>
 #include <vector>
 
+#include "envs/servos_env.hpp"
+#include "model/robot_model.hpp"
 #include "sim/simulation.hpp"
 
 namespace upkie_rl::testing {
@@ -51,6 +54,24 @@ inline Observation pendulum_state(double pitch, double position, double pitch_ra
   observation.base_orientation.angular_velocity.y() = pitch_rate;
   observation.wheel_odometry.velocity = velocity;
   return observation;
+}
+
+/// An environment built on a ServosEnv over a ScriptedSimulation, and that simulation.
+template <class EnvType>
+struct ScriptedEnv {
+  ScriptedSimulation* simulation = nullptr;
+  std::unique_ptr<EnvType> env;
+};
+
+/// Makes an EnvType (PendulumEnv, GyropodEnv, ServosTaskEnv) on a scripted simulation.
+template <class EnvType>
+ScriptedEnv<EnvType> make_scripted_env() {
+  auto simulation = std::make_unique<ScriptedSimulation>();
+  ScriptedEnv<EnvType> result;
+  result.simulation = simulation.get();
+  result.env = std::make_unique<EnvType>(
+      std::make_unique<ServosEnv>(std::move(simulation), RobotModel::default_model()));
+  return result;
 }
 
 }  // namespace upkie_rl::testing

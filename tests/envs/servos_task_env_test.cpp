@@ -12,25 +12,9 @@ namespace upkie_rl {
 namespace {
 
 using testing::pendulum_state;
-using testing::ScriptedSimulation;
-
-struct ScriptedTask {
-  ScriptedSimulation* simulation = nullptr;
-  std::unique_ptr<ServosTaskEnv> env;
-};
-
-ScriptedTask make_scripted_task() {
-  auto model = RobotModel::default_model();
-  auto simulation = std::make_unique<ScriptedSimulation>();
-  ScriptedTask result;
-  result.simulation = simulation.get();
-  result.env =
-      std::make_unique<ServosTaskEnv>(std::make_unique<ServosEnv>(std::move(simulation), model));
-  return result;
-}
 
 TEST(ServosTaskEnv, Spaces) {
-  auto [simulation, env] = make_scripted_task();
+  auto [simulation, env] = testing::make_scripted_env<ServosTaskEnv>();
   ASSERT_EQ(env->action_space().size(), 6u);
   ASSERT_EQ(env->observation_space().size(), 12u);
   EXPECT_EQ(env->action_space().names[2], "left_wheel");
@@ -43,7 +27,7 @@ TEST(ServosTaskEnv, Spaces) {
 }
 
 TEST(ServosTaskEnv, ActionMappingAsTheSeedDefines) {
-  auto [simulation, env] = make_scripted_task();
+  auto [simulation, env] = testing::make_scripted_env<ServosTaskEnv>();
   std::array<float, 12> observation{};
   env->reset(0, observation);
   // left_hip -1 -> lower, left_knee 1 -> upper, left_wheel 0.5 -> half the velocity limit,
@@ -66,7 +50,7 @@ TEST(ServosTaskEnv, ActionMappingAsTheSeedDefines) {
 }
 
 TEST(ServosTaskEnv, RewardOnTheActionMagnitude) {
-  auto [simulation, env] = make_scripted_task();
+  auto [simulation, env] = testing::make_scripted_env<ServosTaskEnv>();
   std::array<float, 12> observation{};
   env->reset(0, observation);
   simulation->script = {pendulum_state(0.2, 0.0, 1.0, -0.5)};
@@ -85,7 +69,7 @@ TEST(ServosTaskEnv, RewardOnTheActionMagnitude) {
 }
 
 TEST(ServosTaskEnv, ObservationIsPositionsAndVelocities) {
-  auto [simulation, env] = make_scripted_task();
+  auto [simulation, env] = testing::make_scripted_env<ServosTaskEnv>();
   simulation->on_reset.servo[kRightKnee].position = 0.7;
   simulation->on_reset.servo[kRightKnee].velocity = -0.3;
   std::array<float, 12> observation{};
