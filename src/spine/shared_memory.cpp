@@ -5,7 +5,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <utility>
 
@@ -15,6 +17,9 @@ namespace upkie_rl {
 namespace {
 
 std::string errno_text() { return std::strerror(errno); }
+
+/// Where glibc keeps POSIX shared-memory objects (a tmpfs): renaming there is atomic.
+constexpr const char* kShmDirectory = "/dev/shm";
 
 /// Closes a file descriptor at scope exit; the mapping outlives it.
 class FileDescriptor {
@@ -60,30 +65,39 @@ SharedMemory SharedMemory::create(const std::string& name, std::size_t size) {
   if (size <= kHeaderSize + 1 || size > (std::size_t{1} << 31)) {
     throw SpineError("invalid shared-memory size " + std::to_string(size) + " for " + name);
   }
-  // A spine that crashed leaves its object behind; its agents are gone with it.
-  if (::shm_unlink(name.c_str()) != 0 && errno != ENOENT) {
-    throw SpineError("cannot remove stale shared memory " + name + ": " + errno_text());
-  }
-  FileDescriptor fd(::shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666));
+  // The object is built under a private name and renamed into place once sized and
+  // initialised: an agent polling for `name` never sees it empty, and the rename also
+  // replaces a stale object left by a spine that crashed (its agents are gone with it).
+  static std::atomic<unsigned> creation_count{0};
+  const std::string staging_name = "/upkie_rl_staging_" + std::to_string(::getpid()) + "_" +
+                                   std::to_string(creation_count.fetch_add(1));
+  ::shm_unlink(staging_name.c_str());  // a leftover of a crashed process with our pid
+  FileDescriptor fd(::shm_open(staging_name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666));
   if (fd.get() < 0) {
-    throw SpineError("cannot create shared memory " + name + ": " + errno_text());
-  }
-  // The umask strips the group/other write bits that agents of other users need; fchmod
-  // restores them without touching the process-wide umask.
-  ::fchmod(fd.get(), 0666);
-  if (::ftruncate(fd.get(), static_cast<off_t>(size)) != 0) {
-    const std::string reason = errno_text();
-    ::shm_unlink(name.c_str());
-    throw SpineError("cannot size shared memory " + name + ": " + reason);
+    throw SpineError("cannot create shared memory " + name + " (staged as " + staging_name +
+                     "): " + errno_text());
   }
   char* data = nullptr;
   try {
+    // The umask strips the group/other write bits that agents of other users need;
+    // fchmod restores them without touching the process-wide umask.
+    ::fchmod(fd.get(), 0666);
+    if (::ftruncate(fd.get(), static_cast<off_t>(size)) != 0) {
+      throw SpineError("cannot size shared memory " + name + ": " + errno_text());
+    }
     data = map(fd.get(), size, name);
+    std::memset(data, 0, kHeaderSize);  // request None, empty payload
+    const std::string staging_path = std::string(kShmDirectory) + staging_name;
+    const std::string final_path = std::string(kShmDirectory) + name;
+    if (::rename(staging_path.c_str(), final_path.c_str()) != 0) {
+      throw SpineError("cannot publish shared memory " + name + " (rename from " + staging_path +
+                       "): " + errno_text());
+    }
   } catch (...) {
-    ::shm_unlink(name.c_str());
+    if (data != nullptr) ::munmap(data, size);
+    ::shm_unlink(staging_name.c_str());
     throw;
   }
-  std::memset(data, 0, kHeaderSize);  // request None, empty payload
   return SharedMemory(name, size, data, true);
 }
 

@@ -24,9 +24,10 @@ class SharedMemory {
   /// Bytes before the payload: request word and payload size.
   static constexpr std::size_t kHeaderSize = 8;
 
-  /// Creates the object for a spine: unlinks a stale one of the same name, then
-  /// shm_open(O_RDWR | O_CREAT | O_EXCL, 0666), ftruncate and mmap. The request word
-  /// starts at None and the payload is empty. Unlinked by the destructor.
+  /// Creates the object for a spine: shm_open(O_CREAT | O_EXCL, 0666) under a private
+  /// staging name, ftruncate, mmap, then an atomic rename to `name` (replacing a stale
+  /// object), so agents never see it unsized. The request word starts at None and the
+  /// payload is empty. Unlinked by the destructor.
   /// @param name POSIX name, "/" followed by up to 250 characters other than "/".
   /// @throws SpineError naming the object and the failing call.
   static SharedMemory create(const std::string& name, std::size_t size = kDefaultSize);

@@ -5,8 +5,10 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <string>
+#include <thread>
 
 #include "fake_simulation.hpp"
 #include "spine/spine_error.hpp"
@@ -62,6 +64,46 @@ TEST(SharedMemory, CreateReplacesAStaleObject) {
   SharedMemory spine = SharedMemory::create(name);
   EXPECT_EQ(spine.size(), SharedMemory::kDefaultSize);
   EXPECT_EQ(spine.request(), 0u);
+}
+
+TEST(SharedMemory, AgentsNeverSeeAnUnsizedObject) {
+  // An agent polling for the name (as the public Upkie tools do) must never find the
+  // object before it is sized: a watcher opens it the moment it appears, 300 times.
+  const std::string name = testing::unique_shm_name("publish");
+  std::atomic<bool> done{false};
+  std::atomic<bool> failed{false};
+  std::string failure;  // written by the watcher only, read after join
+  std::thread watcher([&] {
+    while (!done.load()) {
+      if (!shm_exists(name)) continue;
+      try {
+        const SharedMemory agent = SharedMemory::open(name);
+        if (agent.size() != 4096) failure = "size " + std::to_string(agent.size());
+      } catch (const SpineError& error) {
+        // Unlinked between the check and the open: fine. Anything else is the bug.
+        if (std::string(error.what()).find("too small") != std::string::npos) {
+          failure = error.what();
+        }
+      }
+      if (!failure.empty()) {
+        failed.store(true);
+        return;
+      }
+    }
+  });
+  for (int cycle = 0; cycle < 300 && !failed.load(); ++cycle) {
+    const SharedMemory spine = SharedMemory::create(name, 4096);
+    std::this_thread::yield();
+  }
+  done.store(true);
+  watcher.join();
+  EXPECT_EQ(failure, "");
+  EXPECT_FALSE(shm_exists(name));
+  // Nothing staged is left behind in /dev/shm.
+  const std::string staging_prefix = "upkie_rl_staging_" + std::to_string(::getpid()) + "_";
+  for (const auto& entry : std::filesystem::directory_iterator("/dev/shm")) {
+    EXPECT_NE(entry.path().filename().string().rfind(staging_prefix, 0), 0u) << entry.path();
+  }
 }
 
 TEST(SharedMemory, OpenMissingNamesTheObject) {
