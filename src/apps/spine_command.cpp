@@ -72,6 +72,7 @@ void run_spine(const SpineOptions& options) {
   config.shm_name = options.shm_name;
   config.real_time = real_time;
   config.frequency = options.spine_frequency;
+  config.default_servo_gains = simulation.servo_gains();
   for (std::size_t i = 0; i < kNumServos; ++i) {
     config.maximum_torques[i] = model->servo_limits(i).effort;
   }
@@ -79,7 +80,9 @@ void run_spine(const SpineOptions& options) {
   std::string error;
   {
     InterruptHandlers handlers;
-    SpineServer server(simulation, config, [&simulation] { simulation.step_braked(); });
+    SpineServer server(
+        simulation, config, [&simulation] { simulation.step_braked(); },
+        [&simulation](const ServoGains& gains) { simulation.set_servo_gains(gains); });
     if (real_time) {
       spdlog::info("spine {}: real time, {} Hz, one {} ms physics step per cycle", options.shm_name,
                    options.spine_frequency, 1e3 * bullet.physics_timestep);

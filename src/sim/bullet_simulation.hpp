@@ -46,6 +46,12 @@ class BulletSimulation final : public Simulation {
   double agent_timestep() const override { return config_.physics_timestep * config_.nb_substeps; }
 
   const BulletConfig& config() const { return config_; }
+
+  /// Replaces the servo law gains kp and kd (the public Bullet spine takes them from each
+  /// Start configuration); they apply from the next step.
+  /// @throws std::invalid_argument when a gain is negative or not finite.
+  void set_servo_gains(const ServoGains& gains);
+  ServoGains servo_gains() const { return {config_.kp, config_.kd}; }
   const RobotModel& model() const { return *model_; }
 
   /// Physics steps taken since construction (for throughput measurements).

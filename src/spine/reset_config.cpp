@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "sim/msgpack_float64.hpp"
 #include "spine/spine_error.hpp"
@@ -126,6 +127,27 @@ ResetState reset_state_from_config(const Dictionary& config) {
     state.orientation_base_in_world = q.normalized();
   }
   return state;
+}
+
+ServoGains servo_gains_from_config(const Dictionary& config, const ServoGains& defaults) {
+  ServoGains gains = defaults;
+  if (!config.has("bullet") || !config.at("bullet").has("torque_control")) return gains;
+  const Dictionary& torque_control = config.at("bullet").at("torque_control");
+  if (!torque_control.is_map()) {
+    throw SpineError("spine configuration 'bullet.torque_control' is not a map");
+  }
+  for (auto [key, gain] : {std::pair{"kp", &gains.kp}, std::pair{"kd", &gains.kd}}) {
+    if (!torque_control.has(key)) continue;
+    const Dictionary& value = torque_control.at(key);
+    const bool is_number =
+        value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat;
+    if (!is_number || !std::isfinite(value.as_number()) || value.as_number() < 0.0) {
+      throw SpineError("spine configuration 'bullet.torque_control." + std::string(key) +
+                       "' must be a finite non-negative number");
+    }
+    *gain = value.as_number();
+  }
+  return gains;
 }
 
 }  // namespace upkie_rl

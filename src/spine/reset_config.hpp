@@ -7,6 +7,7 @@
 #include <msgpack.hpp>
 
 #include "sim/reset_state.hpp"
+#include "sim/servo_law.hpp"
 #include "spine/dictionary.hpp"
 
 namespace upkie_rl {
@@ -34,5 +35,11 @@ void write_start_config_msgpack(const ResetState& state, const SpineStartParamet
 /// @throws SpineError naming the key with a wrong type, length, a non-finite value or a
 ///         zero quaternion.
 ResetState reset_state_from_config(const Dictionary& config);
+
+/// The servo gains in a spine configuration: bullet.torque_control.kp and .kd, each
+/// replacing its value in `defaults` when present (the public Bullet spine reads them at
+/// every Start).
+/// @throws SpineError naming the key that is not a finite non-negative number.
+ServoGains servo_gains_from_config(const Dictionary& config, const ServoGains& defaults);
 
 }  // namespace upkie_rl

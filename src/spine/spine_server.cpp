@@ -24,10 +24,11 @@ constexpr auto kIdleSleep = std::chrono::microseconds(50);
 }  // namespace
 
 SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config,
-                         BrakeStep brake_step)
+                         BrakeStep brake_step, GainsSetter set_servo_gains)
     : simulation_(simulation),
       config_(config),
       brake_step_(std::move(brake_step)),
+      set_servo_gains_(std::move(set_servo_gains)),
       memory_(SharedMemory::create(config.shm_name, config.shm_size)),
       machine_(config.nb_stop_cycles),
       unpacker_(memory_.max_payload_size()),
@@ -98,6 +99,7 @@ void SpineServer::reset_from_payload() {
   configuration_.clear();
   configuration_.update(unpacker_.unpack(memory_.payload()));
   const ResetState state = reset_state_from_config(configuration_);
+  const ServoGains gains = servo_gains_from_config(configuration_, config_.default_servo_gains);
 
   // The action is reset to the defaults, which also fixes every field's type to float.
   action_dictionary_.clear();
@@ -105,6 +107,7 @@ void SpineServer::reset_from_payload() {
   write_servo_action_msgpack(action_, buffer_);
   action_dictionary_.update(unpacker_.unpack({buffer_.data(), buffer_.size()}));
 
+  if (set_servo_gains_) set_servo_gains_(gains);
   simulation_.reset(state);
   simulation_ready_ = true;
 }

@@ -10,6 +10,7 @@
 #include <msgpack.hpp>
 #include <string>
 
+#include "sim/servo_law.hpp"
 #include "sim/simulation.hpp"
 #include "spine/dictionary.hpp"
 #include "spine/payload_unpacker.hpp"
@@ -37,6 +38,9 @@ struct SpineServerConfig {
   /// Torque clamp of the stop command [N.m] (the simulation's effort clamp applies on top).
   double brake_maximum_torque = 100.0;
   int nb_stop_cycles = SpineStateMachine::kDefaultNbStopCycles;
+  /// Servo gains given to the simulation at a Start whose configuration has no
+  /// bullet.torque_control (the configuration is replaced at each Start, not merged).
+  ServoGains default_servo_gains{};
 };
 
 /// Serves a Simulation over the spine link. Creates the shared memory at construction
@@ -50,14 +54,21 @@ class SpineServer {
   /// Steps the simulation once with every joint braked (e.g. BulletSimulation's
   /// step_braked(), which brakes beyond the servo effort clamp).
   using BrakeStep = std::function<void()>;
+  /// Gives the simulation the servo gains of a Start configuration (e.g. BulletSimulation's
+  /// set_servo_gains()).
+  using GainsSetter = std::function<void(const ServoGains&)>;
 
   /// @param simulation Backend served; must outlive the server.
   /// @param brake_step How stopped joints are stepped in real-time mode; when empty, the
   ///        simulation steps with a stop command per joint (position NaN, velocity 0,
   ///        kd_scale brake_kd_scale, maximum_torque brake_maximum_torque), which the
   ///        simulation's servo law clamps to the joint effort.
+  /// @param set_servo_gains Called at each Start with bullet.torque_control's kp and kd
+  ///        (or SpineServerConfig::default_servo_gains); when empty, the gains of the
+  ///        simulation stay as they are and those of the configuration are ignored.
   /// @throws SpineError when the shared memory cannot be created.
-  SpineServer(Simulation& simulation, const SpineServerConfig& config, BrakeStep brake_step = {});
+  SpineServer(Simulation& simulation, const SpineServerConfig& config, BrakeStep brake_step = {},
+              GainsSetter set_servo_gains = {});
 
   /// Runs one cycle (no waiting).
   void cycle();
@@ -89,6 +100,7 @@ class SpineServer {
   Simulation& simulation_;
   SpineServerConfig config_;
   BrakeStep brake_step_;
+  GainsSetter set_servo_gains_;
   SharedMemory memory_;
   SpineStateMachine machine_;
   PayloadUnpacker unpacker_;

@@ -111,24 +111,43 @@ TEST(SpineCommand, OnRequestSpineMatchesInProcessBullet) {
   const Observation& local_first = local.reset(state);
   EXPECT_EQ(remote_first.sim_base.position, local_first.sim_base.position);
 
-  double max_difference = 0.0;
-  for (int step = 0; step < 200; ++step) {
-    const Observation& remote = backend.step(test_action(step));
-    const Observation& expected = local.step(test_action(step));
-    ASSERT_NEAR(remote.time, expected.time, 1e-12);
-    for (std::size_t i = 0; i < kNumServos; ++i) {
+  // Largest difference of joint positions, torques, pitch and base position between two
+  // simulations over `nb_steps` steps of the same commands.
+  const auto max_difference_over = [](Simulation& first, Simulation& second, int nb_steps) {
+    double max_difference = 0.0;
+    for (int step = 0; step < nb_steps; ++step) {
+      const Observation& a = first.step(test_action(step));
+      const Observation& b = second.step(test_action(step));
+      EXPECT_NEAR(a.time, b.time, 1e-12);
+      for (std::size_t i = 0; i < kNumServos; ++i) {
+        max_difference =
+            std::max(max_difference, std::abs(a.servo[i].position - b.servo[i].position));
+        max_difference = std::max(max_difference, std::abs(a.servo[i].torque - b.servo[i].torque));
+      }
       max_difference =
-          std::max(max_difference, std::abs(remote.servo[i].position - expected.servo[i].position));
-      max_difference =
-          std::max(max_difference, std::abs(remote.servo[i].torque - expected.servo[i].torque));
+          std::max(max_difference, std::abs(a.base_orientation.pitch - b.base_orientation.pitch));
+      max_difference = std::max(max_difference, (a.sim_base.position - b.sim_base.position).norm());
     }
-    max_difference = std::max(
-        max_difference, std::abs(remote.base_orientation.pitch - expected.base_orientation.pitch));
-    max_difference =
-        std::max(max_difference, (remote.sim_base.position - expected.sim_base.position).norm());
-  }
+    return max_difference;
+  };
   // Same code, same commands, float64 on the wire: the trajectories are identical.
-  EXPECT_EQ(max_difference, 0.0);
+  EXPECT_EQ(max_difference_over(backend, local, 200), 0.0);
+
+  // The servo gains of the Start configuration reach the spine's simulation.
+  SpineBackendConfig soft_config = config;
+  soft_config.start_parameters.kp = 12.0;
+  soft_config.start_parameters.kd = 0.6;
+  SpineBackend soft_backend(soft_config);
+  BulletConfig soft_bullet;
+  soft_bullet.kp = 12.0;
+  soft_bullet.kd = 0.6;
+  BulletSimulation soft_local(RobotModel::default_model(), soft_bullet);
+  soft_backend.reset(state);
+  soft_local.reset(state);
+  EXPECT_EQ(max_difference_over(soft_backend, soft_local, 100), 0.0);
+  soft_local.reset(state);
+  local.reset(state);
+  EXPECT_GT(max_difference_over(soft_local, local, 100), 1e-3);  // the gains matter
 
   spine.signal(SIGTERM);
   EXPECT_EQ(spine.exit_code(), 0);

@@ -100,6 +100,26 @@ TEST(BulletSimulationTest, FeedforwardTorqueIsReported) {
   EXPECT_NEAR(simulation.observation().servo[kRightKnee].torque, 0.0, 1e-12);
 }
 
+TEST(BulletSimulationTest, ServoGainsCanBeReplaced) {
+  BulletConfig config;
+  config.nb_substeps = 1;  // the reported torque is the law's at the reset state
+  BulletSimulation simulation(model(), config);
+  ServoAction action = limp_action();
+  action[kLeftKnee].position = 0.1;
+  action[kLeftKnee].kp_scale = 1.0;
+  const auto knee_torque = [&] {
+    simulation.reset(ResetState{});
+    return simulation.step(action).servo[kLeftKnee].torque;
+  };
+  EXPECT_NEAR(knee_torque(), 20.0 * 0.1, 1e-12);
+  simulation.set_servo_gains(ServoGains{5.0, 0.5});
+  EXPECT_DOUBLE_EQ(simulation.servo_gains().kd, 0.5);
+  EXPECT_NEAR(knee_torque(), 5.0 * 0.1, 1e-12);
+  EXPECT_THROW(simulation.set_servo_gains(ServoGains{-1.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(simulation.set_servo_gains(ServoGains{1.0, kNaN}), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(simulation.servo_gains().kp, 5.0);  // a refused change changes nothing
+}
+
 TEST(BulletSimulationTest, WheelInTheAirReachesCommandedVelocity) {
   // A free wheel has spin inertia I = 2.6e-4 kg.m^2: the servo law evaluated every 1 ms has
   // loop gain kd*kd_scale*dt/I, stable below 2. At kd_scale 1 (gain 3.8) a wheel in the air

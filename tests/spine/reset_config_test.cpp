@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "message_builder.hpp"
 #include "spine/spine_error.hpp"
 
@@ -87,6 +90,56 @@ TEST(ResetConfig, BadValuesAreNamed) {
   not_finite.map(1).key("bullet").map(1).key("reset").map(1).key("position_base_in_world");
   not_finite.array(3).real(0).real(std::nan("")).real(0);
   EXPECT_NE(error_of(not_finite).find("non-finite"), std::string::npos);
+}
+
+TEST(ResetConfig, ServoGainsComeFromTorqueControl) {
+  SpineStartParameters parameters;
+  parameters.kp = 12.5;
+  parameters.kd = 0.75;
+  msgpack::sbuffer buffer;
+  write_start_config_msgpack(ResetState{}, parameters, buffer);
+  Dictionary config;
+  config.update(msgpack::unpack(buffer.data(), buffer.size()).get());
+  const ServoGains gains = servo_gains_from_config(config, ServoGains{20.0, 1.0});
+  EXPECT_DOUBLE_EQ(gains.kp, 12.5);
+  EXPECT_DOUBLE_EQ(gains.kd, 0.75);
+
+  // Absent keys keep the defaults; an integer gain is a number too.
+  testing::MessageBuilder only_kp;
+  only_kp.map(1).key("bullet").map(1).key("torque_control").map(1).key("kp").integer(30);
+  Dictionary partial;
+  partial.update(only_kp.object().get());
+  const ServoGains partial_gains = servo_gains_from_config(partial, ServoGains{20.0, 1.0});
+  EXPECT_DOUBLE_EQ(partial_gains.kp, 30.0);
+  EXPECT_DOUBLE_EQ(partial_gains.kd, 1.0);
+  EXPECT_DOUBLE_EQ(servo_gains_from_config(Dictionary{}, ServoGains{3.0, 4.0}).kd, 4.0);
+}
+
+TEST(ResetConfig, BadServoGainsAreNamed) {
+  const auto error_of = [](testing::MessageBuilder& message) -> std::string {
+    Dictionary config;
+    config.update(message.object().get());
+    try {
+      servo_gains_from_config(config, ServoGains{});
+    } catch (const SpineError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  testing::MessageBuilder negative;
+  negative.map(1).key("bullet").map(1).key("torque_control").map(1).key("kd").real(-1.0);
+  EXPECT_NE(error_of(negative).find("'bullet.torque_control.kd' must be a finite non-negative"),
+            std::string::npos);
+  testing::MessageBuilder not_finite;
+  not_finite.map(1).key("bullet").map(1).key("torque_control").map(1).key("kp");
+  not_finite.real(std::numeric_limits<double>::infinity());
+  EXPECT_NE(error_of(not_finite).find("torque_control.kp"), std::string::npos);
+  testing::MessageBuilder text;
+  text.map(1).key("bullet").map(1).key("torque_control").map(1).key("kp").string("high");
+  EXPECT_NE(error_of(text).find("torque_control.kp"), std::string::npos);
+  testing::MessageBuilder not_a_map;
+  not_a_map.map(1).key("bullet").map(1).key("torque_control").real(1.0);
+  EXPECT_NE(error_of(not_a_map).find("'bullet.torque_control' is not a map"), std::string::npos);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "fake_simulation.hpp"
 #include "message_builder.hpp"
@@ -202,6 +203,48 @@ TEST(SpineServer, BrakeStepReplacesStopCommands) {
   for (int i = 0; i < 5; ++i) server.cycle();
   EXPECT_EQ(brake_steps, 8);  // Shutdown brakes too
   EXPECT_EQ(server.state(), SpineState::kOver);
+}
+
+TEST(SpineServer, EachStartGivesTheSimulationItsServoGains) {
+  FakeSimulation simulation;
+  SpineServerConfig config;
+  config.shm_name = testing::unique_shm_name("gains");
+  config.default_servo_gains = ServoGains{20.0, 1.0};
+  std::vector<ServoGains> received;
+  SpineServer server(simulation, config, {},
+                     [&received](const ServoGains& gains) { received.push_back(gains); });
+  SharedMemory agent = SharedMemory::open(config.shm_name);
+  const auto start_with = [&](const std::string& payload) {
+    agent.write_payload({payload.data(), payload.size()});
+    agent.set_request(Request::kStart);
+    for (int i = 0; i < 7 && agent.request() != kNone; ++i) server.cycle();
+    ASSERT_EQ(server.state(), SpineState::kIdle);
+    agent.set_request(Request::kStop);
+    server.cycle();
+  };
+  SpineStartParameters parameters;
+  parameters.kp = 8.0;
+  parameters.kd = 0.5;
+  msgpack::sbuffer start;
+  write_start_config_msgpack(ResetState{}, parameters, start);
+  start_with(std::string(start.data(), start.size()));
+  start_with("\x80");  // {}: no torque_control, back to the defaults
+  ASSERT_EQ(received.size(), 2u);
+  EXPECT_DOUBLE_EQ(received[0].kp, 8.0);
+  EXPECT_DOUBLE_EQ(received[0].kd, 0.5);
+  EXPECT_DOUBLE_EQ(received[1].kp, 20.0);
+  EXPECT_DOUBLE_EQ(received[1].kd, 1.0);
+
+  // A negative gain is bad input: Shutdown, the simulation untouched.
+  MessageBuilder negative;
+  negative.map(1).key("bullet").map(1).key("torque_control").map(1).key("kp").real(-2.0);
+  const std::string bad = negative.bytes();
+  agent.write_payload({bad.data(), bad.size()});
+  agent.set_request(Request::kStart);
+  for (int i = 0; i < 7 && server.state() != SpineState::kShutdown; ++i) server.cycle();
+  EXPECT_EQ(server.state(), SpineState::kShutdown);
+  EXPECT_NE(server.error().find("torque_control.kp"), std::string::npos) << server.error();
+  EXPECT_EQ(received.size(), 2u);
 }
 
 TEST_F(SpineServerTest, StartWhileIdleIsIgnoredAndCleared) {
