@@ -80,7 +80,7 @@ format:
 	find src tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
 
 tidy: configure
-	find src -name '*.cpp' | xargs clang-tidy -p $(BUILD_DIR) --quiet
+	find src -name '*.cpp' | xargs -P $(JOBS) -n 4 clang-tidy -p $(BUILD_DIR) --quiet 2>/dev/null
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_DIR)

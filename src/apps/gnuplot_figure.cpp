@@ -43,7 +43,7 @@ std::string find_gnuplot() {
   std::stringstream directories(path != nullptr ? path : "/usr/bin:/bin");
   for (std::string directory; std::getline(directories, directory, ':');) {
     if (directory.empty()) continue;
-    const std::string candidate = directory + "/gnuplot";
+    std::string candidate = directory + "/gnuplot";
     if (access(candidate.c_str(), X_OK) == 0) return candidate;
   }
   throw std::runtime_error(

@@ -7,7 +7,9 @@
 
 #include "apps/commands.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{
       "upkie-rl: simulate, train, evaluate and deploy balance controllers for Upkie, "
       "the open-source wheeled biped."};
@@ -23,9 +25,20 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
-  } catch (const std::exception& error) {
-    std::cerr << "upkie-rl: error: " << error.what() << std::endl;
-    return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Every failure, setting up the commands included, ends as one line and status 1.
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::cerr << "upkie-rl: error: " << error.what() << std::endl;
+  } catch (...) {
+    std::cerr << "upkie-rl: error: unknown exception" << std::endl;
+  }
+  return 1;
 }

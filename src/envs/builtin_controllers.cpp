@@ -77,9 +77,10 @@ void LinearController::act(std::span<const float> observation, std::span<float> 
 
 std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, const Env& env) {
   if (spec == "zero") return std::make_unique<ZeroController>(env);
-  constexpr std::string_view linear = "linear:";
-  if (spec.rfind(linear, 0) == 0) {
-    return std::make_unique<LinearController>(env, parse_gains(spec, spec.substr(linear.size())));
+  constexpr std::string_view kLinearPrefix = "linear:";
+  if (spec.rfind(kLinearPrefix, 0) == 0) {
+    return std::make_unique<LinearController>(env,
+                                              parse_gains(spec, spec.substr(kLinearPrefix.size())));
   }
   throw std::invalid_argument("unknown controller \"" + spec + "\"; " + kValidSpecs);
 }

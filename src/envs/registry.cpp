@@ -54,11 +54,11 @@ std::string registered_list() {
 }
 
 EnvId parse_id(const std::string& id) {
-  constexpr std::string_view prefix = "Upkie-";
+  constexpr std::string_view kPrefix = "Upkie-";
   const std::string_view view(id);
-  const std::size_t dash = view.find('-', prefix.size());
-  if (view.substr(0, prefix.size()) == prefix && dash != std::string_view::npos) {
-    std::string_view backend = view.substr(prefix.size(), dash - prefix.size());
+  const std::size_t dash = view.find('-', kPrefix.size());
+  if (view.substr(0, kPrefix.size()) == kPrefix && dash != std::string_view::npos) {
+    std::string_view backend = view.substr(kPrefix.size(), dash - kPrefix.size());
     const std::string_view kind = view.substr(dash + 1);
     if (backend == "PyBullet") backend = "Bullet";
     for (const BackendName& b : kBackends) {

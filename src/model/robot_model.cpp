@@ -274,10 +274,9 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
           centre = (poses[link_index] * shape.pose_in_link).translation();
         }
       }
-      for (std::size_t j = 0; j < model.joints_.size(); ++j) {
-        if (model.joints_[j].parent_link == link_index &&
-            model.joints_[j].type == Joint::Type::kFixed) {
-          visit(model.joints_[j].child_link);
+      for (const Joint& joint : model.joints_) {
+        if (joint.parent_link == link_index && joint.type == Joint::Type::kFixed) {
+          visit(joint.child_link);
         }
       }
     };
@@ -320,9 +319,9 @@ std::filesystem::path RobotModel::default_urdf_path() {
 }
 
 std::shared_ptr<const RobotModel> RobotModel::default_model() {
-  static const std::shared_ptr<const RobotModel> model =
+  static const std::shared_ptr<const RobotModel> kModel =
       std::make_shared<const RobotModel>(from_urdf_file(default_urdf_path()));
-  return model;
+  return kModel;
 }
 
 std::optional<int> RobotModel::find_link(const std::string& name) const {

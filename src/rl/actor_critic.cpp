@@ -29,7 +29,7 @@ std::int64_t count_parameters(std::int64_t observation_size, std::int64_t action
          mlp_size(observation_size, config.critic_hidden_sizes, 1) + action_size;
 }
 
-void orthogonal_init(torch::Tensor tensor, double gain, at::Generator& generator) {
+void orthogonal_init(const torch::Tensor& tensor, double gain, at::Generator& generator) {
   torch::NoGradGuard no_grad;
   const std::int64_t rows = tensor.size(0);
   const std::int64_t columns = tensor.numel() / rows;
@@ -76,7 +76,7 @@ std::vector<DenseLayer> ActorCritic::make_mlp(const std::string& name, std::int6
                                               std::int64_t output_size, std::int64_t& offset) {
   // Each parameter is a standalone leaf whose storage is moved into the flat buffers, so
   // autograd accumulates gradients straight into flat_gradients_.
-  auto make = [&](const std::string& parameter_name, std::vector<std::int64_t> shape) {
+  auto make = [&](const std::string& parameter_name, const std::vector<std::int64_t>& shape) {
     std::int64_t numel = 1;
     for (std::int64_t size : shape) numel *= size;
     torch::Tensor parameter = register_parameter(parameter_name, torch::zeros(shape));

@@ -87,7 +87,7 @@ std::int64_t count_parameters(std::int64_t observation_size, std::int64_t action
 
 /// Fills `tensor` (2-D) with a (semi-)orthogonal matrix times `gain`, like
 /// torch.nn.init.orthogonal_, drawing from `generator`.
-void orthogonal_init(torch::Tensor tensor, double gain, at::Generator& generator);
+void orthogonal_init(const torch::Tensor& tensor, double gain, at::Generator& generator);
 
 /// Runs the actor and critic on a fixed batch of observations without autograd and
 /// without allocating: every intermediate tensor is made once, in the constructor. This is

@@ -117,6 +117,7 @@ ScalarTable read_scalar_csv(const std::filesystem::path& path) {
                                " cells, got " + std::to_string(cells.size()));
     }
     std::vector<double> row;
+    row.reserve(cells.size());
     for (const std::string& cell : cells) row.push_back(parse_cell(cell, where));
     table.rows.push_back(std::move(row));
   }

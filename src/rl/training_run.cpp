@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "rl/checkpoint.hpp"
 #include "rl/observation_normalizer.hpp"
@@ -90,9 +91,8 @@ TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::pa
   if (!file) throw std::runtime_error("cannot write " + (run_dir_ / "config.yaml").string());
 }
 
-TrainingRun::TrainingRun(ResumeTag, const TrainingConfig& config,
-                         const std::filesystem::path& run_dir)
-    : config_(config), run_dir_(run_dir) {
+TrainingRun::TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path run_dir)
+    : config_(std::move(config)), run_dir_(std::move(run_dir)) {
   config_.validate();
   // The networks are tiny (minibatches of 128 through 64x64 layers): intra-op threads
   // would cost more in synchronisation than they save, and the cores are needed by the
@@ -164,7 +164,7 @@ void TrainingRun::save_checkpoint_now() {
 std::filesystem::path TrainingRun::save_final_model() {
   const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
   const std::string stem = "model_" + timestamp();
-  const std::filesystem::path path = run_dir_ / (stem + ".ckpt");
+  std::filesystem::path path = run_dir_ / (stem + ".ckpt");
   save_checkpoint(make_ppo_checkpoint(*ppo_, normalize_->state(), extra), path);
   torchscript_path_ = run_dir_ / (stem + ".pt");
   export_torchscript(

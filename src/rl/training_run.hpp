@@ -71,7 +71,7 @@ class TrainingRun {
 
  private:
   struct ResumeTag {};
-  TrainingRun(ResumeTag, const TrainingConfig& config, const std::filesystem::path& run_dir);
+  TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path run_dir);
   void make_learner();
   void save_checkpoint_now();
   std::uint64_t segment_seed() const;

@@ -9,7 +9,7 @@
 namespace upkie_rl {
 namespace {
 
-constexpr std::size_t kZoneChunkSize = 64 * 1024;
+constexpr std::size_t kZoneChunkSize = std::size_t{64} * 1024;
 
 /// A recursive-descent msgpack decoder building msgpack::object trees in a zone, with
 /// strings and binaries pointing into the decoded bytes. msgpack-cxx's own unpack
