@@ -32,10 +32,10 @@ ThreadPoolVectorEnv::ThreadPoolVectorEnv(std::vector<std::unique_ptr<Env>> envs,
                                 std::to_string(batch_.size()) + "], got " +
                                 std::to_string(threads));
   }
-  errors_.resize(num_threads_);
+  errors_.resize(batch_.size());
   threads_.reserve(num_threads_ - 1);
   for (std::size_t worker = 1; worker < num_threads_; ++worker) {
-    threads_.emplace_back([this, worker] { worker_loop(worker); });
+    threads_.emplace_back([this] { worker_loop(); });
   }
 }
 
@@ -46,27 +46,30 @@ ThreadPoolVectorEnv::~ThreadPoolVectorEnv() {
   for (std::thread& thread : threads_) thread.join();
 }
 
-void ThreadPoolVectorEnv::work(std::size_t worker) {
-  const std::size_t begin = block_begin(worker);
-  const std::size_t end = block_begin(worker + 1);
-  try {
-    if (task_ == Task::kReset) {
-      batch_.reset(begin, end, seed_);
-    } else {
-      batch_.step(begin, end, actions_);
+void ThreadPoolVectorEnv::work() {
+  // Relaxed is enough to hand out indices: the environment data each one touches is
+  // published by generation_ (caller to workers) and pending_ (workers to caller).
+  for (std::size_t i = next_env_.fetch_add(1, std::memory_order_relaxed); i < batch_.size();
+       i = next_env_.fetch_add(1, std::memory_order_relaxed)) {
+    try {
+      if (task_ == Task::kReset) {
+        batch_.reset(i, i + 1, seed_);
+      } else {
+        batch_.step(i, i + 1, actions_);
+      }
+    } catch (...) {
+      errors_[i] = std::current_exception();
     }
-  } catch (...) {
-    errors_[worker] = std::current_exception();
   }
 }
 
-void ThreadPoolVectorEnv::worker_loop(std::size_t worker) {
+void ThreadPoolVectorEnv::worker_loop() {
   std::uint64_t seen = 0;
   while (true) {
     spin_then_wait(generation_, [seen](std::uint64_t g) { return g != seen; });
     seen = generation_.load(std::memory_order_acquire);
     if (task_ == Task::kStop) return;
-    work(worker);
+    work();
     if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
   }
 }
@@ -74,10 +77,11 @@ void ThreadPoolVectorEnv::worker_loop(std::size_t worker) {
 void ThreadPoolVectorEnv::run(Task task) {
   task_ = task;
   for (auto& error : errors_) error = nullptr;
+  next_env_.store(0, std::memory_order_relaxed);
   pending_.store(num_threads_ - 1, std::memory_order_release);
   generation_.fetch_add(1, std::memory_order_acq_rel);
   generation_.notify_all();
-  work(0);
+  work();
   spin_then_wait(pending_, [](std::size_t p) { return p == 0; });
   for (const auto& error : errors_) {
     if (error) std::rethrow_exception(error);

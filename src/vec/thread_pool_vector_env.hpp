@@ -12,11 +12,13 @@
 
 namespace upkie_rl {
 
-/// Worker w always steps the same contiguous block of environments, [w·n/T, (w+1)·n/T);
-/// the calling thread is worker 0. Environments know nothing of threads, and each one is
-/// stepped exactly as SyncVectorEnv steps it, so results are bit-identical to it for the
-/// same seeds. An exception thrown by an environment is re-thrown by step()/reset() (the
-/// one of the lowest environment index), after every worker has finished.
+/// Workers (the calling thread is one of them) claim environments one at a time from a
+/// shared counter until all are stepped, so a slow environment (an auto-reset rebuilding
+/// its world, more contacts) or a busy core does not hold the others back. Environments
+/// know nothing of threads, and each one is stepped exactly as SyncVectorEnv steps it, so
+/// results are bit-identical to it for the same seeds whichever thread steps it. Every
+/// environment is stepped even when another throws; the exception of the lowest
+/// environment index is then re-thrown by step()/reset().
 class ThreadPoolVectorEnv final : public VectorEnv {
  public:
   /// @param threads Number of workers including the caller, in [1, envs.size()].
@@ -38,12 +40,9 @@ class ThreadPoolVectorEnv final : public VectorEnv {
  private:
   enum class Task { kReset, kStep, kStop };
 
-  void run(Task task);            // Runs `task` on every worker and waits.
-  void work(std::size_t worker);  // Does the current task for one worker's block.
-  void worker_loop(std::size_t worker);
-  std::size_t block_begin(std::size_t worker) const {
-    return worker * batch_.size() / num_threads_;
-  }
+  void run(Task task);  // Runs `task` on every worker and waits.
+  void work();          // Claims and processes environments until none is left.
+  void worker_loop();
 
   EnvBatch batch_;
   std::size_t num_threads_;
@@ -52,7 +51,8 @@ class ThreadPoolVectorEnv final : public VectorEnv {
   Task task_ = Task::kStep;
   std::uint64_t seed_ = 0;
   std::span<const float> actions_;
-  std::vector<std::exception_ptr> errors_;  // One per worker.
+  std::vector<std::exception_ptr> errors_;  // One per environment.
+  std::atomic<std::size_t> next_env_{0};    // Next environment to claim.
   std::atomic<std::uint64_t> generation_{0};
   std::atomic<std::size_t> pending_{0};
 };

@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "vec/counting_env.hpp"
 #include "vec/make_vector_env.hpp"
@@ -79,11 +80,29 @@ TEST(ThreadPoolVectorEnv, EnvErrorsAreRethrownAndThePoolStaysUsable) {
   for (int i = 0; i < 4; ++i) envs.push_back(std::make_unique<testing::CountingEnv>(3));
   ThreadPoolVectorEnv venv(std::move(envs), 2);
   venv.reset(0);
-  std::array<float, 4> actions{0.0f, 0.0f, 0.0f, std::numeric_limits<float>::infinity()};
-  EXPECT_THROW(venv.step(actions), std::invalid_argument);  // env 3, on the second worker
-  actions[3] = 1.0f;
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  // Envs 0 and 3 fail: the error of the lowest index (0, NaN) is re-thrown, whichever
+  // worker stepped which, and the other environments were stepped all the same.
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    std::array<float, 4> actions{kNaN, 0.5f, 0.5f, kInfinity};
+    try {
+      venv.step(actions);
+      FAIL() << "no error";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find("is NaN"), std::string::npos) << error.what();
+    }
+  }
+  std::array<float, 4> actions{0.0f, 0.0f, 0.0f, 1.0f};
   const VectorStep& step = venv.step(actions);
   EXPECT_EQ(step.rewards[3], 1.0f);
+  // Env 1 has taken 21 steps (episodes of 3): the 21st ended an episode and auto-reset.
+  // Env 0 refused its 20 NaN actions and has taken 1 step.
+  const std::size_t observation_size = venv.observation_space().size();
+  EXPECT_EQ(step.terminated[1], 1);
+  EXPECT_EQ(step.episode_lengths[1], 3);
+  EXPECT_EQ(step.observations[observation_size + 1], 0.0f);
+  EXPECT_EQ(step.observations[1], 1.0f);
 }
 
 TEST(ThreadPoolVectorEnv, RefusesBadThreadCounts) {
