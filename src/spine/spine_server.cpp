@@ -33,6 +33,7 @@ SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config
       machine_(config.nb_stop_cycles),
       unpacker_(memory_.max_payload_size()),
       action_(spine_default_servo_action()) {
+  publish_state();
   if (config.real_time && !(config.frequency > 0.0 && std::isfinite(config.frequency))) {
     throw SpineError("spine frequency must be positive and finite, got " +
                      std::to_string(config.frequency));
@@ -47,8 +48,13 @@ SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config
   }
 }
 
+void SpineServer::interrupt() {
+  machine_.on_interrupt();
+  publish_state();
+}
+
 void SpineServer::cycle() {
-  ++nb_cycles_;
+  nb_cycles_.fetch_add(1, std::memory_order_relaxed);
   if (machine_.is_over()) return;
   try {
     if (const auto request = machine_.on_cycle_beginning(memory_.request())) {
@@ -62,6 +68,7 @@ void SpineServer::cycle() {
     spdlog::error("spine: {}; shutting down", error_);
     machine_.on_interrupt();
   }
+  publish_state();
 }
 
 void SpineServer::process_state() {
@@ -83,7 +90,7 @@ void SpineServer::process_state() {
       if (config_.real_time && simulation_ready_) {
         if (brake_step_) {
           brake_step_();
-          ++nb_simulation_steps_;
+          nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
         } else {
           advance(stop_action_);
         }
@@ -119,7 +126,7 @@ void SpineServer::step_from_payload() {
 
 void SpineServer::advance(const ServoAction& action) {
   simulation_.step(action);
-  ++nb_simulation_steps_;
+  nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
 }
 
 void SpineServer::write_observation() {

@@ -77,18 +77,24 @@ class SpineServer {
   /// Shutdown as soon as `interrupt` becomes true (a signal handler may set it).
   void run(const std::atomic<bool>& interrupt);
 
-  /// Requests a Shutdown (as SIGINT does).
-  void interrupt() { machine_.on_interrupt(); }
+  /// Requests a Shutdown (as SIGINT does), from the thread that cycles; other threads
+  /// use run()'s `interrupt` flag.
+  void interrupt();
 
-  SpineState state() const { return machine_.state(); }
+  /// State at the end of the last cycle. Safe to read from any thread, as are
+  /// nb_cycles() and nb_simulation_steps(); the other accessors belong to the thread
+  /// that cycles (or to anyone once run() has returned).
+  SpineState state() const { return published_state_.load(std::memory_order_acquire); }
   const SharedMemory& memory() const { return memory_; }
   /// The action currently applied (spine.md defaults after a reset).
   const ServoAction& action() const { return action_; }
   /// Message of the exception that shut the spine down, empty if none.
   const std::string& error() const { return error_; }
   /// Cycles run so far, and simulation step() calls so far.
-  std::uint64_t nb_cycles() const { return nb_cycles_; }
-  std::uint64_t nb_simulation_steps() const { return nb_simulation_steps_; }
+  std::uint64_t nb_cycles() const { return nb_cycles_.load(std::memory_order_relaxed); }
+  std::uint64_t nb_simulation_steps() const {
+    return nb_simulation_steps_.load(std::memory_order_relaxed);
+  }
 
  private:
   void process_state();
@@ -96,6 +102,7 @@ class SpineServer {
   void step_from_payload();
   void advance(const ServoAction& action);
   void write_observation();
+  void publish_state() { published_state_.store(machine_.state(), std::memory_order_release); }
 
   Simulation& simulation_;
   SpineServerConfig config_;
@@ -111,8 +118,9 @@ class SpineServer {
   msgpack::sbuffer buffer_;
   bool simulation_ready_ = false;
   std::string error_;
-  std::uint64_t nb_cycles_ = 0;
-  std::uint64_t nb_simulation_steps_ = 0;
+  std::atomic<SpineState> published_state_;
+  std::atomic<std::uint64_t> nb_cycles_{0};
+  std::atomic<std::uint64_t> nb_simulation_steps_{0};
 };
 
 }  // namespace upkie_rl
