@@ -1,11 +1,12 @@
 # upkie-rl: the two-command quick start is `make train` and `make test`.
 BUILD_DIR ?= build
 SANITIZE_DIR ?= build-sanitize
+TSAN_DIR ?= build-tsan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 PYTHON ?= python3
 
-.PHONY: all deps configure build test test-cpp test-python bench train sanitize fuzz format tidy clean
+.PHONY: all deps configure build test test-cpp test-python bench train sanitize sanitize-thread fuzz format tidy clean
 
 all: build
 
@@ -59,6 +60,11 @@ sanitize: deps
 	cmake --build $(SANITIZE_DIR) -j $(JOBS)
 	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS)
 
+sanitize-thread: deps
+	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE_THREAD=ON -DUPKIE_RL_BUILD_BENCH=OFF
+	cmake --build $(TSAN_DIR) -j $(JOBS)
+	cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS)
+
 # libFuzzer + ASan on the spine's message decoding and server cycle; FUZZ_RUNS inputs each.
 FUZZ_DIR ?= build-fuzz
 FUZZ_RUNS ?= 1000000
@@ -83,4 +89,4 @@ tidy: configure
 	find src -name '*.cpp' | xargs -P $(JOBS) -n 4 clang-tidy -p $(BUILD_DIR) --quiet 2>/dev/null
 
 clean:
-	rm -rf $(BUILD_DIR) $(SANITIZE_DIR)
+	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(TSAN_DIR)
