@@ -259,7 +259,7 @@ BulletSimulation::BulletSimulation(std::shared_ptr<const RobotModel> model,
 BulletSimulation::~BulletSimulation() = default;
 
 void BulletSimulation::set_servo_gains(const ServoGains& gains) {
-  if (!(std::isfinite(gains.kp) && gains.kp >= 0.0 && std::isfinite(gains.kd) && gains.kd >= 0.0)) {
+  if (!is_valid_servo_gain(gains.kp) || !is_valid_servo_gain(gains.kd)) {
     throw std::invalid_argument("servo gains must be finite and non-negative, got kp " +
                                 std::to_string(gains.kp) + " and kd " + std::to_string(gains.kd));
   }

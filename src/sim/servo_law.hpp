@@ -15,6 +15,9 @@ struct ServoGains {
   double kd = 1.0;   ///< [N.m.s/rad]
 };
 
+/// Whether `gain` can be a servo gain (kp or kd): finite and non-negative.
+inline bool is_valid_servo_gain(double gain) { return std::isfinite(gain) && gain >= 0.0; }
+
 /// Torque [N.m] the servo applies for `command` at joint angle `position` [rad] and
 /// velocity `velocity` [rad/s]:
 /// clamp(tau_ff + kp*kp_scale*(q* - q) + kd*kd_scale*(qdot* - qdot), +-min(max_torque, effort)),

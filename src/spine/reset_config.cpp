@@ -141,7 +141,7 @@ ServoGains servo_gains_from_config(const Dictionary& config, const ServoGains& d
     const Dictionary& value = torque_control.at(key);
     const bool is_number =
         value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat;
-    if (!is_number || !std::isfinite(value.as_number()) || value.as_number() < 0.0) {
+    if (!is_number || !is_valid_servo_gain(value.as_number())) {
       throw SpineError("spine configuration 'bullet.torque_control." + std::string(key) +
                        "' must be a finite non-negative number");
     }
