@@ -4,17 +4,19 @@ SANITIZE_DIR ?= build-sanitize
 TSAN_DIR ?= build-tsan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
-PYTHON ?= python3
+# Debian's interpreter: it has python3-torch (SB3, TorchScript checks); the extension
+# module is built for it.
+PYTHON ?= /usr/bin/python3
 
 .PHONY: all deps configure build test test-cpp test-python bench train sanitize sanitize-thread fuzz format tidy clean
 
 all: build
 
 deps:
-	bash scripts/install-deps.sh
+	PYTHON=$(PYTHON) bash scripts/install-deps.sh
 
 $(BUILD_DIR)/build.ninja:
-	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=$(PYTHON) $(CMAKE_FLAGS)
 
 configure: $(BUILD_DIR)/build.ninja
 
@@ -26,7 +28,8 @@ test-cpp:
 
 test-python:
 	@if ls python/tests/test_*.py >/dev/null 2>&1; then \
-	  UPKIE_RL_BUILD_DIR=$(abspath $(BUILD_DIR)) $(PYTHON) -m pytest -q python/tests; \
+	  UPKIE_RL_BUILD_DIR=$(abspath $(BUILD_DIR)) PYTHONPATH=$(abspath $(BUILD_DIR))/python \
+	    $(PYTHON) -m pytest -q python/tests; \
 	else echo "no Python tests yet"; fi
 
 test: build

@@ -10,9 +10,22 @@ DEBIAN_PACKAGES=(
   libmsgpack-cxx-dev libboost-dev nlohmann-json3-dev libcli11-dev libyaml-cpp-dev
   libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox fonts-liberation
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
+  python3-dev pybind11-dev  # the upkie_rl Python extension module
 )
-# upkie: the public agent side, for the spine interoperability tests.
-PYTHON_PACKAGES=(pytest numpy gymnasium msgpack upkie tensorboard)
+# Python packages as "module:requirement". They go to Debian's interpreter, whose
+# python3-torch SB3 needs (PyPI's torch is a multi-GB CUDA build). SB3 2.4.x is the last
+# release that accepts torch 1.13; it pins gymnasium < 1.1 and numpy < 2 (Debian's torch is
+# built against numpy 1.x). upkie: the public agent side, for the spine interoperability
+# tests.
+PYTHON_PACKAGES=(
+  "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium>=1.0,<1.1" "msgpack:msgpack"
+  "upkie:upkie" "tensorboard:tensorboard" "scikit_build_core:scikit-build-core"
+  "pybind11:pybind11" "cloudpickle:cloudpickle" "pandas:pandas" "matplotlib:matplotlib"
+)
+# Installed without their dependencies, which are listed above: Debian's torch calls
+# itself 1.13.0a0, a pre-release that SB3's "torch>=1.13" refuses, so pip would fetch
+# PyPI's torch instead.
+PYTHON_PACKAGES_NO_DEPS=("stable_baselines3:stable-baselines3==2.4.1")
 # Fuzzing (`make fuzz` sets UPKIE_RL_FUZZ=1): clang and its libFuzzer runtime.
 if [ "${UPKIE_RL_FUZZ:-0}" = "1" ]; then
   DEBIAN_PACKAGES+=(clang-14 libclang-rt-14-dev)
@@ -34,20 +47,32 @@ else
   echo "install-deps: Debian packages present"
 fi
 
-# Python test packages go to the interpreter that runs pytest (python3 on PATH).
-PYTHON="${PYTHON:-python3}"
+# Python packages go to the interpreter that builds the extension and runs pytest:
+# Debian's /usr/bin/python3 (the one with python3-torch), unless PYTHON says otherwise.
+PYTHON="${PYTHON:-/usr/bin/python3}"
 missing_python=()
-for package in "${PYTHON_PACKAGES[@]}"; do
-  if ! "$PYTHON" -c "import ${package}" 2>/dev/null; then missing_python+=("$package"); fi
+for entry in "${PYTHON_PACKAGES[@]}"; do
+  module="${entry%%:*}"
+  if ! "$PYTHON" -c "import ${module}" 2>/dev/null; then missing_python+=("${entry#*:}"); fi
 done
+missing_no_deps=()
+for entry in "${PYTHON_PACKAGES_NO_DEPS[@]}"; do
+  module="${entry%%:*}"
+  if ! "$PYTHON" -c "import ${module}" 2>/dev/null; then missing_no_deps+=("${entry#*:}"); fi
+done
+pip_flags=(--quiet --disable-pip-version-check)
+if "$PYTHON" -m pip install --help 2>/dev/null | grep -q -- --break-system-packages; then
+  # Debian's own interpreter is externally managed; a pyenv one is not, and ignores this.
+  pip_flags+=(--break-system-packages)
+fi
 if [ "${#missing_python[@]}" -gt 0 ]; then
   echo "install-deps: installing Python packages: ${missing_python[*]}"
-  pip_flags=(--quiet --disable-pip-version-check)
-  if "$PYTHON" -m pip install --help 2>/dev/null | grep -q -- --break-system-packages; then
-    # Debian's own interpreter is externally managed; a pyenv one is not, and ignores this.
-    pip_flags+=(--break-system-packages)
-  fi
-  "$PYTHON" -m pip install "${pip_flags[@]}" "${missing_python[@]}"
+  # numpy<2 always: pip must not upgrade the numpy Debian's torch was built against.
+  "$PYTHON" -m pip install "${pip_flags[@]}" "numpy<2" "${missing_python[@]}"
 else
   echo "install-deps: Python packages present"
+fi
+if [ "${#missing_no_deps[@]}" -gt 0 ]; then
+  echo "install-deps: installing Python packages without dependencies: ${missing_no_deps[*]}"
+  "$PYTHON" -m pip install "${pip_flags[@]}" --no-deps "${missing_no_deps[@]}"
 fi

@@ -29,7 +29,7 @@ GyropodEnv::GyropodEnv(std::unique_ptr<ServosEnv> servos, const GyropodConfig& c
   observation_space_.add("p", -kInf, kInf);
   observation_space_.add("theta", -pi, pi);
   observation_space_.add("psi", -kInf, kInf);
-  observation_space_.add("p_dot", -v_max, v_max);
+  observation_space_.add("p_dot", -kInf, kInf);  // Measured: overshoots the command bound.
   observation_space_.add("theta_dot", -kMaxPitchRate, kMaxPitchRate);
   observation_space_.add("psi_dot", -yaw_max, yaw_max);
   action_space_.add("ground_velocity", -v_max, v_max);

@@ -42,7 +42,9 @@ EnvOptions parse_env_options(const std::vector<std::string>& key_values) {
 
 void OptionTable::add_double(std::string name, double* target, double min, double max,
                              std::string help) {
-  Entry entry{std::move(name), std::move(help), format_double(*target), nullptr};
+  Entry entry{{std::move(name), OptionInfo::Type::kReal, std::move(help), format_double(*target),
+               min, max, {}},
+              nullptr};
   entry.parse = [target, min, max](const std::string& value, const std::string& where) {
     double parsed = 0.0;
     const char* end = value.data() + value.size();
@@ -60,7 +62,9 @@ void OptionTable::add_double(std::string name, double* target, double min, doubl
 }
 
 void OptionTable::add_int(std::string name, int* target, int min, int max, std::string help) {
-  Entry entry{std::move(name), std::move(help), std::to_string(*target), nullptr};
+  Entry entry{{std::move(name), OptionInfo::Type::kInteger, std::move(help),
+               std::to_string(*target), static_cast<double>(min), static_cast<double>(max), {}},
+              nullptr};
   entry.parse = [target, min, max](const std::string& value, const std::string& where) {
     int parsed = 0;
     const char* end = value.data() + value.size();
@@ -78,7 +82,8 @@ void OptionTable::add_int(std::string name, int* target, int min, int max, std::
 }
 
 void OptionTable::add_string(std::string name, std::string* target, std::string help) {
-  Entry entry{std::move(name), std::move(help), *target, nullptr};
+  Entry entry{{std::move(name), OptionInfo::Type::kText, std::move(help), *target, 0.0, 0.0, {}},
+              nullptr};
   entry.parse = [target](const std::string& value, const std::string& where) {
     if (value.empty()) throw std::invalid_argument(where + ": empty value");
     *target = value;
@@ -88,7 +93,9 @@ void OptionTable::add_string(std::string name, std::string* target, std::string 
 
 void OptionTable::add_choice(std::string name, std::vector<std::string> choices,
                              std::function<void(std::size_t)> set, std::string help) {
-  Entry entry{std::move(name), std::move(help) + " (" + join(choices, "|") + ")", choices.front(),
+  Entry entry{{std::move(name), OptionInfo::Type::kChoice,
+               std::move(help) + " (" + join(choices, "|") + ")", choices.front(), 0.0, 0.0,
+               choices},
               nullptr};
   entry.parse = [choices = std::move(choices), set = std::move(set)](const std::string& value,
                                                                      const std::string& where) {
@@ -105,7 +112,7 @@ void OptionTable::add_choice(std::string name, std::vector<std::string> choices,
 
 const OptionTable::Entry* OptionTable::find(const std::string& name) const {
   for (const Entry& entry : entries_) {
-    if (entry.name == name) return &entry;
+    if (entry.info.name == name) return &entry;
   }
   return nullptr;
 }
@@ -125,7 +132,8 @@ std::vector<std::string> OptionTable::describe() const {
   std::vector<std::string> lines;
   lines.reserve(entries_.size());
   for (const Entry& entry : entries_) {
-    lines.push_back(entry.name + ": " + entry.help + " (default " + entry.current + ")");
+    const OptionInfo& info = entry.info;
+    lines.push_back(info.name + ": " + info.help + " (default " + info.default_value + ")");
   }
   return lines;
 }
@@ -133,7 +141,14 @@ std::vector<std::string> OptionTable::describe() const {
 std::vector<std::string> OptionTable::names() const {
   std::vector<std::string> list;
   list.reserve(entries_.size());
-  for (const Entry& entry : entries_) list.push_back(entry.name);
+  for (const Entry& entry : entries_) list.push_back(entry.info.name);
+  return list;
+}
+
+std::vector<OptionInfo> OptionTable::info() const {
+  std::vector<OptionInfo> list;
+  list.reserve(entries_.size());
+  for (const Entry& entry : entries_) list.push_back(entry.info);
   return list;
 }
 

@@ -11,6 +11,18 @@
 
 namespace upkie_rl {
 
+/// What an option accepts, for listings and typed front ends (the Python keyword arguments).
+struct OptionInfo {
+  enum class Type { kReal, kInteger, kText, kChoice };
+  std::string name;
+  Type type = Type::kReal;
+  std::string help;
+  std::string default_value;         ///< As text, as `apply` would accept it.
+  double min = 0.0;                  ///< kReal and kInteger: lower bound.
+  double max = 0.0;                  ///< kReal and kInteger: upper bound.
+  std::vector<std::string> choices;  ///< kChoice: the accepted values, default first.
+};
+
 /// A table of named options, each bound to a typed field it writes.
 class OptionTable {
  public:
@@ -36,11 +48,12 @@ class OptionTable {
   /// The names of the options, in the order added.
   std::vector<std::string> names() const;
 
+  /// Every option's type, bounds, default and help, in the order added.
+  std::vector<OptionInfo> info() const;
+
  private:
   struct Entry {
-    std::string name;
-    std::string help;
-    std::string current;  // Default value, for listings.
+    OptionInfo info;
     std::function<void(const std::string& value, const std::string& where)> parse;
   };
   const Entry* find(const std::string& name) const;

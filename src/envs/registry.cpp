@@ -269,4 +269,9 @@ std::vector<std::string> env_option_help(const std::string& id) {
   return option_table(parse_id(id), settings).describe();
 }
 
+std::vector<OptionInfo> env_option_info(const std::string& id) {
+  EnvSettings settings;
+  return option_table(parse_id(id), settings).info();
+}
+
 }  // namespace upkie_rl

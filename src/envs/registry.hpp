@@ -15,6 +15,7 @@
 
 #include "envs/env.hpp"
 #include "envs/env_options.hpp"
+#include "envs/option_table.hpp"
 
 namespace upkie_rl {
 
@@ -33,5 +34,9 @@ EnvFactory make_env_factory(const std::string& id, const EnvOptions& options = {
 /// "name: help (default value)" for each option `id` accepts.
 /// @throws std::invalid_argument on an unknown id.
 std::vector<std::string> env_option_help(const std::string& id);
+
+/// The options `id` accepts, typed, with their defaults and bounds.
+/// @throws std::invalid_argument on an unknown id.
+std::vector<OptionInfo> env_option_info(const std::string& id);
 
 }  // namespace upkie_rl

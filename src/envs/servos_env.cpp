@@ -42,9 +42,12 @@ ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
     action.add(kServoActionKeys[3], 0.0f, gain);
     action.add(kServoActionKeys[4], 0.0f, gain);
     action.add(kServoActionKeys[5], 0.0f, effort);
+    // Measured positions and velocities are not bounded by the command limits: a joint
+    // overshoots its velocity limit after a position step, and Bullet lets a joint rest up to
+    // 0.05 rad past a limit. The bounds are what can be observed (Gymnasium checks it).
     BoxSpace observation;
-    observation.add(kServoObservationKeys[0], lower, upper);
-    observation.add(kServoObservationKeys[1], -velocity, velocity);
+    observation.add(kServoObservationKeys[0], -kInf, kInf);
+    observation.add(kServoObservationKeys[1], -kInf, kInf);
     observation.add(kServoObservationKeys[2], -effort, effort);
     observation.add(kServoObservationKeys[3], 0.0f, kMaxTemperature);
     observation.add(kServoObservationKeys[4], 0.0f, kMaxVoltage);

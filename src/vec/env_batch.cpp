@@ -6,7 +6,8 @@
 
 namespace upkie_rl {
 
-EnvBatch::EnvBatch(std::vector<std::unique_ptr<Env>> envs) : envs_(std::move(envs)) {
+EnvBatch::EnvBatch(std::vector<std::unique_ptr<Env>> envs, AutoresetMode autoreset_mode)
+    : envs_(std::move(envs)), autoreset_mode_(autoreset_mode) {
   if (envs_.empty()) throw std::invalid_argument("vector env: needs at least one environment");
   for (const auto& env : envs_) {
     if (!env) throw std::invalid_argument("vector env: null environment");
@@ -29,16 +30,18 @@ EnvBatch::EnvBatch(std::vector<std::unique_ptr<Env>> envs) : envs_(std::move(env
   result_.episode_lengths.assign(n, 0);
   running_returns_.assign(n, 0.0);
   running_lengths_.assign(n, 0);
+  needs_reset_.assign(n, 0);
 }
 
-void EnvBatch::reset(std::size_t begin, std::size_t end, std::uint64_t seed) {
+void EnvBatch::reset(std::size_t begin, std::size_t end, std::optional<std::uint64_t> seed) {
   for (std::size_t i = begin; i < end; ++i) {
     std::span<float> row(result_.observations.data() + i * observation_size_, observation_size_);
-    envs_[i]->reset(seed + i, row);
+    envs_[i]->reset(seed ? std::optional<std::uint64_t>(*seed + i) : std::nullopt, row);
     running_returns_[i] = 0.0;
     running_lengths_[i] = 0;
     result_.terminated[i] = 0;
     result_.truncated[i] = 0;
+    needs_reset_[i] = 0;
   }
 }
 
@@ -55,6 +58,16 @@ void EnvBatch::step(std::size_t begin, std::size_t end, std::span<const float> a
   for (std::size_t i = begin; i < end; ++i) {
     float* observation = result_.observations.data() + i * observation_size_;
     std::span<float> row(observation, observation_size_);
+    result_.episode_returns[i] = 0.0;
+    result_.episode_lengths[i] = 0;
+    if (needs_reset_[i]) {  // kNextStep: this step is the reset; the action is ignored.
+      needs_reset_[i] = 0;
+      envs_[i]->reset(std::nullopt, row);
+      result_.rewards[i] = 0.0f;
+      result_.terminated[i] = 0;
+      result_.truncated[i] = 0;
+      continue;
+    }
     const StepResult step = envs_[i]->step(actions.subspan(i * action_size_, action_size_), row);
     result_.rewards[i] = static_cast<float>(step.reward);
     result_.terminated[i] = step.terminated;
@@ -68,10 +81,11 @@ void EnvBatch::step(std::size_t begin, std::size_t end, std::span<const float> a
       result_.episode_lengths[i] = running_lengths_[i];
       running_returns_[i] = 0.0;
       running_lengths_[i] = 0;
-      envs_[i]->reset(std::nullopt, row);
-    } else {
-      result_.episode_returns[i] = 0.0;
-      result_.episode_lengths[i] = 0;
+      if (autoreset_mode_ == AutoresetMode::kSameStep) {
+        envs_[i]->reset(std::nullopt, row);
+      } else {
+        needs_reset_[i] = 1;
+      }
     }
   }
 }

@@ -9,14 +9,16 @@
 namespace upkie_rl {
 
 std::unique_ptr<VectorEnv> make_vector_env(const std::string& id, const EnvOptions& options,
-                                           std::size_t num_envs, std::size_t threads) {
+                                           std::size_t num_envs, std::size_t threads,
+                                           AutoresetMode autoreset_mode) {
   if (num_envs == 0) throw std::invalid_argument("make_vector_env: num_envs must be positive");
   const EnvFactory factory = make_env_factory(id, options);
   std::vector<std::unique_ptr<Env>> envs;
   envs.reserve(num_envs);
   for (std::size_t i = 0; i < num_envs; ++i) envs.push_back(factory());
-  if (threads == 0) return std::make_unique<SyncVectorEnv>(std::move(envs));
-  return std::make_unique<ThreadPoolVectorEnv>(std::move(envs), std::min(threads, num_envs));
+  if (threads == 0) return std::make_unique<SyncVectorEnv>(std::move(envs), autoreset_mode);
+  return std::make_unique<ThreadPoolVectorEnv>(std::move(envs), std::min(threads, num_envs),
+                                               autoreset_mode);
 }
 
 }  // namespace upkie_rl

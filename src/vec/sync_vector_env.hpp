@@ -10,12 +10,14 @@ namespace upkie_rl {
 
 class SyncVectorEnv final : public VectorEnv {
  public:
-  explicit SyncVectorEnv(std::vector<std::unique_ptr<Env>> envs) : batch_(std::move(envs)) {}
+  explicit SyncVectorEnv(std::vector<std::unique_ptr<Env>> envs,
+                         AutoresetMode autoreset_mode = AutoresetMode::kSameStep)
+      : batch_(std::move(envs), autoreset_mode) {}
 
   std::size_t num_envs() const override { return batch_.size(); }
   const BoxSpace& observation_space() const override { return batch_.observation_space(); }
   const BoxSpace& action_space() const override { return batch_.action_space(); }
-  std::span<const float> reset(std::uint64_t seed) override {
+  std::span<const float> reset(std::optional<std::uint64_t> seed) override {
     batch_.reset(0, batch_.size(), seed);
     batch_.mark_reset();
     return batch_.result().observations;
@@ -28,6 +30,9 @@ class SyncVectorEnv final : public VectorEnv {
 
   /// Environment i (e.g. for its full observation).
   const Env& env(std::size_t i) const { return batch_.env(i); }
+  const Observation* full_observation(std::size_t i) const override {
+    return batch_.env(i).full_observation();
+  }
 
  private:
   EnvBatch batch_;

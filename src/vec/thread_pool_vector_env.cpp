@@ -25,8 +25,8 @@ void spin_then_wait(const std::atomic<T>& value, Predicate done) {
 }  // namespace
 
 ThreadPoolVectorEnv::ThreadPoolVectorEnv(std::vector<std::unique_ptr<Env>> envs,
-                                         std::size_t threads)
-    : batch_(std::move(envs)), num_threads_(threads) {
+                                         std::size_t threads, AutoresetMode autoreset_mode)
+    : batch_(std::move(envs), autoreset_mode), num_threads_(threads) {
   if (threads == 0 || threads > batch_.size()) {
     throw std::invalid_argument("thread pool vector env: threads must be in [1, " +
                                 std::to_string(batch_.size()) + "], got " +
@@ -88,7 +88,7 @@ void ThreadPoolVectorEnv::run(Task task) {
   }
 }
 
-std::span<const float> ThreadPoolVectorEnv::reset(std::uint64_t seed) {
+std::span<const float> ThreadPoolVectorEnv::reset(std::optional<std::uint64_t> seed) {
   seed_ = seed;
   run(Task::kReset);
   batch_.mark_reset();

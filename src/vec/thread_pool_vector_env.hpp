@@ -23,7 +23,8 @@ class ThreadPoolVectorEnv final : public VectorEnv {
  public:
   /// @param threads Number of workers including the caller, in [1, envs.size()].
   /// @throws std::invalid_argument on a bad thread count.
-  ThreadPoolVectorEnv(std::vector<std::unique_ptr<Env>> envs, std::size_t threads);
+  ThreadPoolVectorEnv(std::vector<std::unique_ptr<Env>> envs, std::size_t threads,
+                      AutoresetMode autoreset_mode = AutoresetMode::kSameStep);
   ~ThreadPoolVectorEnv() override;
   ThreadPoolVectorEnv(const ThreadPoolVectorEnv&) = delete;
   ThreadPoolVectorEnv& operator=(const ThreadPoolVectorEnv&) = delete;
@@ -31,11 +32,14 @@ class ThreadPoolVectorEnv final : public VectorEnv {
   std::size_t num_envs() const override { return batch_.size(); }
   const BoxSpace& observation_space() const override { return batch_.observation_space(); }
   const BoxSpace& action_space() const override { return batch_.action_space(); }
-  std::span<const float> reset(std::uint64_t seed) override;
+  std::span<const float> reset(std::optional<std::uint64_t> seed) override;
   const VectorStep& step(std::span<const float> actions) override;
 
   std::size_t num_threads() const { return num_threads_; }
   const Env& env(std::size_t i) const { return batch_.env(i); }
+  const Observation* full_observation(std::size_t i) const override {
+    return batch_.env(i).full_observation();
+  }
 
  private:
   enum class Task { kReset, kStep, kStop };
@@ -49,7 +53,7 @@ class ThreadPoolVectorEnv final : public VectorEnv {
   std::vector<std::thread> threads_;
   // Current task, written by the caller before bumping generation_.
   Task task_ = Task::kStep;
-  std::uint64_t seed_ = 0;
+  std::optional<std::uint64_t> seed_;
   std::span<const float> actions_;
   std::vector<std::exception_ptr> errors_;  // One per environment.
   std::atomic<std::size_t> next_env_{0};    // Next environment to claim.

@@ -55,7 +55,7 @@ void VecNormalize::normalize_observations(std::span<const float> raw,
   }
 }
 
-std::span<const float> VecNormalize::reset(std::uint64_t seed) {
+std::span<const float> VecNormalize::reset(std::optional<std::uint64_t> seed) {
   const std::span<const float> raw = venv_->reset(seed);
   std::copy(raw.begin(), raw.end(), raw_observations_.begin());
   std::fill(returns_.begin(), returns_.end(), 0.0);

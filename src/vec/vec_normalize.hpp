@@ -64,7 +64,7 @@ class VecNormalize final : public VectorEnv {
   std::size_t num_envs() const override { return venv_->num_envs(); }
   const BoxSpace& observation_space() const override { return venv_->observation_space(); }
   const BoxSpace& action_space() const override { return venv_->action_space(); }
-  std::span<const float> reset(std::uint64_t seed) override;
+  std::span<const float> reset(std::optional<std::uint64_t> seed) override;
   const VectorStep& step(std::span<const float> actions) override;
 
  private:

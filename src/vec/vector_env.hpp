@@ -4,10 +4,12 @@
 /// semantics). Observations are float32 rows, one per environment.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "envs/box_space.hpp"
+#include "sim/observation.hpp"
 
 namespace upkie_rl {
 
@@ -25,6 +27,17 @@ struct VectorStep {
   std::vector<std::int64_t> episode_lengths;
 };
 
+/// When an environment whose episode ended is reset (Gymnasium's autoreset modes).
+enum class AutoresetMode {
+  /// In the step that ends the episode (SB3 VecEnv, our trainer): the returned observation
+  /// is the new episode's first, the last one is in final_observations.
+  kSameStep,
+  /// In the next step (Gymnasium 1.x vector envs): the step that ends the episode returns its
+  /// last observation; the next step resets that environment instead of stepping it,
+  /// ignores its action, and returns reward 0, terminated and truncated false.
+  kNextStep,
+};
+
 /// n environments of the same kind, stepped in lockstep.
 class VectorEnv {
  public:
@@ -34,13 +47,20 @@ class VectorEnv {
   virtual const BoxSpace& observation_space() const = 0;
   virtual const BoxSpace& action_space() const = 0;
 
-  /// Resets every environment, env i with seed + i, and returns the observations
-  /// (num_envs x obs_dim).
-  virtual std::span<const float> reset(std::uint64_t seed) = 0;
+  /// Resets every environment, env i with seed + i (without a seed, each environment's
+  /// generator continues), and returns the observations (num_envs x obs_dim).
+  virtual std::span<const float> reset(std::optional<std::uint64_t> seed) = 0;
 
   /// Steps every environment with its row of `actions` (num_envs x action_dim); envs
-  /// whose episode ended are reset in the same step.
+  /// whose episode ended are reset as the autoreset mode says (same step by default).
   virtual const VectorStep& step(std::span<const float> actions) = 0;
+
+  /// The full observation of environment i after the last reset or step (after an
+  /// auto-reset, the new episode's), or nullptr when it has none.
+  virtual const Observation* full_observation(std::size_t i) const {
+    static_cast<void>(i);
+    return nullptr;
+  }
 };
 
 }  // namespace upkie_rl

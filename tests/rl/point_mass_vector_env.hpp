@@ -41,9 +41,9 @@ class PointMassVectorEnv final : public VectorEnv {
   const BoxSpace& observation_space() const override { return observation_space_; }
   const BoxSpace& action_space() const override { return action_space_; }
 
-  std::span<const float> reset(std::uint64_t seed) override {
+  std::span<const float> reset(std::optional<std::uint64_t> seed) override {
     for (std::size_t i = 0; i < x_.size(); ++i) {
-      generators_[i].seed(seed + i);
+      if (seed) generators_[i].seed(*seed + i);
       reset_one(i);
     }
     return result_.observations;

@@ -122,7 +122,7 @@ class ScriptedVectorEnv final : public VectorEnv {
   std::size_t num_envs() const override { return 2; }
   const BoxSpace& observation_space() const override { return space_; }
   const BoxSpace& action_space() const override { return space_; }
-  std::span<const float> reset(std::uint64_t) override {
+  std::span<const float> reset(std::optional<std::uint64_t>) override {
     step_ = 0;
     result_.observations = {0.0f, 0.0f};
     return result_.observations;

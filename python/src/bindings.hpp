@@ -1,0 +1,18 @@
+#pragma once
+/// @file
+/// The pieces of the `upkie_rl._core` extension module, one binding function per file.
+
+#include <pybind11/pybind11.h>
+
+#include "envs/box_space.hpp"
+
+namespace upkie_rl::python {
+
+/// (low, high, names) of a Box space, low and high as float32 arrays.
+pybind11::tuple space_to_python(const BoxSpace& space);
+
+void bind_env(pybind11::module_& module);
+void bind_vector_env(pybind11::module_& module);
+void bind_registry(pybind11::module_& module);
+
+}  // namespace upkie_rl::python

@@ -1,0 +1,53 @@
+// The `upkie_rl._core` extension module: thin bindings of the C++ environment layers
+// (envs, vec). The Gymnasium and SB3 classes are in the Python package around it.
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "envs/registry.hpp"
+#include "model/robot_model.hpp"
+#include "sim/simulation.hpp"
+#include "spine/spine_error.hpp"
+
+namespace py = pybind11;
+
+namespace upkie_rl::python {
+
+void bind_registry(py::module_& module) {
+  module.def("registered_env_ids", &registered_env_ids, "Canonical environment ids.");
+  module.def(
+      "env_options",
+      [](const std::string& id) {
+        py::list options;
+        for (const OptionInfo& info : env_option_info(id)) {
+          static constexpr const char* kTypes[] = {"real", "integer", "text", "choice"};
+          py::dict option;
+          option["name"] = info.name;
+          option["type"] = kTypes[static_cast<int>(info.type)];
+          option["help"] = info.help;
+          option["default"] = info.default_value;
+          option["min"] = info.min;
+          option["max"] = info.max;
+          option["choices"] = info.choices;
+          options.append(std::move(option));
+        }
+        return options;
+      },
+      py::arg("env_id"), "The options an id accepts: name, type, help, default, bounds, choices.");
+}
+
+}  // namespace upkie_rl::python
+
+PYBIND11_MODULE(_core, module) {
+  module.doc() = "upkie-rl environments in C++ (thin bindings; see the upkie_rl package).";
+  // Errors keep their C++ meaning: bad input is ValueError (std::invalid_argument), these
+  // are RuntimeErrors with a name of their own.
+  py::register_exception<upkie_rl::SimulationDivergedError>(module, "SimulationDivergedError",
+                                                            PyExc_RuntimeError);
+  py::register_exception<upkie_rl::SpineError>(module, "SpineError", PyExc_RuntimeError);
+  py::register_exception<upkie_rl::ModelError>(module, "ModelError", PyExc_RuntimeError);
+  upkie_rl::python::bind_registry(module);
+  upkie_rl::python::bind_env(module);
+  upkie_rl::python::bind_vector_env(module);
+}

@@ -1,0 +1,110 @@
+// Python binding of one environment (the registry's Env): flat float32 numpy arrays in and
+// out, the GIL released while the environment steps.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+
+#include "array_checks.hpp"
+#include "bindings.hpp"
+#include "envs/registry.hpp"
+#include "observation_to_python.hpp"
+
+namespace py = pybind11;
+
+namespace upkie_rl::python {
+namespace {
+
+/// One environment. Calls from several Python threads are serialised by a mutex (an Env
+/// is not thread-safe); different objects step in parallel.
+class PyEnv {
+ public:
+  PyEnv(const std::string& id, const EnvOptions& options) : env_(make_env(id, options)) {}
+
+  py::array_t<float> reset(std::optional<std::uint64_t> seed) {
+    py::array_t<float> observation(static_cast<py::ssize_t>(observation_size()));
+    std::span<float> out(observation.mutable_data(), observation_size());
+    {
+      py::gil_scoped_release release;
+      const std::lock_guard lock(mutex_);
+      env_->reset(seed, out);
+    }
+    return observation;
+  }
+
+  py::tuple step(const FloatArray& action) {
+    check_shape(action, 0, env_->action_space().size(), "action");
+    py::array_t<float> observation(static_cast<py::ssize_t>(observation_size()));
+    std::span<float> out(observation.mutable_data(), observation_size());
+    std::span<const float> in(action.data(), env_->action_space().size());
+    StepResult result;
+    {
+      py::gil_scoped_release release;
+      const std::lock_guard lock(mutex_);
+      result = env_->step(in, out);
+    }
+    return py::make_tuple(std::move(observation), result.reward, result.terminated,
+                          result.truncated);
+  }
+
+  py::object spine_observation() const {
+    const std::lock_guard lock(mutex_);
+    const Observation* full = env_->full_observation();
+    if (full == nullptr) return py::none();
+    return observation_to_python(*full);
+  }
+
+  py::array_t<float> neutral_action() const {
+    py::array_t<float> action(static_cast<py::ssize_t>(env_->action_space().size()));
+    env_->neutral_action(std::span<float>(action.mutable_data(), env_->action_space().size()));
+    return action;
+  }
+
+  const Env& env() const { return *env_; }
+
+ private:
+  std::size_t observation_size() const { return env_->observation_space().size(); }
+
+  std::unique_ptr<Env> env_;
+  mutable std::mutex mutex_;
+};
+
+}  // namespace
+
+py::tuple space_to_python(const BoxSpace& space) {
+  py::array_t<float> low(static_cast<py::ssize_t>(space.size()), space.low.data());
+  py::array_t<float> high(static_cast<py::ssize_t>(space.size()), space.high.data());
+  return py::make_tuple(std::move(low), std::move(high), space.names);
+}
+
+void bind_env(py::module_& module) {
+  py::class_<PyEnv>(module, "Env", "One upkie-rl environment on flat float32 arrays.")
+      .def(py::init<const std::string&, const EnvOptions&>(), py::arg("env_id"),
+           py::arg("options") = EnvOptions{})
+      .def("reset", &PyEnv::reset, py::arg("seed") = py::none(),
+           "Starts an episode; returns the first observation.")
+      .def("step", &PyEnv::step, py::arg("action").noconvert(),
+           "Steps with a float32 action; returns (observation, reward, terminated, "
+           "truncated).")
+      .def("spine_observation", &PyEnv::spine_observation,
+           "The full observation dictionary of the last reset or step (upkie's "
+           "info['spine_observation']), or None.")
+      .def("neutral_action", &PyEnv::neutral_action)
+      .def_property_readonly("observation_space",
+                             [](const PyEnv& self) {
+                               return space_to_python(self.env().observation_space());
+                             })
+      .def_property_readonly(
+          "action_space",
+          [](const PyEnv& self) { return space_to_python(self.env().action_space()); })
+      .def_property_readonly("timestep", [](const PyEnv& self) { return self.env().timestep(); })
+      .def_property_readonly("physics_steps_per_step",
+                             [](const PyEnv& self) { return self.env().physics_steps_per_step(); });
+}
+
+}  // namespace upkie_rl::python

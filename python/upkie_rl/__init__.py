@@ -1,0 +1,63 @@
+"""upkie-rl: Upkie environments simulated in C++, as Gymnasium and SB3 environments.
+
+>>> import gymnasium as gym
+>>> import upkie_rl
+>>> env = gym.make("Upkie-Bullet-Pendulum", frequency=200.0)
+>>> venv = upkie_rl.make_vec("Upkie-Bullet-Pendulum", num_envs=10, num_threads=2, seed=0)
+>>> sb3_venv = upkie_rl.make_sb3_vec_env("Upkie-Bullet-Pendulum", num_envs=10, seed=0)
+>>> policy = upkie_rl.load_policy("runs/pendulum/model_20261121-144733.ckpt")
+
+Importing the package registers every id (``upkie_rl/Upkie-{Bullet,Mock,Spine}-{Servos,
+Pendulum,Gyropod,ServosTask}``, and the Bullet ones without the namespace too).
+"""
+
+import os as _os
+from pathlib import Path as _Path
+
+# An installed package carries the robot model; a build tree's module knows the source's.
+_PACKAGED_MODEL = _Path(__file__).parent / "models" / "upkie" / "upkie.urdf"
+if _PACKAGED_MODEL.exists():
+    _os.environ.setdefault("UPKIE_RL_MODEL", str(_PACKAGED_MODEL))
+
+from . import _core  # noqa: E402
+from ._core import ModelError, SimulationDivergedError, SpineError  # noqa: E402
+from .env import UpkieEnv  # noqa: E402
+from .registration import register  # noqa: E402
+from .vector import UpkieVectorEnv, make_vec  # noqa: E402
+
+__version__ = "0.1.0"
+
+
+def registered_env_ids():
+    """The registry's ids (as the CLI's `upkie-rl envs` lists them)."""
+    return _core.registered_env_ids()
+
+
+def env_options(env_id: str):
+    """The options ``env_id`` accepts: name, type, help, default, bounds, choices."""
+    from .vector import canonical_id
+
+    return _core.env_options(canonical_id(env_id))
+
+
+def make_sb3_vec_env(env_id, num_envs, num_threads=None, seed=None, **options):
+    """``num_envs`` environments as a Stable-Baselines3 VecEnv (imports stable_baselines3)."""
+    from .sb3 import make_sb3_vec_env as make
+
+    return make(env_id, num_envs, num_threads, seed, **options)
+
+
+register()
+
+__all__ = [
+    "ModelError",
+    "SimulationDivergedError",
+    "SpineError",
+    "UpkieEnv",
+    "UpkieVectorEnv",
+    "env_options",
+    "make_sb3_vec_env",
+    "make_vec",
+    "register",
+    "registered_env_ids",
+]

@@ -1,0 +1,118 @@
+"""UpkieSB3VecEnv: n C++ environments as a Stable-Baselines3 ``VecEnv``.
+
+Importing this module imports stable_baselines3. Semantics are SB3's: same-step reset,
+``infos[i]["terminal_observation"]`` and ``infos[i]["TimeLimit.truncated"]`` when episode i
+ends, plus ``infos[i]["episode"] = {"r", "l", "t"}`` (raw return, length, seconds since
+the vector env was made: what SB3's Monitor writes, so PPO logs rollout/ep_rew_mean
+without a Monitor wrapper).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, List, Optional
+
+import numpy as np
+from stable_baselines3.common.vec_env.base_vec_env import VecEnv
+
+from . import _core
+from .actions import as_action_array
+from .options import to_env_options
+from .spaces import box, is_nested
+from .vector import canonical_id, default_num_threads
+
+
+class UpkieSB3VecEnv(VecEnv):
+    """``num_envs`` environments of one id stepped together in C++ (GIL released, on
+    ``num_threads`` workers). Environment i is seeded ``seed + i``: by ``seed`` at the first
+    reset, and by ``VecEnv.seed(s)`` at the next one."""
+
+    def __init__(
+        self,
+        env_id: str,
+        num_envs: int,
+        num_threads: Optional[int] = None,
+        seed: Optional[int] = None,
+        **options: Any,
+    ):
+        env_id = canonical_id(env_id)
+        if num_threads is None:
+            num_threads = default_num_threads(num_envs)
+        self.env_id = env_id
+        self._core = _core.VectorEnv(
+            env_id, to_env_options(env_id, options), num_envs, num_threads, "same_step"
+        )
+        if is_nested(env_id):
+            raise ValueError(f"{env_id}: SB3 vector envs step flat arrays; use a flat id")
+        self.render_mode = None
+        super().__init__(
+            num_envs, box(self._core.observation_space), box(self._core.action_space)
+        )
+        self.num_threads = self._core.num_threads
+        self._first_seed = 0 if seed is None else seed
+        self._was_reset = False
+        self._actions: Optional[np.ndarray] = None
+        self._start_time = time.monotonic()
+        self._action_shape = (num_envs, self.action_space.shape[0])
+
+    def reset(self):
+        seed = self._seeds[0]
+        if seed is None and not self._was_reset:
+            seed = self._first_seed
+        self._was_reset = True
+        observations = self._core.reset(seed)
+        self._reset_seeds()
+        self._reset_options()
+        return observations
+
+    def step_async(self, actions: np.ndarray) -> None:
+        self._actions = as_action_array(actions, self._action_shape, "actions")
+
+    def step_wait(self):
+        if self._actions is None:
+            raise RuntimeError("step_wait() without step_async()")
+        observations, rewards, terminated, truncated = self._core.step(self._actions)
+        self._actions = None
+        dones = terminated | truncated
+        infos: List[dict] = [{} for _ in range(self.num_envs)]
+        if dones.any():
+            final_observations, returns, lengths = self._core.final_observations()
+            elapsed = round(time.monotonic() - self._start_time, 6)
+            for i in np.flatnonzero(dones):
+                infos[i] = {
+                    "terminal_observation": final_observations[i],
+                    "TimeLimit.truncated": bool(truncated[i] and not terminated[i]),
+                    "episode": {"r": float(returns[i]), "l": int(lengths[i]), "t": elapsed},
+                }
+        return observations, rewards, dones, infos
+
+    def close(self) -> None:
+        self._core = None
+
+    def get_attr(self, attr_name: str, indices=None) -> List[Any]:
+        if attr_name == "render_mode":
+            return [None for _ in self._get_indices(indices)]
+        value = getattr(self, attr_name)
+        return [value for _ in self._get_indices(indices)]
+
+    def set_attr(self, attr_name: str, value: Any, indices=None) -> None:
+        setattr(self, attr_name, value)
+
+    def env_method(self, method_name: str, *method_args, indices=None, **method_kwargs):
+        if method_name == "spine_observation":
+            return [self._core.spine_observation(i) for i in self._get_indices(indices)]
+        raise AttributeError(f"{self.env_id}: no environment method {method_name!r}")
+
+    def env_is_wrapped(self, wrapper_class, indices=None) -> List[bool]:
+        return [False for _ in self._get_indices(indices)]
+
+
+def make_sb3_vec_env(
+    env_id: str,
+    num_envs: int,
+    num_threads: Optional[int] = None,
+    seed: Optional[int] = None,
+    **options: Any,
+) -> UpkieSB3VecEnv:
+    """``num_envs`` environments of ``env_id`` as an SB3 VecEnv stepped in C++."""
+    return UpkieSB3VecEnv(env_id, num_envs, num_threads, seed, **options)

@@ -1,0 +1,163 @@
+"""UpkieVectorEnv: n C++ environments as one ``gymnasium.vector.VectorEnv``, and make_vec."""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Optional
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.vector.utils import batch_space
+
+from . import _core
+from .actions import as_action_array
+from .options import to_env_options
+from .spaces import box, is_nested
+
+#: Gymnasium's autoreset mode names (``gymnasium.vector.AutoresetMode`` values in 1.1+).
+AUTORESET_MODES = {"NextStep": "next_step", "SameStep": "same_step"}
+
+
+def default_num_threads(num_envs: int) -> int:
+    """One worker per core, at most one per environment; 0 (the calling thread) for one env."""
+    if num_envs <= 1:
+        return 0
+    return min(num_envs, len(os.sched_getaffinity(0)))
+
+
+class UpkieVectorEnv(gym.vector.VectorEnv):
+    """n environments of one id stepped together in C++: one ``step`` call steps them all
+    with the GIL released, on ``num_threads`` workers (0: the calling thread).
+
+    Autoreset (``metadata["autoreset_mode"]``): "NextStep" (Gymnasium's default) or
+    "SameStep" (the last observation of an ended episode in ``infos["final_obs"]``, with the
+    mask ``infos["_final_obs"]``; its raw return and length in ``infos["final_info"]``).
+
+    Environment i is seeded ``seed + i`` at the first reset (``seed`` of the constructor,
+    0 if none) and at every ``reset(seed=...)``; ``reset()`` without a seed lets each
+    environment's generator continue. Results are identical for any ``num_threads``.
+
+    ``spine_observation=True`` adds each environment's full observation dictionary to
+    ``infos["spine_observation"]`` (an object array) at every step; it is off by default
+    because building it costs more than a pendulum step.
+    """
+
+    def __init__(
+        self,
+        env_id: str,
+        num_envs: int,
+        num_threads: Optional[int] = None,
+        seed: Optional[int] = None,
+        autoreset_mode: str = "NextStep",
+        spine_observation: bool = False,
+        **options: Any,
+    ):
+        if not isinstance(num_envs, int) or num_envs < 1:
+            raise ValueError(f"num_envs must be a positive integer, got {num_envs!r}")
+        mode = getattr(autoreset_mode, "value", autoreset_mode)
+        if mode not in AUTORESET_MODES:
+            raise ValueError(
+                f"autoreset_mode {autoreset_mode!r}: expected one of {list(AUTORESET_MODES)}"
+            )
+        if num_threads is None:
+            num_threads = default_num_threads(num_envs)
+        if not isinstance(num_threads, int) or num_threads < 0:
+            raise ValueError(f"num_threads must be a non-negative integer, got {num_threads!r}")
+        self.env_id = env_id
+        self._core = _core.VectorEnv(
+            env_id,
+            to_env_options(env_id, options),
+            num_envs,
+            num_threads,
+            AUTORESET_MODES[mode],
+        )
+        if is_nested(env_id):
+            raise ValueError(
+                f"{env_id}: the vector env steps flat arrays; use the ServosTask id or "
+                "gym.make_vec(..., vectorization_mode='sync') for nested servo dicts"
+            )
+        self.num_envs = num_envs
+        self.num_threads = self._core.num_threads
+        self.metadata = {"autoreset_mode": mode, "render_modes": []}
+        self.render_mode = None
+        self.single_observation_space = box(self._core.observation_space)
+        self.single_action_space = box(self._core.action_space)
+        self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self.action_space = batch_space(self.single_action_space, num_envs)
+        self._action_shape = (num_envs, self.single_action_space.shape[0])
+        self._seed = 0 if seed is None else seed
+        self._was_reset = False
+        self._same_step = mode == "SameStep"
+        self._spine_observation = spine_observation
+
+    def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
+        if options:
+            raise ValueError(f"{self.env_id}: reset options are not supported")
+        if seed is not None and not isinstance(seed, (int, np.integer)):
+            raise TypeError(f"seed must be an integer (env i gets seed + i), got {seed!r}")
+        if seed is not None:
+            self._np_random, self._np_random_seed = gym.utils.seeding.np_random(int(seed))
+        elif not self._was_reset:
+            seed = self._seed
+        self._was_reset = True
+        observations = self._core.reset(None if seed is None else int(seed))
+        infos = {}
+        if self._spine_observation:
+            self._add_spine_observations(infos)
+        return observations, infos
+
+    def step(self, actions):
+        actions = as_action_array(actions, self._action_shape, "actions")
+        observations, rewards, terminated, truncated = self._core.step(actions)
+        infos: dict = {}
+        ended = terminated | truncated
+        if self._same_step and ended.any():
+            final_observations, returns, lengths = self._core.final_observations()
+            final_obs = np.empty(self.num_envs, dtype=object)
+            final_info = np.empty(self.num_envs, dtype=object)
+            for i in np.flatnonzero(ended):
+                final_obs[i] = final_observations[i]
+                final_info[i] = {"episode": {"r": float(returns[i]), "l": int(lengths[i])}}
+            infos.update(
+                final_obs=final_obs, _final_obs=ended, final_info=final_info, _final_info=ended
+            )
+        if self._spine_observation:
+            self._add_spine_observations(infos)
+        return observations, rewards.astype(np.float64), terminated, truncated, infos
+
+    def spine_observation(self, index: int) -> Optional[dict]:
+        """Environment ``index``'s full observation dictionary after the last step."""
+        return self._core.spine_observation(index)
+
+    def close_extras(self, **kwargs):
+        self._core = None
+
+    def _add_spine_observations(self, infos: dict) -> None:
+        observations = np.empty(self.num_envs, dtype=object)
+        for i in range(self.num_envs):
+            observations[i] = self._core.spine_observation(i)
+        infos["spine_observation"] = observations
+        infos["_spine_observation"] = np.ones(self.num_envs, dtype=bool)
+
+
+def make_vec(
+    env_id: str,
+    num_envs: int = 1,
+    num_threads: Optional[int] = None,
+    seed: Optional[int] = None,
+    **options: Any,
+) -> UpkieVectorEnv:
+    """``num_envs`` environments of ``env_id`` as a Gymnasium vector env stepped in C++.
+
+    Also the ids' ``vector_entry_point``: ``gym.make_vec(id, n,
+    vectorization_mode="vector_entry_point", **kwargs)`` comes here. Ids may carry the
+    ``upkie_rl/`` namespace. Keyword arguments: ``autoreset_mode`` ("NextStep" or
+    "SameStep"), ``spine_observation`` (bool), and the registry's options.
+    """
+    return UpkieVectorEnv(canonical_id(env_id), num_envs, num_threads, seed, **options)
+
+
+def canonical_id(env_id: str) -> str:
+    """The registry's id of a Gymnasium id (without the ``upkie_rl/`` namespace)."""
+    prefix = "upkie_rl/"
+    return env_id[len(prefix) :] if env_id.startswith(prefix) else env_id
