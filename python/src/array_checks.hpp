@@ -19,19 +19,18 @@ inline void check_shape(const FloatArray& array, std::size_t rows, std::size_t c
                         const char* what) {
   const bool vector = rows == 0;
   const auto ndim = static_cast<std::size_t>(array.ndim());
-  const bool ok =
-      vector ? ndim == 1 && static_cast<std::size_t>(array.shape(0)) == columns
-             : ndim == 2 && static_cast<std::size_t>(array.shape(0)) == rows &&
-                   static_cast<std::size_t>(array.shape(1)) == columns;
+  const bool ok = vector ? ndim == 1 && static_cast<std::size_t>(array.shape(0)) == columns
+                         : ndim == 2 && static_cast<std::size_t>(array.shape(0)) == rows &&
+                               static_cast<std::size_t>(array.shape(1)) == columns;
   if (!ok) {
     std::string shape = "(";
     for (std::size_t i = 0; i < ndim; ++i) {
       shape += (i ? ", " : "") + std::to_string(array.shape(static_cast<pybind11::ssize_t>(i)));
     }
     shape += ndim == 1 ? ",)" : ")";
-    const std::string expected = vector ? "(" + std::to_string(columns) + ",)"
-                                        : "(" + std::to_string(rows) + ", " +
-                                              std::to_string(columns) + ")";
+    const std::string expected =
+        vector ? "(" + std::to_string(columns) + ",)"
+               : "(" + std::to_string(rows) + ", " + std::to_string(columns) + ")";
     throw std::invalid_argument(std::string(what) + " has shape " + shape + ", expected " +
                                 expected);
   }

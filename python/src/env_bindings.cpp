@@ -95,10 +95,9 @@ void bind_env(py::module_& module) {
            "The full observation dictionary of the last reset or step (upkie's "
            "info['spine_observation']), or None.")
       .def("neutral_action", &PyEnv::neutral_action)
-      .def_property_readonly("observation_space",
-                             [](const PyEnv& self) {
-                               return space_to_python(self.env().observation_space());
-                             })
+      .def_property_readonly(
+          "observation_space",
+          [](const PyEnv& self) { return space_to_python(self.env().observation_space()); })
       .def_property_readonly(
           "action_space",
           [](const PyEnv& self) { return space_to_python(self.env().action_space()); })

@@ -66,10 +66,11 @@ class PyVectorEnv {
       result = &venv_->step(in);
       last_step_ = result;
     }
-    return py::make_tuple(to_numpy<float>(result->observations.data(), {rows(), observation_size()}),
-                          to_numpy<float>(result->rewards.data(), {rows()}),
-                          to_numpy<bool>(result->terminated.data(), {rows()}),
-                          to_numpy<bool>(result->truncated.data(), {rows()}));
+    return py::make_tuple(
+        to_numpy<float>(result->observations.data(), {rows(), observation_size()}),
+        to_numpy<float>(result->rewards.data(), {rows()}),
+        to_numpy<bool>(result->terminated.data(), {rows()}),
+        to_numpy<bool>(result->truncated.data(), {rows()}));
   }
 
   /// Last observations of the episodes that ended at the last step (rows of the others are
@@ -111,8 +112,7 @@ class PyVectorEnv {
 }  // namespace
 
 void bind_vector_env(py::module_& module) {
-  py::class_<PyVectorEnv>(module, "VectorEnv",
-                          "n upkie-rl environments stepped together in C++.")
+  py::class_<PyVectorEnv>(module, "VectorEnv", "n upkie-rl environments stepped together in C++.")
       .def(py::init<const std::string&, const EnvOptions&, std::size_t, std::size_t,
                     const std::string&>(),
            py::arg("env_id"), py::arg("options"), py::arg("num_envs"), py::arg("num_threads"),

@@ -42,8 +42,13 @@ EnvOptions parse_env_options(const std::vector<std::string>& key_values) {
 
 void OptionTable::add_double(std::string name, double* target, double min, double max,
                              std::string help) {
-  Entry entry{{std::move(name), OptionInfo::Type::kReal, std::move(help), format_double(*target),
-               min, max, {}},
+  Entry entry{{std::move(name),
+               OptionInfo::Type::kReal,
+               std::move(help),
+               format_double(*target),
+               min,
+               max,
+               {}},
               nullptr};
   entry.parse = [target, min, max](const std::string& value, const std::string& where) {
     double parsed = 0.0;
@@ -62,8 +67,13 @@ void OptionTable::add_double(std::string name, double* target, double min, doubl
 }
 
 void OptionTable::add_int(std::string name, int* target, int min, int max, std::string help) {
-  Entry entry{{std::move(name), OptionInfo::Type::kInteger, std::move(help),
-               std::to_string(*target), static_cast<double>(min), static_cast<double>(max), {}},
+  Entry entry{{std::move(name),
+               OptionInfo::Type::kInteger,
+               std::move(help),
+               std::to_string(*target),
+               static_cast<double>(min),
+               static_cast<double>(max),
+               {}},
               nullptr};
   entry.parse = [target, min, max](const std::string& value, const std::string& where) {
     int parsed = 0;
@@ -93,10 +103,10 @@ void OptionTable::add_string(std::string name, std::string* target, std::string 
 
 void OptionTable::add_choice(std::string name, std::vector<std::string> choices,
                              std::function<void(std::size_t)> set, std::string help) {
-  Entry entry{{std::move(name), OptionInfo::Type::kChoice,
-               std::move(help) + " (" + join(choices, "|") + ")", choices.front(), 0.0, 0.0,
-               choices},
-              nullptr};
+  Entry entry{
+      {std::move(name), OptionInfo::Type::kChoice,
+       std::move(help) + " (" + join(choices, "|") + ")", choices.front(), 0.0, 0.0, choices},
+      nullptr};
   entry.parse = [choices = std::move(choices), set = std::move(set)](const std::string& value,
                                                                      const std::string& where) {
     for (std::size_t i = 0; i < choices.size(); ++i) {

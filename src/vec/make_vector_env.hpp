@@ -13,8 +13,8 @@ namespace upkie_rl {
 /// threads = 0: synchronous; otherwise a thread pool with that many workers (the caller
 /// included, capped at num_envs). Options are parsed once for all environments.
 /// @throws std::invalid_argument on num_envs = 0 or whatever make_env throws.
-std::unique_ptr<VectorEnv> make_vector_env(
-    const std::string& id, const EnvOptions& options, std::size_t num_envs, std::size_t threads,
-    AutoresetMode autoreset_mode = AutoresetMode::kSameStep);
+std::unique_ptr<VectorEnv> make_vector_env(const std::string& id, const EnvOptions& options,
+                                           std::size_t num_envs, std::size_t threads,
+                                           AutoresetMode autoreset_mode = AutoresetMode::kSameStep);
 
 }  // namespace upkie_rl

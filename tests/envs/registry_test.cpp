@@ -149,5 +149,35 @@ TEST(Registry, InitRandomizationIsSeeded) {
   EXPECT_NEAR(c->full_observation()->sim_base.position.x(), 0.0, 1e-12);
 }
 
+TEST(Registry, OptionInfoIsTyped) {
+  const std::vector<OptionInfo> options = env_option_info("Upkie-Bullet-Pendulum");
+  auto find = [&options](const std::string& name) {
+    for (const OptionInfo& option : options) {
+      if (option.name == name) return option;
+    }
+    ADD_FAILURE() << "no option " << name;
+    return OptionInfo{};
+  };
+  const OptionInfo frequency = find("frequency");
+  EXPECT_EQ(frequency.type, OptionInfo::Type::kReal);
+  EXPECT_EQ(frequency.default_value, "200");
+  EXPECT_EQ(frequency.min, 1.0);
+  EXPECT_EQ(frequency.max, 10000.0);
+  const OptionInfo steps = find("max_episode_steps");
+  EXPECT_EQ(steps.type, OptionInfo::Type::kInteger);
+  EXPECT_EQ(steps.default_value, "300");
+  const OptionInfo inertia = find("inertia");
+  EXPECT_EQ(inertia.type, OptionInfo::Type::kChoice);
+  EXPECT_EQ(inertia.choices, (std::vector<std::string>{"box", "urdf"}));
+  EXPECT_EQ(find("max_ground_velocity").default_value, "1");
+  const std::vector<OptionInfo> spine = env_option_info("Upkie-Spine-Servos");
+  EXPECT_TRUE(std::any_of(spine.begin(), spine.end(), [](const OptionInfo& option) {
+    return option.name == "shm_name" && option.type == OptionInfo::Type::kText;
+  }));
+  EXPECT_EQ(env_option_info("Upkie-Bullet-Servos").size(),
+            env_option_help("Upkie-Bullet-Servos").size());
+  EXPECT_THROW(env_option_info("Upkie-Nope-Servos"), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace upkie_rl

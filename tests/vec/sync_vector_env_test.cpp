@@ -56,6 +56,44 @@ TEST(SyncVectorEnv, AutoResetKeepsTheFinalObservation) {
   EXPECT_EQ(third.episode_lengths[1], 3);
 }
 
+TEST(SyncVectorEnv, NextStepAutoresetResetsOnTheFollowingStep) {
+  SyncVectorEnv venv(counting_envs({2, 3}), AutoresetMode::kNextStep);
+  venv.reset(0);
+  const std::array<float, 2> actions{1.0f, 2.0f};
+  venv.step(actions);
+  const VectorStep& second = venv.step(actions);
+  // Env 0 ended: its last observation is returned (and kept as final), no reset yet.
+  EXPECT_EQ(second.terminated[0], 1);
+  EXPECT_EQ(second.observations[0], 0.0f);
+  EXPECT_EQ(second.observations[1], 2.0f);
+  EXPECT_EQ(second.final_observations[1], 2.0f);
+  EXPECT_EQ(second.episode_returns[0], 2.0);
+  EXPECT_EQ(second.episode_lengths[0], 2);
+  const VectorStep& third = venv.step(actions);
+  // The following step resets env 0 instead of stepping it: reward 0, flags false.
+  EXPECT_EQ(third.observations[0], 1000.0f);  // unseeded reset: the generator goes on
+  EXPECT_EQ(third.observations[1], 0.0f);
+  EXPECT_EQ(third.rewards[0], 0.0f);
+  EXPECT_EQ(third.terminated[0], 0);
+  EXPECT_EQ(third.truncated[0], 0);
+  EXPECT_EQ(third.episode_lengths[0], 0);
+  // Env 1 runs on as in the same-step mode and ends at its third step.
+  EXPECT_EQ(third.terminated[1], 1);
+  EXPECT_EQ(third.episode_returns[1], 6.0);
+  const VectorStep& fourth = venv.step(actions);
+  EXPECT_EQ(fourth.observations[1], 1.0f);  // env 0's new episode, first step
+  EXPECT_EQ(fourth.rewards[1], 0.0f);       // env 1 is being reset
+  EXPECT_EQ(fourth.observations[3], 1001.0f);
+}
+
+TEST(SyncVectorEnv, UnseededResetLetsGeneratorsContinue) {
+  SyncVectorEnv venv(counting_envs({3, 3}));
+  venv.reset(5);
+  const std::span<const float> observations = venv.reset(std::nullopt);
+  EXPECT_EQ(observations[0], 1005.0f);
+  EXPECT_EQ(observations[3], 1006.0f);
+}
+
 TEST(SyncVectorEnv, TruncationIsReportedApart) {
   SyncVectorEnv venv(counting_envs({1}, /*truncate=*/true));
   venv.reset(0);

@@ -69,6 +69,15 @@ TEST(ThreadPoolVectorEnv, BitIdenticalToSynchronousOnBullet) {
   }
 }
 
+TEST(ThreadPoolVectorEnv, BitIdenticalToSynchronousWithNextStepAutoreset) {
+  const EnvOptions options = {{"init_rand_pitch", "0.2"}, {"max_episode_steps", "30"}};
+  auto sync = make_vector_env("Upkie-Bullet-Pendulum", options, 4, 0, AutoresetMode::kNextStep);
+  auto pooled = make_vector_env("Upkie-Bullet-Pendulum", options, 4, 2, AutoresetMode::kNextStep);
+  const Trace expected = run(*sync, 80, 5);
+  ASSERT_FALSE(expected.returns.empty());
+  expect_same(run(*pooled, 80, 5), expected);
+}
+
 TEST(ThreadPoolVectorEnv, BitIdenticalToSynchronousOnServosTask) {
   auto sync = make_vector_env("Upkie-Bullet-ServosTask", {{"max_episode_steps", "25"}}, 4, 0);
   auto pooled = make_vector_env("Upkie-Bullet-ServosTask", {{"max_episode_steps", "25"}}, 4, 2);
