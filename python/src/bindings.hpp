@@ -14,5 +14,6 @@ pybind11::tuple space_to_python(const BoxSpace& space);
 void bind_env(pybind11::module_& module);
 void bind_vector_env(pybind11::module_& module);
 void bind_registry(pybind11::module_& module);
+void bind_policy(pybind11::module_& module);
 
 }  // namespace upkie_rl::python

@@ -50,4 +50,5 @@ PYBIND11_MODULE(_core, module) {
   upkie_rl::python::bind_registry(module);
   upkie_rl::python::bind_env(module);
   upkie_rl::python::bind_vector_env(module);
+  upkie_rl::python::bind_policy(module);
 }

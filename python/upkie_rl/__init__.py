@@ -20,8 +20,9 @@ if _PACKAGED_MODEL.exists():
     _os.environ.setdefault("UPKIE_RL_MODEL", str(_PACKAGED_MODEL))
 
 from . import _core  # noqa: E402
-from ._core import ModelError, SimulationDivergedError, SpineError  # noqa: E402
+from ._core import CheckpointError, ModelError, SimulationDivergedError, SpineError  # noqa: E402
 from .env import UpkieEnv  # noqa: E402
+from .policy import Policy, evaluate, load_policy  # noqa: E402
 from .registration import register  # noqa: E402
 from .vector import UpkieVectorEnv, make_vec  # noqa: E402
 
@@ -50,12 +51,16 @@ def make_sb3_vec_env(env_id, num_envs, num_threads=None, seed=None, **options):
 register()
 
 __all__ = [
+    "CheckpointError",
     "ModelError",
+    "Policy",
     "SimulationDivergedError",
     "SpineError",
     "UpkieEnv",
     "UpkieVectorEnv",
     "env_options",
+    "evaluate",
+    "load_policy",
     "make_sb3_vec_env",
     "make_vec",
     "register",

@@ -1,7 +1,6 @@
 #include "apps/policy_controller.hpp"
 
-#include "rl/checkpoint.hpp"
-#include "rl/saved_policy.hpp"
+#include "policy/deployed_policy.hpp"
 
 namespace upkie_rl::apps {
 
@@ -9,20 +8,20 @@ namespace {
 
 class PolicyController final : public Controller {
  public:
-  explicit PolicyController(SavedPolicy policy) : policy_(std::move(policy)) {}
+  explicit PolicyController(DeployedPolicy policy) : policy_(std::move(policy)) {}
   void act(std::span<const float> observation, std::span<float> action) override {
     policy_.act(observation, action);
   }
 
  private:
-  SavedPolicy policy_;
+  DeployedPolicy policy_;
 };
 
 }  // namespace
 
 std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& model,
                                                    const Env& env) {
-  SavedPolicy policy = SavedPolicy::load(model);
+  DeployedPolicy policy = DeployedPolicy::load(model);
   try {
     policy.check_spaces(env.observation_space(), env.action_space());
   } catch (const CheckpointError& error) {

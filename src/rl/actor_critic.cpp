@@ -1,5 +1,7 @@
 #include "rl/actor_critic.hpp"
 
+#include "policy/parameter_layout.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -10,23 +12,12 @@ namespace {
 
 constexpr double kHalfLog2Pi = 0.91893853320467274178;  // ½·log(2π)
 
-std::int64_t mlp_size(std::int64_t input_size, const std::vector<std::int64_t>& hidden_sizes,
-                      std::int64_t output_size) {
-  std::int64_t count = 0;
-  std::int64_t in = input_size;
-  for (std::int64_t out : hidden_sizes) {
-    count += out * in + out;
-    in = out;
-  }
-  return count + output_size * in + output_size;
-}
-
 }  // namespace
 
 std::int64_t count_parameters(std::int64_t observation_size, std::int64_t action_size,
                               const PolicyConfig& config) {
-  return mlp_size(observation_size, config.actor_hidden_sizes, action_size) +
-         mlp_size(observation_size, config.critic_hidden_sizes, 1) + action_size;
+  return actor_critic_parameter_count(observation_size, action_size, config.actor_hidden_sizes,
+                                      config.critic_hidden_sizes);
 }
 
 void orthogonal_init(const torch::Tensor& tensor, double gain, at::Generator& generator) {

@@ -47,7 +47,8 @@ class ActorCritic final : public torch::nn::Module {
   /// Log standard deviation of each action component.
   const torch::Tensor& log_std() const { return log_std_; }
 
-  /// Every parameter, concatenated (actor, critic, log σ). Writing it changes the model.
+  /// Every parameter, concatenated (actor, critic, log σ: policy/parameter_layout.hpp).
+  /// Writing it changes the model.
   torch::Tensor& flat_parameters() { return flat_parameters_; }
   const torch::Tensor& flat_parameters() const { return flat_parameters_; }
   /// The gradients of flat_parameters(), accumulated by backward().

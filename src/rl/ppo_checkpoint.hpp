@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "envs/box_space.hpp"
+#include "policy/space_json.hpp"
 #include "rl/checkpoint.hpp"
 #include "rl/ppo.hpp"
 
@@ -24,14 +25,5 @@ void restore_ppo_checkpoint(Ppo& ppo, const Checkpoint& checkpoint);
 
 /// The resolved configuration stored in a checkpoint (YAML text).
 std::string checkpoint_config_yaml(const Checkpoint& checkpoint);
-
-/// Box spaces as JSON; infinite bounds are written as the strings "inf" and "-inf".
-nlohmann::json space_to_json(const BoxSpace& space);
-/// Inverse of space_to_json; throws CheckpointError on a malformed space.
-BoxSpace space_from_json(const nlohmann::json& json);
-
-/// Throws CheckpointError if `actual` differs from `expected` in size, names or bounds,
-/// saying which component differs. `what` names the space ("observation space").
-void check_same_space(const BoxSpace& expected, const BoxSpace& actual, const std::string& what);
 
 }  // namespace upkie_rl

@@ -8,7 +8,7 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "rl/crc32c.hpp"
+#include "policy/crc32c.hpp"
 
 namespace upkie_rl {
 

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "rl/ppo_checkpoint.hpp"
-#include "rl/saved_policy.hpp"
 
 namespace upkie_rl {
 
@@ -78,11 +77,6 @@ void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& 
     throw std::runtime_error("cannot write TorchScript model " + path.string() + ": " +
                              error.what_without_backtrace());
   }
-}
-
-void export_torchscript(const SavedPolicy& saved, const std::filesystem::path& path) {
-  export_torchscript(saved.policy(), saved.normalizer(), saved.observation_space(),
-                     saved.action_space(), saved.env_id(), path);
 }
 
 }  // namespace upkie_rl

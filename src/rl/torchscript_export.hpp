@@ -9,19 +9,14 @@
 #include <string>
 
 #include "envs/box_space.hpp"
+#include "policy/observation_normalizer.hpp"
 #include "rl/actor_critic.hpp"
-#include "rl/observation_normalizer.hpp"
 
 namespace upkie_rl {
-
-class SavedPolicy;
 
 /// Writes the TorchScript module to `path`. Throws std::runtime_error on failure.
 void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& normalizer,
                         const BoxSpace& observation_space, const BoxSpace& action_space,
                         const std::string& env_id, const std::filesystem::path& path);
-
-/// Same, from a loaded model.
-void export_torchscript(const SavedPolicy& saved, const std::filesystem::path& path);
 
 }  // namespace upkie_rl

@@ -231,16 +231,6 @@ void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& con
 
 }  // namespace
 
-Activation parse_activation(const std::string& name) {
-  if (name == "relu" || name == "ReLU") return Activation::kReLU;
-  if (name == "tanh" || name == "Tanh") return Activation::kTanh;
-  throw std::invalid_argument("unknown activation '" + name + "' (expected relu or tanh)");
-}
-
-const char* activation_name(Activation activation) {
-  return activation == Activation::kReLU ? "relu" : "tanh";
-}
-
 std::int64_t TrainingConfig::steps_per_env() const {
   return std::max<std::int64_t>(1, ppo.n_steps / std::max<std::int64_t>(1, num_envs));
 }

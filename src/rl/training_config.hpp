@@ -8,14 +8,9 @@
 #include <utility>
 #include <vector>
 
+#include "policy/activation.hpp"
+
 namespace upkie_rl {
-
-/// Activation of the hidden layers of the policy and value networks.
-enum class Activation { kReLU, kTanh };
-
-/// Parses "relu" or "tanh"; throws std::invalid_argument otherwise.
-Activation parse_activation(const std::string& name);
-const char* activation_name(Activation activation);
 
 /// Separate actor and critic MLPs (SB3 `net_arch=dict(pi=..., vf=...)`).
 struct PolicyConfig {

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <utility>
 
+#include "policy/observation_normalizer.hpp"
 #include "rl/checkpoint.hpp"
-#include "rl/observation_normalizer.hpp"
 #include "rl/ppo_checkpoint.hpp"
 #include "rl/torchscript_export.hpp"
 #include "vec/make_vector_env.hpp"

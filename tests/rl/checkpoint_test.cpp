@@ -5,9 +5,9 @@
 #include <fstream>
 #include <iterator>
 
+#include "policy/deployed_policy.hpp"
 #include "rl/point_mass_vector_env.hpp"
 #include "rl/ppo_checkpoint.hpp"
-#include "rl/saved_policy.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -158,7 +158,8 @@ TEST(PpoCheckpoint, MismatchedPolicyOrSpacesAreRefused) {
   }
 }
 
-TEST(SavedPolicy, ActsWithTheMeanClippedAndChecksSpaces) {
+// The torch-free DeployedPolicy reads what the trainer writes and acts like its torch actor.
+TEST(DeployedPolicy, ActsWithTheMeanClippedAndChecksSpaces) {
   const TrainingConfig config = small_config();
   PointMassVectorEnv env(2);
   Ppo ppo(env, config);
@@ -176,7 +177,7 @@ TEST(SavedPolicy, ActsWithTheMeanClippedAndChecksSpaces) {
         {"gamma", 0.99},
         {"epsilon", 1e-8}}}};
   save_checkpoint(make_ppo_checkpoint(ppo, normalization), path);
-  SavedPolicy saved = SavedPolicy::load(path);
+  DeployedPolicy saved = DeployedPolicy::load(path);
   EXPECT_EQ(saved.env_id(), "point-mass");
   const float observation = 1.3f;
   float action = 0.0f;
@@ -195,7 +196,7 @@ TEST(SavedPolicy, ActsWithTheMeanClippedAndChecksSpaces) {
   std::string bytes = read_bytes(path);
   write_bytes(path, bytes.substr(0, bytes.size() - 100));
   try {
-    SavedPolicy::load(path);
+    DeployedPolicy::load(path);
     FAIL() << "a truncated model must be refused";
   } catch (const CheckpointError& error) {
     EXPECT_NE(std::string(error.what()).find(path.string()), std::string::npos) << error.what();

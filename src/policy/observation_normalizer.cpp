@@ -1,4 +1,4 @@
-#include "rl/observation_normalizer.hpp"
+#include "policy/observation_normalizer.hpp"
 
 #include <algorithm>
 #include <cmath>

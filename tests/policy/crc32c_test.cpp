@@ -1,4 +1,4 @@
-#include "rl/crc32c.hpp"
+#include "policy/crc32c.hpp"
 
 #include <gtest/gtest.h>
 

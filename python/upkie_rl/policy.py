@@ -1,0 +1,138 @@
+"""Trained policies of ``upkie-rl train`` in Python: deterministic actions for raw
+observations, for evaluation and deployment.
+
+``load_policy(path)`` reads either file the trainer writes:
+
+- ``model_*.ckpt`` (or a checkpoint): evaluated by the C++ extension, without torch;
+- ``model_*.pt``: the TorchScript export, evaluated by torch (``torch.jit.load``).
+
+Both apply the frozen observation normalisation saved with the model, run the actor and
+clip its mean to the action bounds, so the two files give the same actions.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Union
+
+import gymnasium as gym
+import numpy as np
+
+from . import _core
+from .spaces import box
+from .vector import canonical_id
+
+
+class Policy:
+    """A loaded policy: ``policy(observation)`` maps a raw float32 observation of shape
+    (obs_dim,) or a batch (n, obs_dim) to the action(s) (act_dim,) or (n, act_dim)."""
+
+    env_id: str
+    observation_space: gym.spaces.Box
+    action_space: gym.spaces.Box
+
+    def __call__(self, observation) -> np.ndarray:
+        observation = np.asarray(observation)
+        if observation.dtype.kind not in "fiu":
+            raise TypeError(f"observation must be real numbers, got dtype {observation.dtype}")
+        size = self.observation_space.shape[0]
+        if observation.shape[-1:] != (size,) or observation.ndim > 2:
+            raise ValueError(
+                f"observation has shape {observation.shape}, expected ({size},) or (n, {size})"
+            )
+        return self._act(np.ascontiguousarray(observation, dtype=np.float32))
+
+    def check_env(self, env) -> None:
+        """Raises ValueError unless ``env``'s flat spaces are the policy's."""
+        for what in ("observation_space", "action_space"):
+            mine, theirs = getattr(self, what), getattr(env, what)
+            if (
+                not isinstance(theirs, gym.spaces.Box)
+                or mine.shape != theirs.shape
+                or not np.array_equal(mine.low, theirs.low)
+                or not np.array_equal(mine.high, theirs.high)
+            ):
+                raise ValueError(
+                    f"the policy's {what} {mine} differs from the environment's {theirs}"
+                )
+
+    def _act(self, observation: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+
+class CheckpointPolicy(Policy):
+    """A ``.ckpt`` model evaluated by the C++ extension (no torch)."""
+
+    def __init__(self, path: Union[str, Path]):
+        self._core = _core.Policy(str(path))
+        self.env_id = self._core.env_id
+        self.observation_space = box(self._core.observation_space)
+        self.action_space = box(self._core.action_space)
+
+    def _act(self, observation: np.ndarray) -> np.ndarray:
+        if observation.ndim == 1:
+            return self._core.act(observation)
+        return self._core.act_batch(observation)
+
+
+class TorchScriptPolicy(Policy):
+    """A ``.pt`` TorchScript export evaluated by torch."""
+
+    def __init__(self, path: Union[str, Path]):
+        import torch
+
+        extra_files = {"metadata.json": ""}
+        try:
+            self._module = torch.jit.load(str(path), _extra_files=extra_files)
+            metadata = json.loads(extra_files["metadata.json"])
+            spaces = {
+                what: (
+                    np.array(metadata[what]["low"], dtype=np.float32),
+                    np.array(metadata[what]["high"], dtype=np.float32),
+                    metadata[what].get("names", []),
+                )
+                for what in ("observation_space", "action_space")
+            }
+        except (RuntimeError, ValueError, KeyError) as error:
+            raise ValueError(f"{path}: not an upkie-rl TorchScript policy ({error})") from error
+        self._torch = torch
+        self.env_id = metadata["env_id"]
+        self.observation_space = box(spaces["observation_space"])
+        self.action_space = box(spaces["action_space"])
+
+    def _act(self, observation: np.ndarray) -> np.ndarray:
+        with self._torch.no_grad():
+            return self._module(self._torch.from_numpy(observation)).numpy()
+
+
+def load_policy(path: Union[str, Path]) -> Policy:
+    """Loads ``model_*.ckpt`` (C++, no torch) or ``model_*.pt`` (TorchScript, needs torch).
+
+    Raises FileNotFoundError for a missing file and ValueError naming the file and the
+    problem for a damaged or foreign one."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no policy file {path}")
+    if path.suffix == ".pt":
+        return TorchScriptPolicy(path)
+    return CheckpointPolicy(path)
+
+
+def evaluate(policy: Policy, env_id: str, episodes: int = 10, seed: int = 0, **options):
+    """Rolls out ``policy`` deterministically on ``env_id`` (a fresh environment, episode k
+    seeded ``seed + k``); returns the list of (return, length) per episode."""
+    env = gym.make(canonical_id(env_id) if "/" not in env_id else env_id, **options)
+    policy.check_env(env)
+    results = []
+    for episode in range(episodes):
+        observation, _ = env.reset(seed=seed + episode)
+        total, length, done = 0.0, 0, False
+        while not done:
+            observation, reward, terminated, truncated, _ = env.step(policy(observation))
+            total += reward
+            length += 1
+            done = terminated or truncated
+        results.append((total, length))
+    env.close()
+    return results

@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// Checkpoint files, without libtorch: one self-checking binary file holding a JSON header
+/// (configuration, counters, random state, normalisation statistics, spaces) and named
+/// float32 tensors (policy weights, optimiser moments), closed by a CRC32C of everything
+/// before it. Written atomically: a temporary file in the same directory, flushed, then
+/// renamed. rl/checkpoint.hpp converts the tensors to and from torch.
+///
+/// Layout: "UPKIERL1" | uint64 header size | header JSON | tensor bytes | uint32 CRC32C,
+/// little-endian; the header's "tensors" array lists each tensor's name and shape in
+/// storage order (the readers remove it from the header they return).
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace upkie_rl {
+
+/// Raised for a missing, truncated, corrupted or inconsistent checkpoint.
+class CheckpointError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A float32 tensor: its shape and its values in row-major order.
+struct FloatTensor {
+  std::vector<std::int64_t> shape;
+  std::vector<float> values;
+};
+
+/// The contents of a checkpoint file.
+struct CheckpointFile {
+  nlohmann::json header = nlohmann::json::object();  ///< Free-form metadata.
+  std::map<std::string, FloatTensor> tensors;        ///< By name, stored in name order.
+
+  /// The tensor called `name`; throws CheckpointError naming it if absent or if its
+  /// number of values differs from `numel` (when numel >= 0).
+  const FloatTensor& tensor(const std::string& name, std::int64_t numel = -1) const;
+};
+
+/// Writes `file` to `path` atomically (the file is either the old one or the new one, never
+/// partial). Creates parent directories. Throws CheckpointError on I/O errors or a tensor
+/// whose values do not match its shape.
+void write_checkpoint_file(const CheckpointFile& file, const std::filesystem::path& path);
+
+/// Reads and verifies a checkpoint file. Throws CheckpointError naming the file and the
+/// problem (not found, not a checkpoint, truncated, bad CRC, malformed header, tensor sizes).
+CheckpointFile read_checkpoint_file(const std::filesystem::path& path);
+
+}  // namespace upkie_rl

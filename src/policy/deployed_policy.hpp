@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// A trained policy for deployment, without libtorch: the deterministic action (the actor's
+/// mean, clipped to the action bounds) of an observation normalised with the frozen training
+/// statistics, read from a final model or checkpoint of `upkie-rl train`. What
+/// `upkie-rl rollout --model`, the Python package and a robot run.
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "envs/box_space.hpp"
+#include "policy/activation.hpp"
+#include "policy/checkpoint_file.hpp"
+#include "policy/observation_normalizer.hpp"
+
+namespace upkie_rl {
+
+/// The sizes and activation of the actor and critic MLPs (the checkpoint's "policy" entry).
+struct PolicyShape {
+  std::int64_t observation_size = 0;
+  std::int64_t action_size = 0;
+  std::vector<std::int64_t> actor_hidden_sizes;
+  std::vector<std::int64_t> critic_hidden_sizes;
+  Activation activation = Activation::kReLU;
+};
+
+class DeployedPolicy {
+ public:
+  /// Reads a model or checkpoint. Throws CheckpointError naming the file and the problem
+  /// (missing, truncated, corrupted, not a model, inconsistent sizes).
+  static DeployedPolicy load(const std::filesystem::path& path);
+
+  /// From a checkpoint file's contents; `where` names it in errors.
+  static DeployedPolicy from_checkpoint(const CheckpointFile& file, const std::string& where);
+
+  /// Environment id the policy was trained on.
+  const std::string& env_id() const { return env_id_; }
+  const BoxSpace& observation_space() const { return observation_space_; }
+  const BoxSpace& action_space() const { return action_space_; }
+  const PolicyShape& shape() const { return shape_; }
+  const ObservationNormalizer& normalizer() const { return normalizer_; }
+  /// Every parameter (policy/parameter_layout.hpp), actor first.
+  const std::vector<float>& parameters() const { return parameters_; }
+
+  /// Throws CheckpointError saying how the environment's spaces differ from the model's.
+  void check_spaces(const BoxSpace& observation_space, const BoxSpace& action_space) const;
+
+  /// Writes the deterministic action for one raw observation. Allocation-free.
+  /// @throws std::invalid_argument on wrong sizes.
+  void act(std::span<const float> observation, std::span<float> action);
+
+  /// act() for each row of `observations` (n x observation size) into `actions`
+  /// (n x action size).
+  void act_batch(std::span<const float> observations, std::span<float> actions);
+
+ private:
+  struct Layer {
+    std::int64_t in = 0;
+    std::int64_t out = 0;
+    std::size_t weight = 0;  // Offset of the out x in weights in parameters_.
+    std::size_t bias = 0;    // Offset of the out biases.
+  };
+
+  DeployedPolicy() = default;
+
+  std::string env_id_;
+  BoxSpace observation_space_;
+  BoxSpace action_space_;
+  PolicyShape shape_;
+  ObservationNormalizer normalizer_;
+  std::vector<float> parameters_;
+  std::vector<Layer> actor_;
+  std::vector<float> input_;   // Normalised observation.
+  std::vector<float> buffer_;  // Two activation buffers, the widest layer each.
+};
+
+}  // namespace upkie_rl
