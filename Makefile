@@ -57,14 +57,16 @@ train: build
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done
+	PYTHONPATH=$(abspath $(BUILD_DIR))/python $(PYTHON) bench/python/python_step_bench.py \
+	  --cli $(BUILD_DIR)/upkie-rl
 
 sanitize: deps
-	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE=ON -DUPKIE_RL_BUILD_BENCH=OFF
+	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE=ON -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF
 	cmake --build $(SANITIZE_DIR) -j $(JOBS)
 	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS)
 
 sanitize-thread: deps
-	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE_THREAD=ON -DUPKIE_RL_BUILD_BENCH=OFF
+	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE_THREAD=ON -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF
 	cmake --build $(TSAN_DIR) -j $(JOBS)
 	cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS)
 
@@ -77,7 +79,7 @@ fuzz:
 	UPKIE_RL_FUZZ=1 bash scripts/install-deps.sh
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DUPKIE_RL_BUILD_FUZZ=ON \
-	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF
+	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target spine_message_fuzzer spine_server_fuzzer
 	mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/server_corpus
 	$(FUZZ_DIR)/fuzz/spine_message_fuzzer -runs=$(FUZZ_RUNS) -max_len=65536 \

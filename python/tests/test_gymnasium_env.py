@@ -82,6 +82,13 @@ def test_pendulum_spaces_types_and_seed_result():
     assert isinstance(spine["floor_contact"]["contact"], bool)
 
 
+def test_info_can_be_left_out():
+    env = gym.make("Upkie-Bullet-Pendulum", spine_observation=False)
+    _, info = env.reset(seed=0)
+    assert info == {}
+    assert env.step(np.zeros(1, dtype=np.float32))[-1] == {}
+
+
 def test_zero_action_falls_as_the_cli_says():
     env = gym.make("Upkie-Bullet-Pendulum")
     env.reset(seed=0)

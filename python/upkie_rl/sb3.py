@@ -15,11 +15,9 @@ from typing import Any, List, Optional
 import numpy as np
 from stable_baselines3.common.vec_env.base_vec_env import VecEnv
 
-from . import _core
 from .actions import as_action_array
-from .options import to_env_options
-from .spaces import box, is_nested
-from .vector import canonical_id, default_num_threads
+from .spaces import box
+from .vector import canonical_id, make_core_vector_env
 
 
 class UpkieSB3VecEnv(VecEnv):
@@ -36,14 +34,8 @@ class UpkieSB3VecEnv(VecEnv):
         **options: Any,
     ):
         env_id = canonical_id(env_id)
-        if num_threads is None:
-            num_threads = default_num_threads(num_envs)
         self.env_id = env_id
-        self._core = _core.VectorEnv(
-            env_id, to_env_options(env_id, options), num_envs, num_threads, "same_step"
-        )
-        if is_nested(env_id):
-            raise ValueError(f"{env_id}: SB3 vector envs step flat arrays; use a flat id")
+        self._core = make_core_vector_env(env_id, num_envs, num_threads, "same_step", options)
         self.render_mode = None
         super().__init__(
             num_envs, box(self._core.observation_space), box(self._core.action_space)

@@ -1,31 +1,24 @@
 #include "policy/checkpoint_file.hpp"
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 
 #include <fstream>
 #include <iterator>
 #include <string>
 
+#include "common/temp_files.hpp"
 #include "policy/crc32c.hpp"
 
 namespace upkie_rl {
 namespace {
 
+using testing::read_bytes;
+using testing::write_bytes;
+
 std::filesystem::path temp_path(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() /
-                         ("upkie_rl_checkpoint_file_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(directory);
-  return directory / name;
-}
-
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  return testing::temp_path(name, "upkie_rl_checkpoint_file");
 }
 
 /// A file with this header text and tensor bytes, and a correct CRC: only the header's or

@@ -1,17 +1,23 @@
 #include "policy/deployed_policy.hpp"
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 
 #include <cmath>
 #include <random>
 
 #include "common/allocation_counter.hpp"
+#include "common/temp_files.hpp"
 #include "policy/parameter_layout.hpp"
 #include "policy/space_json.hpp"
 
 namespace upkie_rl {
 namespace {
+
+std::filesystem::path temp_path(const std::string& name) {
+  return testing::temp_path(name, "upkie_rl_deployed_policy");
+}
 
 BoxSpace make_space(std::size_t size, float bound, const std::string& prefix) {
   BoxSpace space;
@@ -88,13 +94,6 @@ struct ModelFixture {
     return x;
   }
 };
-
-std::filesystem::path temp_path(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() /
-                         ("upkie_rl_deployed_policy_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(directory);
-  return directory / name;
-}
 
 TEST(DeployedPolicy, ActsLikeAnIndependentReference) {
   for (const std::string activation : {"tanh", "relu"}) {

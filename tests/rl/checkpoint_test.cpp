@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "common/temp_files.hpp"
 #include "policy/deployed_policy.hpp"
 #include "rl/point_mass_vector_env.hpp"
 #include "rl/ppo_checkpoint.hpp"
@@ -12,23 +13,14 @@
 namespace upkie_rl {
 namespace {
 
-using testing::PointMassVectorEnv;
+using testing::read_bytes;
+using testing::write_bytes;
 
 std::filesystem::path temp_path(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() /
-                         ("upkie_rl_checkpoint_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(directory);
-  return directory / name;
+  return testing::temp_path(name, "upkie_rl_checkpoint");
 }
 
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-}
+using testing::PointMassVectorEnv;
 
 void expect_checkpoint_error(const std::filesystem::path& path, const std::string& text) {
   try {
