@@ -43,14 +43,9 @@ std::int64_t count_values(const std::vector<std::int64_t>& shape, const std::str
 }  // namespace
 
 const FloatTensor& CheckpointFile::tensor(const std::string& name, std::int64_t numel) const {
-  const auto found = tensors.find(name);
-  if (found == tensors.end()) throw CheckpointError("checkpoint has no tensor '" + name + "'");
-  const auto size = static_cast<std::int64_t>(found->second.values.size());
-  if (numel >= 0 && size != numel) {
-    throw CheckpointError("checkpoint tensor '" + name + "' has " + std::to_string(size) +
-                          " values, expected " + std::to_string(numel));
-  }
-  return found->second;
+  return find_tensor(tensors, name, numel, [](const FloatTensor& tensor) {
+    return static_cast<std::int64_t>(tensor.values.size());
+  });
 }
 
 void write_checkpoint_file(const CheckpointFile& file, const std::filesystem::path& path) {

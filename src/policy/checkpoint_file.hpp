@@ -43,6 +43,22 @@ struct CheckpointFile {
   const FloatTensor& tensor(const std::string& name, std::int64_t numel = -1) const;
 };
 
+/// The tensor called `name` in `tensors`, for CheckpointFile and rl's torch Checkpoint:
+/// throws CheckpointError naming it if absent or if its number of values, numel_of(tensor),
+/// differs from `numel` (when numel >= 0).
+template <typename Tensor, typename NumelOf>
+const Tensor& find_tensor(const std::map<std::string, Tensor>& tensors, const std::string& name,
+                          std::int64_t numel, NumelOf numel_of) {
+  const auto found = tensors.find(name);
+  if (found == tensors.end()) throw CheckpointError("checkpoint has no tensor '" + name + "'");
+  const std::int64_t size = numel_of(found->second);
+  if (numel >= 0 && size != numel) {
+    throw CheckpointError("checkpoint tensor '" + name + "' has " + std::to_string(size) +
+                          " values, expected " + std::to_string(numel));
+  }
+  return found->second;
+}
+
 /// Writes `file` to `path` atomically (the file is either the old one or the new one, never
 /// partial). Creates parent directories. Throws CheckpointError on I/O errors or a tensor
 /// whose values do not match its shape.

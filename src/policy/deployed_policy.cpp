@@ -1,47 +1,14 @@
 #include "policy/deployed_policy.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "policy/parameter_layout.hpp"
 #include "policy/space_json.hpp"
 
 namespace upkie_rl {
 
 namespace {
-
-/// The environment id in the configuration the trainer stores (YAML, key env.id).
-std::string env_id_of(const nlohmann::json& header) {
-  const auto found = header.find("config");
-  if (found == header.end() || !found->is_string()) {
-    throw CheckpointError("checkpoint has no configuration");
-  }
-  try {
-    const YAML::Node config = YAML::Load(found->get<std::string>());
-    return config["env"]["id"].as<std::string>();
-  } catch (const YAML::Exception& error) {
-    throw CheckpointError(std::string("configuration has no env.id: ") + error.what());
-  }
-}
-
-PolicyShape shape_of(const nlohmann::json& policy) {
-  PolicyShape shape;
-  shape.observation_size = policy.at("observation_size").get<std::int64_t>();
-  shape.action_size = policy.at("action_size").get<std::int64_t>();
-  shape.actor_hidden_sizes = policy.at("actor_hidden_sizes").get<std::vector<std::int64_t>>();
-  shape.critic_hidden_sizes = policy.at("critic_hidden_sizes").get<std::vector<std::int64_t>>();
-  shape.activation = parse_activation(policy.at("activation").get<std::string>());
-  auto positive = [](std::int64_t size) { return size > 0 && size <= 1'000'000; };
-  if (!positive(shape.observation_size) || !positive(shape.action_size) ||
-      !std::all_of(shape.actor_hidden_sizes.begin(), shape.actor_hidden_sizes.end(), positive) ||
-      !std::all_of(shape.critic_hidden_sizes.begin(), shape.critic_hidden_sizes.end(), positive)) {
-    throw CheckpointError("policy sizes must be in [1, 1000000]");
-  }
-  return shape;
-}
 
 void check_size(std::size_t size, std::size_t expected, const char* what) {
   if (size != expected) {
@@ -62,22 +29,23 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
   DeployedPolicy policy;
   try {
     const nlohmann::json& header = file.header;
-    if (header.value("format", "") != "upkie-rl checkpoint") {
+    if (header.value("format", "") != kCheckpointFormat) {
       throw CheckpointError("not an upkie-rl model");
     }
-    policy.env_id_ = env_id_of(header);
+    policy.env_id_ = checkpoint_env_id(header);
     policy.observation_space_ = space_from_json(header.at("observation_space"));
     policy.action_space_ = space_from_json(header.at("action_space"));
-    policy.shape_ = shape_of(header.at("policy"));
+    policy.shape_ = policy_shape_from_json(header.at("policy"));
     const PolicyShape& shape = policy.shape_;
     if (shape.observation_size != static_cast<std::int64_t>(policy.observation_space_.size()) ||
         shape.action_size != static_cast<std::int64_t>(policy.action_space_.size())) {
       throw CheckpointError("policy sizes do not match the stored spaces");
     }
-    const std::int64_t count =
-        actor_critic_parameter_count(shape.observation_size, shape.action_size,
-                                     shape.actor_hidden_sizes, shape.critic_hidden_sizes);
-    policy.parameters_ = file.tensor("policy.parameters", count).values;
+    const ActorCriticLayout layout =
+        actor_critic_layout(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
+                            shape.critic_hidden_sizes);
+    policy.parameters_ = file.tensor("policy.parameters", layout.size).values;
+    policy.actor_ = layout.actor;
     policy.normalizer_ = ObservationNormalizer::from_state(
         header.value("normalization", nlohmann::json()), policy.observation_space_.size());
   } catch (const CheckpointError& error) {
@@ -87,19 +55,8 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
   } catch (const nlohmann::json::exception& error) {
     throw CheckpointError(where + ": malformed header: " + error.what());
   }
-  // The actor's layers, first in the flat parameters.
-  std::size_t offset = 0;
-  std::int64_t in = policy.shape_.observation_size;
-  std::int64_t widest = in;
-  std::vector<std::int64_t> sizes = policy.shape_.actor_hidden_sizes;
-  sizes.push_back(policy.shape_.action_size);
-  for (std::int64_t out : sizes) {
-    Layer layer{in, out, offset, offset + static_cast<std::size_t>(out * in)};
-    offset = layer.bias + static_cast<std::size_t>(out);
-    policy.actor_.push_back(layer);
-    widest = std::max(widest, out);
-    in = out;
-  }
+  std::int64_t widest = 0;
+  for (const DenseLayerLayout& layer : policy.actor_) widest = std::max(widest, layer.out);
   policy.input_.resize(policy.observation_space_.size());
   policy.buffer_.resize(2 * static_cast<std::size_t>(widest));
   return policy;
@@ -118,14 +75,16 @@ void DeployedPolicy::act(std::span<const float> observation, std::span<float> ac
   const std::size_t half = buffer_.size() / 2;
   const float* x = input_.data();
   for (std::size_t l = 0; l < actor_.size(); ++l) {
-    const Layer& layer = actor_[l];
+    const DenseLayerLayout& layer = actor_[l];
     const bool last = l + 1 == actor_.size();
     float* y = last ? action.data() : buffer_.data() + (l % 2) * half;
+    const float* weights = parameters_.data() + layer.weight;
+    const float* biases = parameters_.data() + layer.bias;
     for (std::int64_t i = 0; i < layer.out; ++i) {
       // Accumulate in double: the result does not depend on the summation order's rounding
       // as much as a float sum would, so it agrees with torch's matmul to about 1e-6.
-      double sum = parameters_[layer.bias + static_cast<std::size_t>(i)];
-      const float* w = parameters_.data() + layer.weight + static_cast<std::size_t>(i * layer.in);
+      double sum = biases[i];
+      const float* w = weights + i * layer.in;
       for (std::int64_t j = 0; j < layer.in; ++j) sum += static_cast<double>(w[j]) * x[j];
       auto value = static_cast<float>(sum);
       if (!last) {

@@ -5,28 +5,20 @@
 /// statistics, read from a final model or checkpoint of `upkie-rl train`. What
 /// `upkie-rl rollout --model`, the Python package and a robot run.
 
-#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "envs/box_space.hpp"
-#include "policy/activation.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/model_header.hpp"
 #include "policy/observation_normalizer.hpp"
+#include "policy/parameter_layout.hpp"
 
 namespace upkie_rl {
 
-/// The sizes and activation of the actor and critic MLPs (the checkpoint's "policy" entry).
-struct PolicyShape {
-  std::int64_t observation_size = 0;
-  std::int64_t action_size = 0;
-  std::vector<std::int64_t> actor_hidden_sizes;
-  std::vector<std::int64_t> critic_hidden_sizes;
-  Activation activation = Activation::kReLU;
-};
-
+/// One loaded policy. Not thread-safe: act() reuses buffers made at load.
 class DeployedPolicy {
  public:
   /// Reads a model or checkpoint. Throws CheckpointError naming the file and the problem
@@ -53,17 +45,11 @@ class DeployedPolicy {
   void act(std::span<const float> observation, std::span<float> action);
 
   /// act() for each row of `observations` (n x observation size) into `actions`
-  /// (n x action size).
+  /// (n x action size). Allocation-free.
+  /// @throws std::invalid_argument unless both are n rows of their size.
   void act_batch(std::span<const float> observations, std::span<float> actions);
 
  private:
-  struct Layer {
-    std::int64_t in = 0;
-    std::int64_t out = 0;
-    std::size_t weight = 0;  // Offset of the out x in weights in parameters_.
-    std::size_t bias = 0;    // Offset of the out biases.
-  };
-
   DeployedPolicy() = default;
 
   std::string env_id_;
@@ -72,9 +58,9 @@ class DeployedPolicy {
   PolicyShape shape_;
   ObservationNormalizer normalizer_;
   std::vector<float> parameters_;
-  std::vector<Layer> actor_;
-  std::vector<float> input_;   // Normalised observation.
-  std::vector<float> buffer_;  // Two activation buffers, the widest layer each.
+  std::vector<DenseLayerLayout> actor_;  // In parameters_.
+  std::vector<float> input_;             // Normalised observation.
+  std::vector<float> buffer_;            // Two activation buffers, the widest layer each.
 };
 
 }  // namespace upkie_rl

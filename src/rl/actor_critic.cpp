@@ -1,7 +1,5 @@
 #include "rl/actor_critic.hpp"
 
-#include "policy/parameter_layout.hpp"
-
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -16,8 +14,9 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;  // ½·log(2π)
 
 std::int64_t count_parameters(std::int64_t observation_size, std::int64_t action_size,
                               const PolicyConfig& config) {
-  return actor_critic_parameter_count(observation_size, action_size, config.actor_hidden_sizes,
-                                      config.critic_hidden_sizes);
+  return actor_critic_layout(observation_size, action_size, config.actor_hidden_sizes,
+                             config.critic_hidden_sizes)
+      .size;
 }
 
 void orthogonal_init(const torch::Tensor& tensor, double gain, at::Generator& generator) {
@@ -39,16 +38,13 @@ ActorCritic::ActorCritic(std::int64_t observation_size, std::int64_t action_size
   if (observation_size < 1 || action_size < 1) {
     throw std::invalid_argument("ActorCritic: observation and action sizes must be positive");
   }
-  const std::int64_t total = count_parameters(observation_size, action_size, config);
-  flat_parameters_ = torch::zeros({total}, torch::kFloat32);
-  flat_gradients_ = torch::zeros({total}, torch::kFloat32);
-  std::int64_t offset = 0;
-  actor_ = make_mlp("actor", observation_size, config.actor_hidden_sizes, action_size, offset);
-  critic_ = make_mlp("critic", observation_size, config.critic_hidden_sizes, 1, offset);
-  log_std_ = register_parameter("log_std", torch::zeros({action_size}));
-  log_std_.set_data(flat_parameters_.narrow(0, offset, action_size));
-  log_std_.mutable_grad() = flat_gradients_.narrow(0, offset, action_size);
-  offset += action_size;
+  const ActorCriticLayout layout = actor_critic_layout(
+      observation_size, action_size, config.actor_hidden_sizes, config.critic_hidden_sizes);
+  flat_parameters_ = torch::zeros({layout.size}, torch::kFloat32);
+  flat_gradients_ = torch::zeros({layout.size}, torch::kFloat32);
+  actor_ = make_mlp("actor", layout.actor);
+  critic_ = make_mlp("critic", layout.critic);
+  log_std_ = make_parameter("log_std", {action_size}, layout.log_std);
 
   torch::NoGradGuard no_grad;
   at::Generator generator = at::make_generator<at::CPUGeneratorImpl>(seed);
@@ -62,31 +58,27 @@ ActorCritic::ActorCritic(std::int64_t observation_size, std::int64_t action_size
   log_std_.fill_(config.log_std_init);
 }
 
-std::vector<DenseLayer> ActorCritic::make_mlp(const std::string& name, std::int64_t input_size,
-                                              const std::vector<std::int64_t>& hidden_sizes,
-                                              std::int64_t output_size, std::int64_t& offset) {
-  // Each parameter is a standalone leaf whose storage is moved into the flat buffers, so
-  // autograd accumulates gradients straight into flat_gradients_.
-  auto make = [&](const std::string& parameter_name, const std::vector<std::int64_t>& shape) {
-    std::int64_t numel = 1;
-    for (std::int64_t size : shape) numel *= size;
-    torch::Tensor parameter = register_parameter(parameter_name, torch::zeros(shape));
-    parameter.set_data(flat_parameters_.narrow(0, offset, numel).view(shape));
-    parameter.mutable_grad() = flat_gradients_.narrow(0, offset, numel).view(shape);
-    offset += numel;
-    return parameter;
-  };
+torch::Tensor ActorCritic::make_parameter(const std::string& name,
+                                          const std::vector<std::int64_t>& shape,
+                                          std::int64_t offset) {
+  // A standalone leaf whose storage is moved into the flat buffers, so autograd
+  // accumulates its gradient straight into flat_gradients_.
+  std::int64_t numel = 1;
+  for (std::int64_t size : shape) numel *= size;
+  torch::Tensor parameter = register_parameter(name, torch::zeros(shape));
+  parameter.set_data(flat_parameters_.narrow(0, offset, numel).view(shape));
+  parameter.mutable_grad() = flat_gradients_.narrow(0, offset, numel).view(shape);
+  return parameter;
+}
+
+std::vector<DenseLayer> ActorCritic::make_mlp(const std::string& name,
+                                              const std::vector<DenseLayerLayout>& layout) {
   std::vector<DenseLayer> layers;
-  std::int64_t in = input_size;
-  std::vector<std::int64_t> sizes = hidden_sizes;
-  sizes.push_back(output_size);
-  for (std::size_t i = 0; i < sizes.size(); ++i) {
+  for (std::size_t i = 0; i < layout.size(); ++i) {
     const std::string prefix = name + "_" + std::to_string(i) + "_";
-    DenseLayer layer;
-    layer.weight = make(prefix + "weight", {sizes[i], in});
-    layer.bias = make(prefix + "bias", {sizes[i]});
-    layers.push_back(layer);
-    in = sizes[i];
+    const DenseLayerLayout& layer = layout[i];
+    layers.push_back({make_parameter(prefix + "weight", {layer.out, layer.in}, layer.weight),
+                      make_parameter(prefix + "bias", {layer.out}, layer.bias)});
   }
   return layers;
 }

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "policy/parameter_layout.hpp"
 #include "rl/training_config.hpp"
 
 namespace upkie_rl {
@@ -67,9 +68,10 @@ class ActorCritic final : public torch::nn::Module {
                                     const torch::Tensor& actions) const;
 
  private:
-  std::vector<DenseLayer> make_mlp(const std::string& name, std::int64_t input_size,
-                                   const std::vector<std::int64_t>& hidden_sizes,
-                                   std::int64_t output_size, std::int64_t& offset);
+  torch::Tensor make_parameter(const std::string& name, const std::vector<std::int64_t>& shape,
+                               std::int64_t offset);
+  std::vector<DenseLayer> make_mlp(const std::string& name,
+                                   const std::vector<DenseLayerLayout>& layout);
   torch::Tensor run_mlp(const std::vector<DenseLayer>& layers, torch::Tensor x) const;
 
   std::int64_t observation_size_;

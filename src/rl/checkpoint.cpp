@@ -3,14 +3,8 @@
 namespace upkie_rl {
 
 const torch::Tensor& Checkpoint::tensor(const std::string& name, std::int64_t numel) const {
-  const auto found = tensors.find(name);
-  if (found == tensors.end()) throw CheckpointError("checkpoint has no tensor '" + name + "'");
-  if (numel >= 0 && found->second.numel() != numel) {
-    throw CheckpointError("checkpoint tensor '" + name + "' has " +
-                          std::to_string(found->second.numel()) + " values, expected " +
-                          std::to_string(numel));
-  }
-  return found->second;
+  return find_tensor(tensors, name, numel,
+                     [](const torch::Tensor& tensor) { return tensor.numel(); });
 }
 
 void save_checkpoint(const Checkpoint& checkpoint, const std::filesystem::path& path) {

@@ -5,12 +5,10 @@ namespace upkie_rl {
 namespace {
 
 nlohmann::json policy_shape(const Ppo& ppo) {
-  const PolicyConfig& policy = ppo.policy().config();
-  return {{"observation_size", ppo.policy().observation_size()},
-          {"action_size", ppo.policy().action_size()},
-          {"actor_hidden_sizes", policy.actor_hidden_sizes},
-          {"critic_hidden_sizes", policy.critic_hidden_sizes},
-          {"activation", activation_name(policy.activation)}};
+  const PolicyConfig& config = ppo.policy().config();
+  return policy_shape_to_json({ppo.policy().observation_size(), ppo.policy().action_size(),
+                               config.actor_hidden_sizes, config.critic_hidden_sizes,
+                               config.activation});
 }
 
 }  // namespace
@@ -19,7 +17,7 @@ Checkpoint make_ppo_checkpoint(const Ppo& ppo, const nlohmann::json& normalizati
                                const nlohmann::json& extra) {
   Checkpoint checkpoint;
   checkpoint.header = extra;
-  checkpoint.header["format"] = "upkie-rl checkpoint";
+  checkpoint.header["format"] = kCheckpointFormat;
   checkpoint.header["version"] = 1;
   checkpoint.header["config"] = to_yaml(ppo.config());
   checkpoint.header["counters"] = ppo.counters_state();
@@ -34,17 +32,9 @@ Checkpoint make_ppo_checkpoint(const Ppo& ppo, const nlohmann::json& normalizati
   return checkpoint;
 }
 
-std::string checkpoint_config_yaml(const Checkpoint& checkpoint) {
-  const auto found = checkpoint.header.find("config");
-  if (found == checkpoint.header.end() || !found->is_string()) {
-    throw CheckpointError("checkpoint has no configuration");
-  }
-  return found->get<std::string>();
-}
-
 void restore_ppo_checkpoint(Ppo& ppo, const Checkpoint& checkpoint) {
   const nlohmann::json& header = checkpoint.header;
-  if (header.value("format", "") != "upkie-rl checkpoint" || header.value("version", 0) != 1) {
+  if (header.value("format", "") != kCheckpointFormat || header.value("version", 0) != 1) {
     throw CheckpointError("not an upkie-rl checkpoint of version 1");
   }
   if (!header.contains("policy") || header.at("policy") != policy_shape(ppo)) {

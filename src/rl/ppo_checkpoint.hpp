@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "envs/box_space.hpp"
+#include "policy/model_header.hpp"
 #include "policy/space_json.hpp"
 #include "rl/checkpoint.hpp"
 #include "rl/ppo.hpp"
@@ -22,8 +23,5 @@ Checkpoint make_ppo_checkpoint(const Ppo& ppo, const nlohmann::json& normalizati
 /// Restores weights, optimiser state, counters and random state into `ppo`. Throws
 /// CheckpointError if the checkpoint's policy shape or spaces differ from `ppo`'s.
 void restore_ppo_checkpoint(Ppo& ppo, const Checkpoint& checkpoint);
-
-/// The resolved configuration stored in a checkpoint (YAML text).
-std::string checkpoint_config_yaml(const Checkpoint& checkpoint);
 
 }  // namespace upkie_rl

@@ -117,7 +117,7 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
   const Checkpoint checkpoint = load_checkpoint(checkpoint_path);
   TrainingConfig config;
   try {
-    config = parse_training_config(checkpoint_config_yaml(checkpoint));
+    config = parse_training_config(checkpoint_config_yaml(checkpoint.header));
   } catch (const std::invalid_argument& error) {
     throw CheckpointError("checkpoint " + checkpoint_path.string() +
                           ": bad configuration: " + error.what());

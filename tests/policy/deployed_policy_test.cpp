@@ -8,6 +8,7 @@
 #include <random>
 
 #include "common/allocation_counter.hpp"
+#include "common/normalization_state.hpp"
 #include "common/temp_files.hpp"
 #include "policy/parameter_layout.hpp"
 #include "policy/space_json.hpp"
@@ -38,7 +39,7 @@ struct ModelFixture {
   std::vector<float> parameters;
 
   CheckpointFile file() {
-    const std::int64_t count = actor_critic_parameter_count(3, 2, actor_hidden, critic_hidden);
+    const std::int64_t count = actor_critic_layout(3, 2, actor_hidden, critic_hidden).size;
     std::mt19937 generator(42);
     std::normal_distribution<float> normal(0.0f, 0.8f);
     parameters.resize(static_cast<std::size_t>(count));
@@ -55,16 +56,7 @@ struct ModelFixture {
                      {"activation", activation}}},
                    {"observation_space", space_to_json(observation_space)},
                    {"action_space", space_to_json(action_space)},
-                   {"normalization",
-                    {{"observations", {{"mean", mean}, {"var", var}, {"count", 10.0}}},
-                     {"returns", {{"mean", {0.0}}, {"var", {1.0}}, {"count", 10.0}}},
-                     {"config",
-                      {{"observations", true},
-                       {"rewards", true},
-                       {"clip_observations", 2.0},
-                       {"clip_rewards", 10.0},
-                       {"gamma", 0.99},
-                       {"epsilon", 1e-8}}}}}};
+                   {"normalization", testing::normalization_state(mean, var, 2.0)}};
     file.tensors["policy.parameters"] = {{count}, parameters};
     return file;
   }

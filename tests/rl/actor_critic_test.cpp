@@ -22,6 +22,22 @@ TEST(ActorCritic, CountsAndLaysOutParameters) {
   EXPECT_EQ(policy.flat_parameters().numel(), expected);
   EXPECT_EQ(count_parameters(3, 2, small_config()), expected);
   EXPECT_EQ(policy.parameters().size(), 3u * 2 + 2u * 2 + 1u);
+  // Each parameter is a view of the flat buffer where policy/parameter_layout.hpp puts it.
+  const ActorCriticLayout layout = actor_critic_layout(3, 2, {16, 8}, {12});
+  const float* flat = policy.flat_parameters().data_ptr<float>();
+  auto expect_layers = [&](const std::vector<DenseLayer>& layers,
+                           const std::vector<DenseLayerLayout>& expected) {
+    ASSERT_EQ(layers.size(), expected.size());
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+      EXPECT_EQ(layers[i].weight.data_ptr<float>(), flat + expected[i].weight);
+      EXPECT_EQ(layers[i].bias.data_ptr<float>(), flat + expected[i].bias);
+      EXPECT_EQ(layers[i].weight.sizes().vec(),
+                (std::vector<std::int64_t>{expected[i].out, expected[i].in}));
+    }
+  };
+  expect_layers(policy.actor_layers(), layout.actor);
+  expect_layers(policy.critic_layers(), layout.critic);
+  EXPECT_EQ(policy.log_std().data_ptr<float>(), flat + layout.log_std);
 }
 
 TEST(ActorCritic, OrthogonalInitialisationWithTheSb3Gains) {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "common/normalization_state.hpp"
 #include "common/temp_files.hpp"
 #include "policy/deployed_policy.hpp"
 #include "rl/point_mass_vector_env.hpp"
@@ -158,17 +159,7 @@ TEST(DeployedPolicy, ActsWithTheMeanClippedAndChecksSpaces) {
   ppo.reset_environments(0);
   ppo.iterate();
   const auto path = temp_path("saved.ckpt");
-  const nlohmann::json normalization = {
-      {"observations", {{"mean", {0.5}}, {"var", {4.0}}, {"count", 10.0}}},
-      {"returns", {{"mean", {0.0}}, {"var", {1.0}}, {"count", 10.0}}},
-      {"config",
-       {{"observations", true},
-        {"rewards", true},
-        {"clip_observations", 10.0},
-        {"clip_rewards", 10.0},
-        {"gamma", 0.99},
-        {"epsilon", 1e-8}}}};
-  save_checkpoint(make_ppo_checkpoint(ppo, normalization), path);
+  save_checkpoint(make_ppo_checkpoint(ppo, testing::normalization_state({0.5}, {4.0}, 10.0)), path);
   DeployedPolicy saved = DeployedPolicy::load(path);
   EXPECT_EQ(saved.env_id(), "point-mass");
   const float observation = 1.3f;
