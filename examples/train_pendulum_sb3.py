@@ -9,8 +9,15 @@ normalisation statistics) every 50,000 steps. Then evaluates 10 deterministic ep
 with the frozen statistics and prints the mean return, the lengths, the wall time and the
 training steps per second.
 
-    python3 examples/train_pendulum_sb3.py                      # upkie-rl, Bullet, 1M steps
-    python3 examples/train_pendulum_sb3.py --backend upkie      # the public upkie + PyBullet
+    PYTHONPATH=build/python python3 examples/train_pendulum_sb3.py   # upkie-rl, 1M steps
+    python3 examples/train_pendulum_sb3.py --backend upkie           # public upkie + PyBullet
+    ... --total-timesteps 20000 --num-envs 10 --threads 2 --seed 0 --output DIR --json PATH
+
+Writes DIR/checkpoints/pendulum_<N>_steps.zip and pendulum_vecnormalize_<N>_steps.pkl,
+then DIR/model_<time>.zip and DIR/vecnormalize_<time>.pkl; ``--json`` also writes the summary
+(steps/s, returns, lengths, paths). On this 2-core machine the 1M-step run takes about 11 min
+on upkie-rl (1,485 steps/s, mean return 297.4, every episode 300 steps) and about 35 min
+on the public package (about 470 steps/s).
 
 ``--backend upkie`` runs the same training on the public ``upkie`` package's
 Upkie-PyBullet-Pendulum (needs ``pip install upkie pybullet``), wrapped with the seed's
@@ -78,10 +85,17 @@ class SeedPendulumTask(gym.Wrapper):
 
 
 def make_public_env():
+    """One public Upkie-PyBullet-Pendulum (headless, 200 Hz, a_max 1 m/s) with the seed's task.
+
+    ``regulate_frequency=False``: upkie's default (True) sleeps so that every env steps at
+    most at 200 Hz of wall time, which would cap ten envs at 2,000 steps/s and measure the
+    clock rather than the simulation.
+    """
     import upkie.envs
 
     upkie.envs.register()
-    env = gym.make(PUBLIC_ENV_ID, frequency=200.0, max_ground_velocity=1.0)
+    env = gym.make(PUBLIC_ENV_ID, frequency=200.0, max_ground_velocity=1.0, gui=False,
+                   regulate_frequency=False)
     return SeedPendulumTask(env)
 
 
@@ -134,6 +148,7 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=10, help="evaluation episodes")
     parser.add_argument("--checkpoint-every", type=int, default=50_000)
     parser.add_argument("--torch-threads", type=int, default=1)
+    parser.add_argument("--device", default="cpu", help="torch device (the MLP is small)")
     parser.add_argument("--output", type=Path, default=Path("runs/sb3_pendulum"))
     parser.add_argument("--json", type=Path, help="write the summary there too")
     args = parser.parse_args()
@@ -154,7 +169,7 @@ def main() -> None:
         max_grad_norm=0.5,
         policy_kwargs=dict(net_arch=dict(pi=[64, 64], vf=[64, 64]),
                            activation_fn=torch.nn.ReLU),
-        seed=args.seed, device="cpu", verbose=0,
+        seed=args.seed, device=args.device, verbose=0,
     )
     checkpoints = CheckpointCallback(
         save_freq=max(1, args.checkpoint_every // args.num_envs),
@@ -162,7 +177,7 @@ def main() -> None:
         save_vecnormalize=True,
     )
     model.learn(total_timesteps=args.total_timesteps, callback=checkpoints)
-    train_time = time.perf_counter() - start
+    train_time = time.perf_counter() - start  # environment creation included
     stamp = time.strftime("%Y%m%d-%H%M%S")
     model_path = args.output / f"model_{stamp}.zip"
     statistics = args.output / f"vecnormalize_{stamp}.pkl"
@@ -170,14 +185,22 @@ def main() -> None:
     venv.save(str(statistics))
     venv.close()
 
+    eval_start = time.perf_counter()
     returns, lengths = evaluate(model, statistics, args.backend, args.episodes)
+    eval_time = time.perf_counter() - eval_start
     summary = {
         "backend": args.backend,
+        "num_envs": args.num_envs,
+        "seed": args.seed,
+        "torch_threads": args.torch_threads,
         "total_timesteps": int(model.num_timesteps),
         "train_seconds": train_time,
         "steps_per_second": model.num_timesteps / train_time,
         "mean_return": float(np.mean(returns)),
         "std_return": float(np.std(returns)),
+        "mean_length": float(np.mean(lengths)),
+        "eval_seconds": eval_time,
+        "wall_seconds": time.perf_counter() - start,
         "returns": returns,
         "lengths": lengths,
         "model": str(model_path),
@@ -188,6 +211,7 @@ def main() -> None:
           f"({summary['steps_per_second']:,.0f} steps/s)")
     print(f"evaluation: mean return {summary['mean_return']:.1f} +- {summary['std_return']:.1f}"
           f" over {len(returns)} episodes, lengths {lengths}")
+    print(f"wall time {summary['wall_seconds']:.1f} s (evaluation {eval_time:.1f} s)")
     if args.json:
         args.json.write_text(json.dumps(summary, indent=2))
 

@@ -2,8 +2,8 @@
 
 Runs, alternately and ``--repeats`` times each: `upkie-rl bench` (C++ only), the Gymnasium
 single environment (``gym.make``, with and without building ``info``), and the vector env
-(``upkie_rl.make_vec``), all under the pendulum's linear law v = 10 theta + p + 0.1 p_dot,
-which keeps every episode alive, so all of them step the same physics. Prints a table and,
+(``upkie_rl.make_vec``), all under the pendulum's linear law v = 10 theta + p + 0.1 p_dot
+computed as the CLI computes it, so that all of them step the same trajectories. Prints a table and,
 with ``--json``, one JSON line.
 
     PYTHONPATH=build/python python3 bench/python/python_step_bench.py --steps 3000
@@ -26,6 +26,15 @@ import upkie_rl
 GAINS = np.array([10.0, 1.0, 0.0, 0.1], dtype=np.float32)
 
 
+def linear_law(observations: np.ndarray) -> np.ndarray:
+    """The CLI's `linear:10,1,0,0.1` in its float32 operations and order, so that Python and
+    C++ step the very same trajectories (the physics' cost depends on the state)."""
+    velocity = np.zeros(observations.shape[:-1], dtype=np.float32)
+    for k in range(4):
+        velocity = velocity + GAINS[k] * observations[..., k]
+    return np.clip(velocity, -1.0, 1.0).astype(np.float32)[..., None]
+
+
 def cli_bench(cli: Path, env_id: str, num_envs: int, threads: int, steps: int) -> float:
     command = [
         str(cli), "bench", "--env", env_id, "--num-envs", str(num_envs),
@@ -41,8 +50,7 @@ def single_env(env_id: str, steps: int, with_info: bool) -> float:
     observation, _ = env.reset(seed=0)
     start = time.perf_counter()
     for _ in range(steps):
-        action = np.clip(GAINS @ observation, -1.0, 1.0).reshape(1).astype(np.float32)
-        observation, _, terminated, truncated, _ = env.step(action)
+        observation, _, terminated, truncated, _ = env.step(linear_law(observation))
         if terminated or truncated:
             observation, _ = env.reset()
     return steps / (time.perf_counter() - start)
@@ -54,8 +62,7 @@ def vector_env(env_id: str, num_envs: int, threads: int, steps: int) -> float:
     observations, _ = venv.reset()
     start = time.perf_counter()
     for _ in range(steps):
-        actions = np.clip(observations @ GAINS, -1.0, 1.0).reshape(num_envs, 1)
-        observations, *_ = venv.step(actions.astype(np.float32))
+        observations, *_ = venv.step(linear_law(observations))
     return steps * num_envs / (time.perf_counter() - start)
 
 
