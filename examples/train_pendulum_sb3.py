@@ -15,9 +15,9 @@ training steps per second.
 
 Writes DIR/checkpoints/pendulum_<N>_steps.zip and pendulum_vecnormalize_<N>_steps.pkl,
 then DIR/model_<time>.zip and DIR/vecnormalize_<time>.pkl; ``--json`` also writes the summary
-(steps/s, returns, lengths, paths). On this 2-core machine the 1M-step run takes about 11 min
-on upkie-rl (1,485 steps/s, mean return 297.4, every episode 300 steps) and about 35 min
-on the public package (about 470 steps/s).
+(steps/s, returns, lengths, paths). On this 2-core machine the 1M-step run takes 11:14 on
+upkie-rl (1,485 steps/s, mean return 297.4, every episode 300 steps); the public package
+steps about 440/s (its first 100,000 steps), so about 38 min for 1M.
 
 ``--backend upkie`` runs the same training on the public ``upkie`` package's
 Upkie-PyBullet-Pendulum (needs ``pip install upkie pybullet``), wrapped with the seed's
