@@ -122,7 +122,8 @@ def load_policy(path: Union[str, Path]) -> Policy:
 def evaluate(policy: Policy, env_id: str, episodes: int = 10, seed: int = 0, **options):
     """Rolls out ``policy`` deterministically on ``env_id`` (a fresh environment, episode k
     seeded ``seed + k``); returns the list of (return, length) per episode."""
-    env = gym.make(canonical_id(env_id) if "/" not in env_id else env_id, **options)
+    # Always our id: a bare Upkie-Mock-* or Upkie-Spine-* may be the public upkie package's.
+    env = gym.make(f"upkie_rl/{canonical_id(env_id)}", **options)
     policy.check_env(env)
     results = []
     for episode in range(episodes):

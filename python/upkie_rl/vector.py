@@ -78,7 +78,7 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
             raise ValueError(
                 f"autoreset_mode {autoreset_mode!r}: expected one of {list(AUTORESET_MODES)}"
             )
-        self.env_id = env_id
+        self.env_id = env_id = canonical_id(env_id)
         self._core = make_core_vector_env(
             env_id, num_envs, num_threads, AUTORESET_MODES[mode], options
         )
@@ -160,7 +160,7 @@ def make_vec(
     ``upkie_rl/`` namespace. Keyword arguments: ``autoreset_mode`` ("NextStep" or
     "SameStep"), ``spine_observation`` (bool), and the registry's options.
     """
-    return UpkieVectorEnv(canonical_id(env_id), num_envs, num_threads, seed, **options)
+    return UpkieVectorEnv(env_id, num_envs, num_threads, seed, **options)
 
 
 def canonical_id(env_id: str) -> str:
