@@ -1,10 +1,12 @@
-/// Throughput of the Bullet backend for one robot on one core: physics steps per second,
-/// and 200 Hz agent steps (5 physics steps each) per second, while balancing.
+/// Throughput of the Bullet and MuJoCo backends for one robot on one core, measured side by
+/// side in one run: physics steps per second, and 200 Hz agent steps (5 physics steps each)
+/// per second, while balancing.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 
 #include "sim/bullet_simulation.hpp"
+#include "sim/mujoco_simulation.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -24,11 +26,7 @@ ServoAction balance(const Observation& observation, double wheel_radius) {
   return action;
 }
 
-void run(benchmark::State& state, int nb_substeps, bool merge_fixed_links) {
-  BulletConfig config;
-  config.nb_substeps = nb_substeps;
-  config.merge_fixed_links = merge_fixed_links;
-  BulletSimulation simulation(RobotModel::default_model(), config);
+void balance_loop(benchmark::State& state, PhysicsSimulation& simulation) {
   const double radius = simulation.model().wheel_radius();
   for (int warmup = 0; warmup < 200; ++warmup) {  // land on the wheels first
     simulation.step(balance(simulation.observation(), radius));
@@ -41,13 +39,35 @@ void run(benchmark::State& state, int nb_substeps, bool merge_fixed_links) {
       static_cast<double>(simulation.physics_steps() - physics_start), benchmark::Counter::kIsRate);
 }
 
-void BM_PhysicsStep(benchmark::State& state) { run(state, 1, true); }
-void BM_AgentStep200Hz(benchmark::State& state) { run(state, 5, true); }
-void BM_PhysicsStepUnmerged(benchmark::State& state) { run(state, 1, false); }
+void run_bullet(benchmark::State& state, int nb_substeps, bool merge_fixed_links) {
+  BulletConfig config;
+  config.nb_substeps = nb_substeps;
+  config.merge_fixed_links = merge_fixed_links;
+  BulletSimulation simulation(RobotModel::default_model(), config);
+  balance_loop(state, simulation);
+}
 
-BENCHMARK(BM_PhysicsStep);
-BENCHMARK(BM_AgentStep200Hz);
-BENCHMARK(BM_PhysicsStepUnmerged);
+void run_mujoco(benchmark::State& state, int nb_substeps, int tire_condim) {
+  MujocoConfig config;
+  config.nb_substeps = nb_substeps;
+  config.tire_condim = tire_condim;
+  MujocoSimulation simulation(RobotModel::default_model(), config);
+  balance_loop(state, simulation);
+}
+
+void BM_BulletPhysicsStep(benchmark::State& state) { run_bullet(state, 1, true); }
+void BM_BulletAgentStep200Hz(benchmark::State& state) { run_bullet(state, 5, true); }
+void BM_BulletPhysicsStepUnmerged(benchmark::State& state) { run_bullet(state, 1, false); }
+void BM_MujocoPhysicsStep(benchmark::State& state) { run_mujoco(state, 1, 6); }
+void BM_MujocoAgentStep200Hz(benchmark::State& state) { run_mujoco(state, 5, 6); }
+void BM_MujocoAgentStep200HzCondim3(benchmark::State& state) { run_mujoco(state, 5, 3); }
+
+BENCHMARK(BM_BulletPhysicsStep);
+BENCHMARK(BM_BulletAgentStep200Hz);
+BENCHMARK(BM_BulletPhysicsStepUnmerged);
+BENCHMARK(BM_MujocoPhysicsStep);
+BENCHMARK(BM_MujocoAgentStep200Hz);
+BENCHMARK(BM_MujocoAgentStep200HzCondim3);
 
 }  // namespace
 }  // namespace upkie_rl

@@ -2,6 +2,8 @@
 // (envs, vec). The Gymnasium and SB3 classes are in the Python package around it.
 
 #include <pybind11/pybind11.h>
+
+#include "render/render_error.hpp"
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -47,6 +49,7 @@ PYBIND11_MODULE(_core, module) {
                                                             PyExc_RuntimeError);
   py::register_exception<upkie_rl::SpineError>(module, "SpineError", PyExc_RuntimeError);
   py::register_exception<upkie_rl::ModelError>(module, "ModelError", PyExc_RuntimeError);
+  py::register_exception<upkie_rl::RenderError>(module, "RenderError", PyExc_RuntimeError);
   upkie_rl::python::bind_registry(module);
   upkie_rl::python::bind_env(module);
   upkie_rl::python::bind_vector_env(module);

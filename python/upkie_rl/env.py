@@ -32,23 +32,29 @@ class UpkieEnv(gym.Env):
     skip.
     """
 
-    metadata = {"render_modes": [], "render_fps": 0}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 0}
 
     def __init__(
         self,
         env_id: str,
         render_mode: Optional[str] = None,
         spine_observation: bool = True,
+        render_width: int = 640,
+        render_height: int = 480,
         **options: Any,
     ):
-        if render_mode is not None:
-            raise ValueError(f"{env_id}: render_mode {render_mode!r} is not supported")
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(
+                f"{env_id}: render_mode {render_mode!r} is not supported; use 'rgb_array'"
+            )
+        self._render_size = (int(render_width), int(render_height))
         options.setdefault("max_episode_steps", 0)
         self.env_id = env_id
         self.render_mode = render_mode
         self._with_spine_observation = spine_observation
         self._core = _core.Env(env_id, to_env_options(env_id, options))
-        self.metadata = {"render_modes": [], "render_fps": 1.0 / self._core.timestep}
+        # Real time: one frame per step (RecordVideo writes videos at this rate).
+        self.metadata = {"render_modes": ["rgb_array"], "render_fps": 1.0 / self._core.timestep}
         observation_space = self._core.observation_space
         action_space = self._core.action_space
         nested = is_nested(env_id)
@@ -90,6 +96,17 @@ class UpkieEnv(gym.Env):
         if self._action_layout is not None:
             return self._action_layout.to_nested(self._neutral_action)
         return self._neutral_action.copy()
+
+    def render(self):
+        """With render_mode="rgb_array": the robot drawn offscreen (OSMesa, no display or
+        GPU) from the simulator's ground truth, a (height, width, 3) uint8 array."""
+        if self.render_mode is None:
+            gym.logger.warn(
+                f"{self.env_id}: render() without a render_mode; make the env with "
+                "render_mode='rgb_array'"
+            )
+            return None
+        return self._core.render(*self._render_size)
 
     def get_spine_observation(self) -> Optional[dict]:
         """The full observation dictionary of the last reset or step."""

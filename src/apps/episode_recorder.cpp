@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
+#include <string>
+#include <unordered_map>
 
 namespace upkie_rl::apps {
 
@@ -16,7 +19,8 @@ void EpisodeRecorder::write_header(const Env& env) {
   out_ << "episode,step,t";
   for (const std::string& name : env.observation_space().names) out_ << ',' << name;
   for (const std::string& name : env.action_space().names) out_ << ",action." << name;
-  out_ << ",reward,terminated,truncated,base_x,base_y,base_z,base_qw,base_qx,base_qy,base_qz";
+  out_ << ",reward,terminated,truncated";
+  for (const char* column : kGroundTruthColumns) out_ << ',' << column;
   for (const auto& joint : kServoNames) out_ << ',' << joint;
   out_ << '\n';
   if (!out_) throw std::runtime_error("cannot write the record file " + path_.string());
@@ -52,6 +56,96 @@ void EpisodeRecorder::close() {
   out_.flush();
   if (!out_) throw std::runtime_error("error writing the record file " + path_.string());
   out_.close();
+}
+
+namespace {
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream stream(line);
+  while (std::getline(stream, field, ',')) fields.push_back(field);
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+double parse_number(const std::string& text, const std::filesystem::path& path, long line,
+                    const std::string& column) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) {
+    throw std::runtime_error(path.string() + ":" + std::to_string(line) + ": column " + column +
+                             " is not a number: \"" + text + "\"");
+  }
+  return value;
+}
+
+}  // namespace
+
+std::vector<RecordedStep> read_recorded_steps(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read the record file " + path.string());
+  std::string line;
+  if (!std::getline(in, line)) throw std::runtime_error(path.string() + " is empty");
+  const std::vector<std::string> header = split_fields(line);
+  std::unordered_map<std::string, std::size_t> column_of;
+  for (std::size_t i = 0; i < header.size(); ++i) column_of[header[i]] = i;
+  std::vector<std::string> needed = {"episode", "t", "reward"};
+  needed.insert(needed.end(), kGroundTruthColumns.begin(), kGroundTruthColumns.end());
+  for (const auto& joint : kServoNames) needed.emplace_back(joint);
+  std::vector<std::size_t> index;
+  for (const std::string& name : needed) {
+    const auto found = column_of.find(name);
+    if (found == column_of.end()) {
+      throw std::runtime_error(path.string() + ": no column \"" + name +
+                               "\" in its header; is it a file of `upkie-rl rollout --record`?");
+    }
+    index.push_back(found->second);
+  }
+
+  std::vector<RecordedStep> steps;
+  long line_number = 1;
+  std::array<double, 3 + 7 + kNumServos> values{};
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = split_fields(line);
+    if (fields.size() != header.size()) {
+      throw std::runtime_error(path.string() + ":" + std::to_string(line_number) + ": " +
+                               std::to_string(fields.size()) + " fields, the header has " +
+                               std::to_string(header.size()) + " (truncated file?)");
+    }
+    for (std::size_t i = 0; i < needed.size(); ++i) {
+      values[i] = parse_number(fields[index[i]], path, line_number, needed[i]);
+    }
+    if (std::isnan(values[3])) {
+      throw std::runtime_error(path.string() + ":" + std::to_string(line_number) +
+                               ": no ground truth (a spine run has no simulator pose to draw)");
+    }
+    RecordedStep step;
+    step.episode = static_cast<int>(values[0]);
+    step.time = values[1];
+    step.reward = values[2];
+    step.pose.base_position = Eigen::Vector3d(values[3], values[4], values[5]);
+    step.pose.base_orientation = Eigen::Quaterniond(values[6], values[7], values[8], values[9]);
+    for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+      step.pose.joint_angles[servo] = values[10 + servo];
+    }
+    if (!step.pose.base_position.allFinite() ||
+        !step.pose.base_orientation.coeffs().allFinite() ||
+        step.pose.base_orientation.norm() < 1e-9) {
+      throw std::runtime_error(path.string() + ":" + std::to_string(line_number) +
+                               ": the base pose is not finite");
+    }
+    steps.push_back(step);
+  }
+  if (steps.empty()) throw std::runtime_error(path.string() + " has a header but no rows");
+  return steps;
 }
 
 }  // namespace upkie_rl::apps

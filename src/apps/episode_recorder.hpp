@@ -10,8 +10,13 @@
 #include <vector>
 
 #include "envs/env.hpp"
+#include "render/robot_renderer.hpp"
 
 namespace upkie_rl::apps {
+
+/// Columns of the simulator's ground truth, before the six joint angles (kServoNames).
+inline constexpr std::array<const char*, 7> kGroundTruthColumns = {
+    "base_x", "base_y", "base_z", "base_qw", "base_qx", "base_qy", "base_qz"};
 
 /// One row per step: episode, step, t, each observation component by name, each action
 /// component by name, reward, terminated, truncated, then the simulator's ground truth
@@ -44,5 +49,19 @@ class EpisodeRecorder {
   double time_ = 0.0;
   std::array<double, 7 + 6> ground_truth_{};
 };
+
+/// What `upkie-rl render` needs of one row of a record file.
+struct RecordedStep {
+  int episode = 0;
+  double time = 0.0;    ///< [s]
+  double reward = 0.0;  ///< Of the step taken from this state.
+  RobotPose pose;
+};
+
+/// Reads the rows of a record file written by EpisodeRecorder (any environment).
+/// @throws std::runtime_error naming the file, and the line and column at fault: a missing
+///         column, a value that is not a number, a row of the wrong length, no ground truth
+///         (a spine run), or no rows at all.
+std::vector<RecordedStep> read_recorded_steps(const std::filesystem::path& path);
 
 }  // namespace upkie_rl::apps

@@ -13,6 +13,7 @@
 #include "apps/commands.hpp"
 #include "apps/episode_recorder.hpp"
 #include "apps/policy_controller.hpp"
+#include "apps/video_recorder.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/registry.hpp"
 #include "sim/observation_dict.hpp"
@@ -32,7 +33,17 @@ struct RolloutOptions {
   std::string record_path;
   bool json = false;
   bool info = false;
+  VideoOptions video;
 };
+
+/// Offers the env's state to the video; the env must have a simulator's ground truth.
+void add_video_frame(VideoRecorder& video, const Env& env, double episode_return) {
+  const Observation* full = env.full_observation();
+  if (full == nullptr || !full->has_sim) {
+    throw std::runtime_error("--video needs a simulated environment (Bullet, MuJoCo or Mock)");
+  }
+  video.add(robot_pose(*full), full->time, episode_return, full->base_orientation.pitch);
+}
 
 std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options, const Env& env) {
   if (!options.model.empty()) return make_policy_controller(options.model, env);
@@ -43,6 +54,8 @@ void run_rollout(const RolloutOptions& options) {
   const EnvOptions env_options = parse_env_options(options.env_options);
   std::optional<EpisodeRecorder> recorder;  // Opened first: a bad path is refused at once.
   if (!options.record_path.empty()) recorder.emplace(options.record_path);
+  std::optional<VideoRecorder> video;  // Checked first too: a bad path is refused at once.
+  if (!options.video.path.empty()) video.emplace(RobotModel::default_model(), options.video);
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
   std::unique_ptr<Controller> controller = make_rollout_controller(options, *env);
   if (recorder) recorder->write_header(*env);
@@ -55,6 +68,10 @@ void run_rollout(const RolloutOptions& options) {
     env->reset(options.seed + static_cast<std::uint64_t>(episode), observation);
     controller->reset();
     double total = 0.0;
+    if (video) {
+      video->start_episode(episode);
+      add_video_frame(*video, *env, total);
+    }
     int length = 0;
     const char* ending = "max-steps";
     while (length < options.max_steps) {
@@ -64,6 +81,7 @@ void run_rollout(const RolloutOptions& options) {
       if (recorder) recorder->after_step(episode, length, action, result);
       total += result.reward;
       ++length;
+      if (video) add_video_frame(*video, *env, total);
       if (result.terminated || result.truncated) {
         ending = result.terminated ? "terminated" : "truncated";
         break;
@@ -79,6 +97,11 @@ void run_rollout(const RolloutOptions& options) {
     }
   }
   if (recorder) recorder->close();
+  if (video) {
+    video->close();
+    std::cout << "video " << options.video.path.string() << ": " << video->frames()
+              << " frames at " << options.video.fps << " frames/s" << std::endl;
+  }
 
   const double n = static_cast<double>(returns.size());
   double mean = 0.0, mean_length = 0.0, variance = 0.0;
@@ -128,6 +151,7 @@ void add_rollout_command(CLI::App& app) {
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value (repeatable)");
   command->add_option("--record", options->record_path, "Write one CSV row per step to this file");
+  add_video_options(*command, options->video);
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
   command->add_flag("--info", options->info,
                     "Print each episode's last info (the full observation dictionary)");

@@ -1,5 +1,5 @@
 /// @file
-/// `upkie-rl spine`: a simulation spine backed by our Bullet simulation, serving agents
+/// `upkie-rl spine`: a simulation spine backed by our Bullet or MuJoCo simulation, serving agents
 /// (ours through SpineBackend, or the public `upkie` Python environments) over the
 /// shared-memory spine link.
 
@@ -14,6 +14,7 @@
 #include "apps/commands.hpp"
 #include "model/robot_model.hpp"
 #include "sim/bullet_simulation.hpp"
+#include "sim/mujoco_simulation.hpp"
 #include "spine/spine_server.hpp"
 
 namespace upkie_rl::apps {
@@ -53,7 +54,22 @@ struct SpineOptions {
   std::string shm_name = "/upkie";
   double spine_frequency = 1000.0;
   int nb_substeps = 0;
+  std::string backend = "bullet";
 };
+
+/// The physics backend the spine serves.
+std::unique_ptr<PhysicsSimulation> make_physics(const std::string& backend,
+                                                std::shared_ptr<const RobotModel> model,
+                                                const PhysicsConfig& physics) {
+  if (backend == "mujoco") {
+    MujocoConfig config;
+    static_cast<PhysicsConfig&>(config) = physics;
+    return std::make_unique<MujocoSimulation>(std::move(model), config);
+  }
+  BulletConfig config;
+  static_cast<PhysicsConfig&>(config) = physics;
+  return std::make_unique<BulletSimulation>(std::move(model), config);
+}
 
 void run_spine(const SpineOptions& options) {
   if (!(options.spine_frequency > 0.0)) {
@@ -63,10 +79,11 @@ void run_spine(const SpineOptions& options) {
   std::shared_ptr<const RobotModel> model = RobotModel::default_model();
 
   // One physics step per cycle in real time; K physics steps per Action otherwise.
-  BulletConfig bullet;
-  bullet.physics_timestep = 1.0 / options.spine_frequency;
-  bullet.nb_substeps = real_time ? 1 : options.nb_substeps;
-  BulletSimulation simulation(model, bullet);
+  PhysicsConfig physics;
+  physics.physics_timestep = 1.0 / options.spine_frequency;
+  physics.nb_substeps = real_time ? 1 : options.nb_substeps;
+  const std::unique_ptr<PhysicsSimulation> engine = make_physics(options.backend, model, physics);
+  PhysicsSimulation& simulation = *engine;
 
   SpineServerConfig config;
   config.shm_name = options.shm_name;
@@ -84,11 +101,13 @@ void run_spine(const SpineOptions& options) {
         simulation, config, [&simulation] { simulation.step_braked(); },
         [&simulation](const ServoGains& gains) { simulation.set_servo_gains(gains); });
     if (real_time) {
-      spdlog::info("spine {}: real time, {} Hz, one {} ms physics step per cycle", options.shm_name,
-                   options.spine_frequency, 1e3 * bullet.physics_timestep);
+      spdlog::info("spine {}: {}, real time, {} Hz, one {} ms physics step per cycle",
+                   options.shm_name, options.backend, options.spine_frequency,
+                   1e3 * physics.physics_timestep);
     } else {
-      spdlog::info("spine {}: on request, {} physics steps of {} ms per action", options.shm_name,
-                   bullet.nb_substeps, 1e3 * bullet.physics_timestep);
+      spdlog::info("spine {}: {}, on request, {} physics steps of {} ms per action",
+                   options.shm_name, options.backend, physics.nb_substeps,
+                   1e3 * physics.physics_timestep);
     }
     server.run(interrupt_requested);
     error = server.error();
@@ -104,7 +123,7 @@ void add_spine_command(CLI::App& app) {
   auto options = std::make_shared<SpineOptions>();
   CLI::App* command = app.add_subcommand(
       "spine",
-      "Run a simulation spine: Bullet served over shared memory to an agent (SpineBackend, "
+      "Run a simulation spine: Bullet or MuJoCo served over shared memory to an agent (SpineBackend, "
       "or the upkie Python package). Ctrl-C stops it and removes the shared memory.");
   command->add_option("--shm-name", options->shm_name, "Shared-memory name")->capture_default_str();
   command
@@ -117,6 +136,9 @@ void add_spine_command(CLI::App& app) {
                    "0: real-time loop; K > 0: advance only on actions, K physics steps each")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
+  command->add_option("--backend", options->backend, "Physics engine")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"bullet", "mujoco"}));
   command->callback([options] { run_spine(*options); });
 }
 

@@ -14,13 +14,14 @@
 #include "model/inertia_source.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "sim/mock_simulation.hpp"
+#include "sim/mujoco_simulation.hpp"
 #include "spine/spine_backend.hpp"
 
 namespace upkie_rl {
 
 namespace {
 
-enum class Backend { kBullet, kMock, kSpine };
+enum class Backend { kBullet, kMujoco, kMock, kSpine };
 enum class Kind { kServos, kPendulum, kGyropod, kServosTask };
 
 struct BackendName {
@@ -32,8 +33,9 @@ struct KindName {
   Kind kind;
 };
 
-constexpr std::array<BackendName, 3> kBackends = {{
+constexpr std::array<BackendName, 4> kBackends = {{
     {"Bullet", Backend::kBullet},
+    {"MuJoCo", Backend::kMujoco},
     {"Mock", Backend::kMock},
     {"Spine", Backend::kSpine},
 }};
@@ -84,6 +86,8 @@ struct EnvSettings {
   PendulumConfig pendulum;
   GyropodConfig gyropod;
   ServosTaskConfig task;
+  /// MuJoCo's compiled model, built once per factory and shared by its environments.
+  std::shared_ptr<const MujocoModel> mujoco_model;
 };
 
 constexpr double kHuge = 1e9;
@@ -128,14 +132,14 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
                   "attempts at opening the spine's shared memory, 1 s apart");
   } else {
     table.add_int("nb_substeps", &settings.nb_substeps, 0, 10000,
-                  "physics steps per agent step, 0 for round(1000/frequency) (Bullet)");
+                  "physics steps per agent step, 0 for round(1000/frequency)");
     table.add_choice(
         "inertia", {"box", "urdf"},
         [&settings](std::size_t choice) {
           settings.inertia_source =
               choice == 0 ? InertiaSource::kBulletBoxRule : InertiaSource::kUrdf;
         },
-        "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors (Bullet)");
+        "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
   }
   table.add_int("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
                 "truncate episodes after this many steps, 0 for never");
@@ -182,21 +186,36 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
   return table;
 }
 
-std::unique_ptr<Simulation> make_simulation(Backend backend, const EnvSettings& settings,
-                                            const std::shared_ptr<const RobotModel>& model,
-                                            int& physics_steps_per_step) {
-  const int nb_substeps =
+/// The physics settings of `settings`, common to Bullet and MuJoCo.
+void set_physics(const EnvSettings& settings, PhysicsConfig& config) {
+  config.nb_substeps =
       settings.nb_substeps > 0
           ? settings.nb_substeps
           : std::max(1, static_cast<int>(std::lround(1000.0 / settings.frequency)));
+  config.physics_timestep = 1.0 / (settings.frequency * config.nb_substeps);
+  config.inertia_source = settings.inertia_source;
+}
+
+MujocoConfig mujoco_config(const EnvSettings& settings) {
+  MujocoConfig config;
+  set_physics(settings, config);
+  return config;
+}
+
+std::unique_ptr<Simulation> make_simulation(Backend backend, const EnvSettings& settings,
+                                            const std::shared_ptr<const RobotModel>& model,
+                                            int& physics_steps_per_step) {
   switch (backend) {
     case Backend::kBullet: {
       BulletConfig config;
-      config.nb_substeps = nb_substeps;
-      config.physics_timestep = 1.0 / (settings.frequency * nb_substeps);
-      config.inertia_source = settings.inertia_source;
-      physics_steps_per_step = nb_substeps;
+      set_physics(settings, config);
+      physics_steps_per_step = config.nb_substeps;
       return std::make_unique<BulletSimulation>(model, config);
+    }
+    case Backend::kMujoco: {
+      const MujocoConfig config = mujoco_config(settings);
+      physics_steps_per_step = config.nb_substeps;
+      return std::make_unique<MujocoSimulation>(model, config, settings.mujoco_model);
     }
     case Backend::kSpine: {
       SpineBackendConfig config = settings.spine;
@@ -256,7 +275,12 @@ EnvFactory make_env_factory(const std::string& id, const EnvOptions& options) {
   EnvSettings settings;
   option_table(parsed, settings).apply(options, id);
   // Fail here, not in the factory, on the model or a settings error.
-  RobotModel::default_model();
+  const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
+  if (parsed.backend == Backend::kMujoco) {
+    const MujocoConfig config = mujoco_config(settings);
+    config.validate();
+    settings.mujoco_model = build_mujoco_model(*model, config);
+  }
   return [parsed, settings]() { return build(parsed, settings); };
 }
 

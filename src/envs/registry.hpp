@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The registry of environment ids: `Upkie-{Bullet,Mock,Spine}-{Servos,Pendulum,Gyropod,
-/// ServosTask}`, with `Upkie-PyBullet-*` accepted as an alias of `Upkie-Bullet-*`.
+/// The registry of environment ids: `Upkie-{Bullet,MuJoCo,Mock,Spine}-{Servos,Pendulum,
+/// Gyropod,ServosTask}`, with `Upkie-PyBullet-*` accepted as an alias of `Upkie-Bullet-*`.
 ///
 /// Kinds: Servos (ServosEnv), Pendulum (PendulumEnv + TimeLimit 300), Gyropod (GyropodEnv),
 /// ServosTask (the seed's full-servos task chain: ServosTaskEnv + TimeLimit 300).

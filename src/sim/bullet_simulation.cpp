@@ -14,10 +14,6 @@
 namespace upkie_rl {
 namespace {
 
-/// Servo temperature and bus voltage reported by the simulation.
-constexpr double kSimulatedTemperature = 42.0;  // [deg C]
-constexpr double kSimulatedVoltage = 18.0;      // [V]
-
 /// A tire closer to the floor than this counts as touching it [m].
 constexpr double kFloorContactDistance = 1e-3;
 
@@ -34,9 +30,6 @@ Eigen::Quaterniond to_eigen(const btQuaternion& q) { return {q.w(), q.x(), q.y()
 btTransform to_bullet(const Eigen::Isometry3d& pose) {
   return btTransform(to_bullet(Eigen::Quaterniond(pose.linear())), to_bullet(pose.translation()));
 }
-
-/// R_ars_to_world = diag(1, -1, -1): the IMU filter's frame is x forward, y right, z down.
-const Eigen::Matrix3d kRotationArsToWorld = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
 
 std::unique_ptr<btCollisionShape> make_shape(const CollisionShape& shape) {
   if (shape.kind == CollisionShape::Kind::kBox) {
@@ -229,53 +222,27 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
   }
 }
 
-bool is_finite(const ResetState& state) {
-  bool finite = state.position_base_in_world.allFinite() &&
-                state.orientation_base_in_world.coeffs().allFinite() &&
-                state.linear_velocity_base_to_world_in_world.allFinite() &&
-                state.angular_velocity_base_in_base.allFinite();
-  for (double angle : state.joint_configuration) finite = finite && std::isfinite(angle);
-  return finite;
+const BulletConfig& validated(const BulletConfig& config) {
+  config.validate("BulletConfig");
+  return config;
 }
 
 }  // namespace
 
 BulletSimulation::BulletSimulation(std::shared_ptr<const RobotModel> model,
                                    const BulletConfig& config)
-    : model_(std::move(model)),
+    : PhysicsSimulation(validated(config).servo_gains),
+      model_(std::move(model)),
       config_(config),
-      tree_(*model_, config.inertia_source, config.merge_fixed_links) {
-  if (!(config_.physics_timestep > 0.0) || !std::isfinite(config_.physics_timestep)) {
-    throw std::invalid_argument("BulletConfig: physics_timestep must be positive, got " +
-                                std::to_string(config_.physics_timestep));
-  }
-  if (config_.nb_substeps < 1) {
-    throw std::invalid_argument("BulletConfig: nb_substeps must be at least 1, got " +
-                                std::to_string(config_.nb_substeps));
-  }
+      tree_(*model_, config.inertia_source, config.merge_fixed_links),
+      sensors_(*model_, config_) {
   reset(ResetState{});
 }
 
 BulletSimulation::~BulletSimulation() = default;
 
-void BulletSimulation::set_servo_gains(const ServoGains& gains) {
-  if (!is_valid_servo_gain(gains.kp) || !is_valid_servo_gain(gains.kd)) {
-    throw std::invalid_argument("servo gains must be finite and non-negative, got kp " +
-                                std::to_string(gains.kp) + " and kd " + std::to_string(gains.kd));
-  }
-  config_.kp = gains.kp;
-  config_.kd = gains.kd;
-}
-
 const Observation& BulletSimulation::reset(const ResetState& state) {
-  if (!is_finite(state)) {
-    throw std::invalid_argument(
-        "reset state must be finite (position, orientation, velocities "
-        "and joint angles)");
-  }
-  if (state.orientation_base_in_world.norm() < 1e-9) {
-    throw std::invalid_argument("reset state: orientation quaternion must not be zero");
-  }
+  validate_reset_state(state);
   world_.reset();  // the old world goes first: the new one must not share its memory pools
   world_ = std::make_unique<BulletWorld>();
   configure_solver(world_->world, config_.gravity);
@@ -306,16 +273,12 @@ const Observation& BulletSimulation::reset(const ResetState& state) {
   multibody.forwardKinematics(scratch_rotations, scratch_vectors);
   multibody.updateCollisionObjectWorldTransforms(scratch_rotations, scratch_vectors);
 
-  reset_state_ = state;
-  reset_joint_angles_ = state.joint_configuration;
   applied_torques_.fill(0.0);
   diverged_ = false;
-  observation_ = Observation{};
-  previous_imu_velocity_ = Eigen::Vector3d::Zero();
-  read_observation();
-  // Zero acceleration at reset: the finite difference starts from the reset velocity.
-  observation_.imu.raw_linear_acceleration -= observation_.imu.linear_acceleration;
-  observation_.imu.linear_acceleration.setZero();
+  MeasuredJoints joints;
+  MeasuredBase base;
+  measure(joints, base);
+  sensors_.reset(joints, base, tire_touches_floor(), observation_);
   return observation_;
 }
 
@@ -345,120 +308,64 @@ const Observation& BulletSimulation::advance(const ServoAction& action, bool bra
 
 void BulletSimulation::apply_servo_torques(const ServoAction& action, bool braked) {
   btMultiBody& multibody = *world_->multibody;
-  const ServoGains gains{config_.kp, config_.kd};
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     const int link = world_->servo_link[servo];
-    const double position = multibody.getJointPos(link);
-    const double velocity = multibody.getJointVel(link);
-    double torque = 0.0;
-    if (braked) {
-      torque = std::clamp(-gains.kd * velocity, -kBrakeTorque, kBrakeTorque);
-    } else {
-      torque = servo_torque(action[servo], position, velocity, gains,
-                            model_->servo_limits(servo).effort);
-    }
+    const double torque = joint_torque(action[servo], braked, multibody.getJointPos(link),
+                                       multibody.getJointVel(link),
+                                       model_->servo_limits(servo).effort);
     multibody.addJointTorque(link, torque);
     applied_torques_[servo] = torque;
   }
 }
 
-void BulletSimulation::read_observation() {
+void BulletSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const {
   const btMultiBody& multibody = *world_->multibody;
-  const double wheel_radius = model_->wheel_radius();
-
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     const int link = world_->servo_link[servo];
-    ServoObservation& servo_observation = observation_.servo[servo];
-    servo_observation.position = multibody.getJointPos(link);
-    servo_observation.velocity = multibody.getJointVel(link);
-    servo_observation.torque = applied_torques_[servo];
-    servo_observation.temperature = kSimulatedTemperature;
-    servo_observation.voltage = kSimulatedVoltage;
+    joints.position[servo] = multibody.getJointPos(link);
+    joints.velocity[servo] = multibody.getJointVel(link);
+    joints.torque[servo] = applied_torques_[servo];
   }
-
   // Base link pose and velocity from the root body's COM frame.
   const Eigen::Quaterniond com_orientation = to_eigen(multibody.getWorldToBaseRot()).inverse();
   Eigen::Isometry3d com_in_world = Eigen::Isometry3d::Identity();
   com_in_world.linear() = com_orientation.toRotationMatrix();
   com_in_world.translation() = to_eigen(multibody.getBasePos());
-  const Eigen::Isometry3d base_in_world = com_in_world * world_->base_com_in_base.inverse();
-  const Eigen::Matrix3d rotation_base_to_world = base_in_world.linear();
-  const Eigen::Vector3d angular_velocity_world = to_eigen(multibody.getBaseOmega());
-  const Eigen::Vector3d base_velocity =
+  base.pose_in_world = com_in_world * world_->base_com_in_base.inverse();
+  base.angular_velocity_in_world = to_eigen(multibody.getBaseOmega());
+  base.linear_velocity_in_world =
       to_eigen(multibody.getBaseVel()) +
-      angular_velocity_world.cross(base_in_world.translation() - com_in_world.translation());
-  const Eigen::Quaterniond base_orientation(rotation_base_to_world);
+      base.angular_velocity_in_world.cross(base.pose_in_world.translation() -
+                                           com_in_world.translation());
+}
 
-  bool finite = base_in_world.matrix().allFinite() && base_velocity.allFinite() &&
-                angular_velocity_world.allFinite();
-  for (const auto& servo : observation_.servo) {
-    finite = finite && std::isfinite(servo.position) && std::isfinite(servo.velocity);
-  }
-  if (!finite) {
+void BulletSimulation::read_observation() {
+  MeasuredJoints joints;
+  MeasuredBase base;
+  measure(joints, base);
+  try {
+    sensors_.observe(joints, base, tire_touches_floor(), observation_);
+  } catch (const SimulationDivergedError&) {
     diverged_ = true;
-    throw SimulationDivergedError("the simulated state became non-finite at t = " +
-                                  std::to_string(observation_.time) + " s; reset the simulation");
+    throw;
   }
+}
 
-  observation_.has_sim = true;
-  observation_.sim_base.position = base_in_world.translation();
-  observation_.sim_base.orientation = base_orientation;
-  observation_.sim_base.linear_velocity = base_velocity;
-  observation_.sim_base.angular_velocity =
-      rotation_base_to_world.transpose() * angular_velocity_world;
-
-  // Pitch as the reference PyBullet backend computes it: ZYX pitch of the base quaternion.
-  const Eigen::Quaterniond& q = base_orientation;
-  const double sin_pitch = std::clamp(2.0 * (q.w() * q.y() - q.z() * q.x()), -1.0, 1.0);
-  observation_.base_orientation.pitch = std::asin(sin_pitch);
-  observation_.base_orientation.angular_velocity = observation_.sim_base.angular_velocity;
-  observation_.base_orientation.rotation_base_to_world = rotation_base_to_world;
-
-  // IMU: orientation in the attitude reference frame, rates and accelerations in its frame.
-  const Eigen::Matrix3d rotation_imu_to_world =
-      rotation_base_to_world * model_->rotation_base_to_imu();
-  observation_.imu.orientation =
-      Eigen::Quaterniond(kRotationArsToWorld.transpose() * rotation_imu_to_world).normalized();
-  observation_.imu.angular_velocity = rotation_imu_to_world.transpose() * angular_velocity_world;
-  const Eigen::Vector3d imu_velocity =
-      base_velocity +
-      angular_velocity_world.cross(rotation_base_to_world * model_->imu_position_in_base());
-  const Eigen::Vector3d imu_acceleration_world =
-      (imu_velocity - previous_imu_velocity_) / config_.physics_timestep;
-  previous_imu_velocity_ = imu_velocity;
-  const Eigen::Vector3d gravity_world(0.0, 0.0, -config_.gravity);
-  observation_.imu.linear_acceleration = rotation_imu_to_world.transpose() * imu_acceleration_world;
-  observation_.imu.raw_linear_acceleration =
-      rotation_imu_to_world.transpose() * (imu_acceleration_world - gravity_world);
-
-  // Wheel odometry of a left-wheeled robot, zero at reset.
-  const auto& servo = observation_.servo;
-  const double left_angle = servo[kLeftWheel].position - reset_joint_angles_[kLeftWheel];
-  const double right_angle = servo[kRightWheel].position - reset_joint_angles_[kRightWheel];
-  observation_.wheel_odometry.position = 0.5 * (left_angle - right_angle) * wheel_radius;
-  observation_.wheel_odometry.velocity =
-      0.5 * (servo[kLeftWheel].velocity - servo[kRightWheel].velocity) * wheel_radius;
-
-  // Floor contact: any tire point closer to the ground than kFloorContactDistance.
-  bool contact = false;
-  if (world_->ground) {
-    const int num_manifolds = world_->dispatcher.getNumManifolds();
-    for (int m = 0; m < num_manifolds && !contact; ++m) {
-      const btPersistentManifold* manifold = world_->dispatcher.getManifoldByIndexInternal(m);
-      const btCollisionObject* body0 = manifold->getBody0();
-      const btCollisionObject* body1 = manifold->getBody1();
-      const btCollisionObject* other =
-          body0 == world_->ground.get() ? body1 : (body1 == world_->ground.get() ? body0 : nullptr);
-      if (other == nullptr || (other != world_->tires[0] && other != world_->tires[1])) continue;
-      for (int p = 0; p < manifold->getNumContacts(); ++p) {
-        if (manifold->getContactPoint(p).getDistance() < kFloorContactDistance) {
-          contact = true;
-          break;
-        }
-      }
+bool BulletSimulation::tire_touches_floor() const {
+  if (!world_->ground) return false;
+  const int num_manifolds = world_->dispatcher.getNumManifolds();
+  for (int m = 0; m < num_manifolds; ++m) {
+    const btPersistentManifold* manifold = world_->dispatcher.getManifoldByIndexInternal(m);
+    const btCollisionObject* body0 = manifold->getBody0();
+    const btCollisionObject* body1 = manifold->getBody1();
+    const btCollisionObject* other =
+        body0 == world_->ground.get() ? body1 : (body1 == world_->ground.get() ? body0 : nullptr);
+    if (other == nullptr || (other != world_->tires[0] && other != world_->tires[1])) continue;
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      if (manifold->getContactPoint(p).getDistance() < kFloorContactDistance) return true;
     }
   }
-  observation_.floor_contact.contact = contact;
+  return false;
 }
 
 }  // namespace upkie_rl

@@ -8,8 +8,8 @@
 #include "model/rigid_body_tree.hpp"
 #include "model/robot_model.hpp"
 #include "sim/bullet_config.hpp"
-#include "sim/servo_law.hpp"
-#include "sim/simulation.hpp"
+#include "sim/physics_simulation.hpp"
+#include "sim/simulated_sensors.hpp"
 
 namespace upkie_rl {
 
@@ -19,10 +19,10 @@ struct BulletWorld;
 /// `nb_substeps` physics steps, re-evaluating the servo law at every physics step with the
 /// joint state measured at that step; the observation is read after the last one.
 /// Not thread-safe; one instance per thread.
-class BulletSimulation final : public Simulation {
+class BulletSimulation final : public PhysicsSimulation {
  public:
   /// @param model  Robot description, shared and immutable.
-  /// @throws std::invalid_argument on a non-positive timestep or substep count.
+  /// @throws std::invalid_argument on a setting out of its domain (PhysicsConfig::validate).
   explicit BulletSimulation(std::shared_ptr<const RobotModel> model,
                             const BulletConfig& config = {});
   ~BulletSimulation() override;
@@ -38,43 +38,27 @@ class BulletSimulation final : public Simulation {
   /// @throws SimulationDivergedError when the state becomes non-finite; reset to go on.
   const Observation& step(const ServoAction& action) override;
 
-  /// Steps with every joint braked (velocity 0, up to kBrakeTorque), what a spine does
-  /// to stopped servos.
-  const Observation& step_braked();
+  const Observation& step_braked() override;
 
   const Observation& observation() const override { return observation_; }
-  double agent_timestep() const override { return config_.physics_timestep * config_.nb_substeps; }
-
+  const PhysicsConfig& physics_config() const override { return config_; }
   const BulletConfig& config() const { return config_; }
-
-  /// Replaces the servo law gains kp and kd (the public Bullet spine takes them from each
-  /// Start configuration); they apply from the next step.
-  /// @throws std::invalid_argument when a gain is negative or not finite.
-  void set_servo_gains(const ServoGains& gains);
-  ServoGains servo_gains() const { return {config_.kp, config_.kd}; }
-  const RobotModel& model() const { return *model_; }
-
-  /// Physics steps taken since construction (for throughput measurements).
-  long physics_steps() const { return physics_steps_; }
-
-  /// Maximum braking torque of stopped joints [N.m].
-  static constexpr double kBrakeTorque = 100.0;
+  const RobotModel& model() const override { return *model_; }
 
  private:
   const Observation& advance(const ServoAction& action, bool braked);
   void apply_servo_torques(const ServoAction& action, bool braked);
   void read_observation();
+  void measure(MeasuredJoints& joints, MeasuredBase& base) const;
+  bool tire_touches_floor() const;
 
   std::shared_ptr<const RobotModel> model_;
   BulletConfig config_;
   RigidBodyTree tree_;
   std::unique_ptr<BulletWorld> world_;
   Observation observation_;
-  ResetState reset_state_;
+  SimulatedSensors sensors_;
   std::array<double, kNumServos> applied_torques_{};
-  std::array<double, kNumServos> reset_joint_angles_{};
-  Eigen::Vector3d previous_imu_velocity_ = Eigen::Vector3d::Zero();
-  long physics_steps_ = 0;
   bool diverged_ = false;
 };
 

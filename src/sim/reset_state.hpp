@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
+#include <stdexcept>
 
 #include "model/joint_order.hpp"
 
@@ -23,5 +25,21 @@ struct ResetState {
   /// Joint angles in the standard order [rad].
   std::array<double, kNumServos> joint_configuration{};
 };
+
+/// @throws std::invalid_argument when `state` has a non-finite value or a zero quaternion.
+inline void validate_reset_state(const ResetState& state) {
+  bool finite = state.position_base_in_world.allFinite() &&
+                state.orientation_base_in_world.coeffs().allFinite() &&
+                state.linear_velocity_base_to_world_in_world.allFinite() &&
+                state.angular_velocity_base_in_base.allFinite();
+  for (double angle : state.joint_configuration) finite = finite && std::isfinite(angle);
+  if (!finite) {
+    throw std::invalid_argument(
+        "reset state must be finite (position, orientation, velocities and joint angles)");
+  }
+  if (state.orientation_base_in_world.norm() < 1e-9) {
+    throw std::invalid_argument("reset state: orientation quaternion must not be zero");
+  }
+}
 
 }  // namespace upkie_rl

@@ -139,8 +139,8 @@ TEST(SpineCommand, OnRequestSpineMatchesInProcessBullet) {
   soft_config.start_parameters.kd = 0.6;
   SpineBackend soft_backend(soft_config);
   BulletConfig soft_bullet;
-  soft_bullet.kp = 12.0;
-  soft_bullet.kd = 0.6;
+  soft_bullet.servo_gains.kp = 12.0;
+  soft_bullet.servo_gains.kd = 0.6;
   BulletSimulation soft_local(RobotModel::default_model(), soft_bullet);
   soft_backend.reset(state);
   soft_local.reset(state);

@@ -1,0 +1,53 @@
+#pragma once
+/// @file
+/// VideoRecorder: turns the steps of episodes into a real-time video with a caption.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <memory>
+
+#include "render/robot_renderer.hpp"
+#include "render/video_writer.hpp"
+
+namespace upkie_rl::apps {
+
+/// Settings of `--video`.
+struct VideoOptions {
+  std::filesystem::path path;  ///< .mp4 or .gif.
+  int fps = 30;                ///< Frames per second of video = of simulated time.
+  int width = 640;
+  int height = 480;
+};
+
+/// Adds --video, --video-fps, --video-size to a subcommand.
+void add_video_options(CLI::App& command, VideoOptions& options);
+
+/// Renders the robot at `fps` frames per simulated second: a step becomes a frame when its
+/// time reaches the next frame's, so the video plays in real time whatever the agent rate.
+/// Each frame shows the episode, time, return so far and pitch.
+class VideoRecorder {
+ public:
+  /// Checks the path and starts the renderer and the encoder.
+  /// @throws RenderError naming the problem.
+  VideoRecorder(std::shared_ptr<const RobotModel> model, const VideoOptions& options);
+
+  /// Starts episode `episode`: its first frame is at its time 0.
+  void start_episode(int episode);
+
+  /// Offers the state at simulated time `time` [s] of the current episode.
+  void add(const RobotPose& pose, double time, double episode_return, double pitch);
+
+  /// Finishes the file. @throws RenderError when the encoder failed.
+  void close();
+
+  int frames() const { return writer_.frames(); }
+
+ private:
+  VideoOptions options_;
+  RobotRenderer renderer_;
+  VideoWriter writer_;
+  int episode_ = 0;
+  long next_frame_ = 0;  ///< Index of the next frame within the episode.
+};
+
+}  // namespace upkie_rl::apps

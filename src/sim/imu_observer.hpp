@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// ImuObserver: the IMU of a simulated robot, from the base state at each agent step.
+
+#include "model/robot_model.hpp"
+#include "sim/measured_state.hpp"
+#include "sim/observation.hpp"
+
+namespace upkie_rl {
+
+/// Orientation (in the attitude reference frame), angular velocity and linear
+/// accelerations of the IMU. The acceleration is the finite difference of the IMU's
+/// velocity over one physics step, divided by the physics timestep as the reference does.
+class ImuObserver {
+ public:
+  /// @param physics_timestep  Divides the velocity difference [s].
+  /// @param gravity           Magnitude along -z [m/s^2].
+  ImuObserver(const RobotModel& model, double physics_timestep, double gravity);
+
+  /// Starts a new episode at `base`: the next acceleration differentiates from its velocity,
+  /// and `imu` reads zero acceleration (gravity only).
+  void reset(const MeasuredBase& base, ImuObservation& imu);
+
+  void observe(const MeasuredBase& base, ImuObservation& imu);
+
+ private:
+  Eigen::Vector3d imu_velocity(const MeasuredBase& base) const;
+
+  Eigen::Matrix3d rotation_base_to_imu_;
+  Eigen::Vector3d imu_position_in_base_;
+  double physics_timestep_;
+  Eigen::Vector3d gravity_world_;
+  Eigen::Vector3d previous_velocity_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,248 @@
+#include "sim/mujoco_model.hpp"
+
+#include <mujoco/mujoco.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace upkie_rl {
+
+void MujocoModelDeleter::operator()(mjModel* model) const { mj_deleteModel(model); }
+void MujocoDataDeleter::operator()(mjData* data) const { mj_deleteData(data); }
+
+namespace {
+
+constexpr const char* kFloorName = "floor";
+
+/// A tire closer to the floor than this counts as touching it [m].
+constexpr double kTireContactDistance = 1e-3;
+
+/// Deletes an mjSpec on every path out of build_mujoco_model.
+struct SpecDeleter {
+  void operator()(mjSpec* spec) const { mj_deleteSpec(spec); }
+};
+
+void set_pose(const Eigen::Isometry3d& pose, double pos[3], double quat[4]) {
+  const Eigen::Quaterniond rotation(pose.linear());
+  for (int i = 0; i < 3; ++i) pos[i] = pose.translation()[i];
+  quat[0] = rotation.w();
+  quat[1] = rotation.x();
+  quat[2] = rotation.y();
+  quat[3] = rotation.z();
+}
+
+/// Tire contact as a spring-damper: MuJoCo's direct solref (-k, -b) is per unit of the
+/// contact's effective mass, so the URDF's stiffness [N/m] and damping [N.s/m] are divided
+/// by the mass each tire carries standing (half the robot's).
+void set_soft_contact(mjsGeom& geom, const ContactParameters& contact, double carried_mass) {
+  geom.solref[0] = -contact.stiffness / carried_mass;
+  geom.solref[1] = -contact.damping / carried_mass;
+}
+
+void add_collision_geoms(mjsBody& body, const RigidBody& rigid_body, const RobotModel& robot,
+                         const MujocoConfig& config, double tire_carried_mass) {
+  for (const BodyCollision& collision : rigid_body.collisions) {
+    mjsGeom* geom = mjs_addGeom(&body, nullptr);
+    const CollisionShape& shape = collision.shape;
+    set_pose(shape.pose_in_link, geom->pos, geom->quat);
+    if (shape.kind == CollisionShape::Kind::kBox) {
+      geom->type = mjGEOM_BOX;
+      for (int i = 0; i < 3; ++i) geom->size[i] = shape.box_size[i] / 2.0;
+    } else {
+      geom->type = mjGEOM_CYLINDER;
+      geom->size[0] = shape.radius;
+      geom->size[1] = shape.length / 2.0;
+    }
+    // Robot geoms touch the floor, never each other (as in Bullet, without self-collision).
+    geom->contype = 1;
+    geom->conaffinity = 0;
+    geom->condim = 3;
+    geom->friction[0] = collision.contact.lateral_friction;
+    geom->friction[1] = 0.0;
+    geom->friction[2] = 0.0;
+    geom->rgba[0] = 0.92f;  // drawn orange, tires black, on a light grey floor
+    geom->rgba[1] = 0.55f;
+    geom->rgba[2] = 0.18f;
+    geom->rgba[3] = 1.0f;
+    const bool tire = collision.link == robot.tire_link(kLeftWheel) ||
+                      collision.link == robot.tire_link(kRightWheel);
+    if (tire) {
+      geom->condim = config.tire_condim;
+      geom->friction[2] = collision.contact.rolling_friction;  // [m], as Bullet's
+      geom->priority = 1;  // its friction, not the floor's, applies
+      // Contacts within 1 mm are detected (floor_contact, as Bullet's threshold) but only
+      // penetrating ones push.
+      geom->margin = kTireContactDistance;
+      geom->gap = kTireContactDistance;
+      if (collision.contact.is_soft()) set_soft_contact(*geom, collision.contact, tire_carried_mass);
+      geom->rgba[0] = geom->rgba[1] = geom->rgba[2] = 0.12f;
+      const std::string name = collision.link == robot.tire_link(kLeftWheel) ? "left_tire"
+                                                                             : "right_tire";
+      mjs_setName(geom->element, name.c_str());
+    }
+  }
+}
+
+void add_scene(mjSpec& spec, mjsBody& world) {
+  mjsTexture* texture = mjs_addTexture(&spec);
+  mjs_setName(texture->element, "grid");
+  texture->type = mjTEXTURE_2D;
+  texture->builtin = mjBUILTIN_CHECKER;
+  texture->width = 512;
+  texture->height = 512;
+  const double light[3] = {0.93, 0.94, 0.95};
+  const double dark[3] = {0.80, 0.82, 0.85};
+  for (int i = 0; i < 3; ++i) {
+    texture->rgb1[i] = light[i];
+    texture->rgb2[i] = dark[i];
+  }
+  mjsMaterial* material = mjs_addMaterial(&spec, nullptr);
+  mjs_setName(material->element, "grid");
+  mjs_setInStringVec(material->textures, mjTEXROLE_RGB, "grid");
+  material->texrepeat[0] = 4.0f;
+  material->texrepeat[1] = 4.0f;
+  material->texuniform = 1;
+  material->reflectance = 0.05f;
+
+  mjsLight* sun = mjs_addLight(&world, nullptr);
+  sun->pos[2] = 3.0;
+  sun->dir[0] = 0.3;
+  sun->dir[1] = 0.3;
+  sun->dir[2] = -1.0;
+  sun->type = mjLIGHT_DIRECTIONAL;
+  sun->castshadow = 1;
+  sun->diffuse[0] = sun->diffuse[1] = sun->diffuse[2] = 0.7f;
+  spec.visual.headlight.ambient[0] = spec.visual.headlight.ambient[1] =
+      spec.visual.headlight.ambient[2] = 0.35f;
+  spec.visual.headlight.diffuse[0] = spec.visual.headlight.diffuse[1] =
+      spec.visual.headlight.diffuse[2] = 0.4f;
+  spec.visual.global.offwidth = 1920;
+  spec.visual.global.offheight = 1080;
+  spec.visual.quality.shadowsize = 2048;
+}
+
+void add_floor(mjsBody& world) {
+  mjsGeom* floor = mjs_addGeom(&world, nullptr);
+  mjs_setName(floor->element, kFloorName);
+  floor->type = mjGEOM_PLANE;
+  floor->size[0] = 100.0;  // as Bullet's 200 m x 200 m ground box
+  floor->size[1] = 100.0;
+  floor->size[2] = 0.05;   // grid spacing of the drawn plane [m]
+  floor->group = 2;  // drawn apart from the robot's geoms (group 0)
+  floor->contype = 0;
+  floor->conaffinity = 1;
+  floor->condim = 3;
+  floor->friction[0] = 1.0;  // the reference ground's lateral friction
+  floor->friction[1] = 0.0;
+  floor->friction[2] = 0.0;
+  mjs_setString(floor->material, "grid");
+}
+
+int checked_id(const mjModel* model, mjtObj type, const std::string& name) {
+  const int id = mj_name2id(model, type, name.c_str());
+  if (id < 0) throw ModelError("MuJoCo model: no element named \"" + name + "\"");
+  return id;
+}
+
+void silence(const char* message) { spdlog::warn("MuJoCo: {}", message); }
+
+}  // namespace
+
+void route_mujoco_messages() {
+  static std::once_flag once;
+  std::call_once(once, [] { mju_user_warning = silence; });
+}
+
+std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
+                                                      const MujocoConfig& config) {
+  route_mujoco_messages();
+  const RigidBodyTree tree(robot, config.inertia_source, /*merge_fixed_links=*/true);
+  std::unique_ptr<mjSpec, SpecDeleter> spec(mj_makeSpec());
+  mjs_setString(spec->modelname, "upkie");
+  spec->compiler.inertiafromgeom = mjINERTIAFROMGEOM_FALSE;  // the tree's inertias, exactly
+  spec->compiler.alignfree = mjALIGNFREE_FALSE;  // free joint at the base link frame
+  spec->compiler.degree = 0;  // joint ranges in radians, as in the URDF
+  spec->compiler.autolimits = 1;
+  spec->compiler.boundmass = 0.0;
+  spec->compiler.boundinertia = 0.0;
+  mjOption& option = spec->option;
+  option.timestep = config.physics_timestep;
+  option.gravity[0] = 0.0;
+  option.gravity[1] = 0.0;
+  option.gravity[2] = -config.gravity;
+  option.iterations = config.solver_iterations;
+  option.integrator = mjINT_EULER;
+  // Divergence is reported as SimulationDivergedError, not silently reset.
+  option.disableflags |= mjDSBL_AUTORESET;
+
+  mjsBody* world = mjs_findBody(spec.get(), "world");
+  add_scene(*spec, *world);
+  if (config.floor) add_floor(*world);
+
+  const double tire_carried_mass = robot.total_mass() / 2.0;
+  std::vector<mjsBody*> bodies;
+  for (const RigidBody& rigid_body : tree.bodies()) {
+    mjsBody* parent = rigid_body.parent_body < 0 ? world : bodies[rigid_body.parent_body];
+    mjsBody* body = mjs_addBody(parent, nullptr);
+    bodies.push_back(body);
+    mjs_setName(body->element, rigid_body.name.c_str());
+    set_pose(rigid_body.joint_pose_in_parent, body->pos, body->quat);
+    body->mass = rigid_body.mass;
+    set_pose(rigid_body.principal_frame, body->ipos, body->iquat);
+    for (int i = 0; i < 3; ++i) body->inertia[i] = rigid_body.principal_inertia[i];
+    body->explicitinertial = 1;
+    if (rigid_body.parent_body < 0) {
+      mjsJoint* free_joint = mjs_addFreeJoint(body);
+      mjs_setName(free_joint->element, "base_free");
+    } else {
+      const Joint& joint = robot.joints()[rigid_body.joint];
+      mjsJoint* hinge = mjs_addJoint(body, nullptr);
+      mjs_setName(hinge->element, joint.name.c_str());
+      hinge->type = mjJNT_HINGE;
+      for (int i = 0; i < 3; ++i) hinge->axis[i] = rigid_body.joint_axis[i];
+      if (joint.limits.has_position_limits()) {
+        hinge->limited = mjLIMITED_TRUE;
+        hinge->range[0] = joint.limits.lower;
+        hinge->range[1] = joint.limits.upper;
+        // Stiff limits: MuJoCo's default (a 20 ms time constant) lets a hip swung at full
+        // effort pass its limit by 0.5 rad; the stiffest stable one is two physics steps.
+        hinge->solref_limit[0] = 2.0 * config.physics_timestep;
+        hinge->solref_limit[1] = 1.0;
+        hinge->solimp_limit[0] = 0.99;
+        hinge->solimp_limit[1] = 0.999;
+      } else {
+        hinge->limited = mjLIMITED_FALSE;
+      }
+    }
+    add_collision_geoms(*body, rigid_body, robot, config, tire_carried_mass);
+  }
+
+  MujocoModelPtr model(mj_compile(spec.get(), nullptr));
+  if (!model) {
+    throw ModelError(std::string("MuJoCo could not compile the model of ") +
+                     robot.path().string() + ": " + mjs_getError(spec.get()));
+  }
+
+  auto result = std::make_shared<MujocoModel>();
+  MujocoRobotIndex& index = result->index;
+  index.root_body = checked_id(model.get(), mjOBJ_BODY, tree.bodies().front().name);
+  const int free_joint = checked_id(model.get(), mjOBJ_JOINT, "base_free");
+  index.root_qpos = model->jnt_qposadr[free_joint];
+  index.root_dof = model->jnt_dofadr[free_joint];
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    const std::string& name = robot.joints()[robot.servo_joint(servo)].name;
+    const int joint = checked_id(model.get(), mjOBJ_JOINT, name);
+    index.servo_qpos[servo] = model->jnt_qposadr[joint];
+    index.servo_dof[servo] = model->jnt_dofadr[joint];
+  }
+  index.tire_geoms[0] = checked_id(model.get(), mjOBJ_GEOM, "left_tire");
+  index.tire_geoms[1] = checked_id(model.get(), mjOBJ_GEOM, "right_tire");
+  if (config.floor) index.floor_geom = checked_id(model.get(), mjOBJ_GEOM, kFloorName);
+  result->model = std::move(model);
+  return result;
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,152 @@
+#include "sim/mujoco_simulation.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <stdexcept>
+
+namespace upkie_rl {
+namespace {
+
+const MujocoConfig& validated(const MujocoConfig& config) {
+  config.validate();
+  return config;
+}
+
+}  // namespace
+
+MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
+                                   const MujocoConfig& config)
+    : MujocoSimulation(model, config, build_mujoco_model(*model, validated(config))) {}
+
+MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
+                                   const MujocoConfig& config,
+                                   std::shared_ptr<const MujocoModel> compiled)
+    : PhysicsSimulation(validated(config).servo_gains),
+      model_(std::move(model)),
+      config_(config),
+      compiled_(std::move(compiled)),
+      data_(mj_makeData(compiled_->model.get())),
+      sensors_(*model_, config_) {
+  if (!data_) throw std::runtime_error("MuJoCo could not allocate its simulation data");
+  reset(ResetState{});
+}
+
+MujocoSimulation::~MujocoSimulation() = default;
+
+const Observation& MujocoSimulation::reset(const ResetState& state) {
+  validate_reset_state(state);
+  const mjModel* m = compiled_->model.get();
+  mjData* d = data_.get();
+  const MujocoRobotIndex& index = compiled_->index;
+  mj_resetData(m, d);
+  const Eigen::Quaterniond orientation = state.orientation_base_in_world.normalized();
+  mjtNum* root = d->qpos + index.root_qpos;
+  for (int i = 0; i < 3; ++i) root[i] = state.position_base_in_world[i];
+  root[3] = orientation.w();
+  root[4] = orientation.x();
+  root[5] = orientation.y();
+  root[6] = orientation.z();
+  // Free joint velocity: the body origin's in the world frame, then angular in the body frame.
+  mjtNum* root_velocity = d->qvel + index.root_dof;
+  for (int i = 0; i < 3; ++i) {
+    root_velocity[i] = state.linear_velocity_base_to_world_in_world[i];
+    root_velocity[3 + i] = state.angular_velocity_base_in_base[i];
+  }
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    d->qpos[index.servo_qpos[servo]] = state.joint_configuration[servo];
+  }
+  mj_forward(m, d);
+
+  applied_torques_.fill(0.0);
+  diverged_ = false;
+  MeasuredJoints joints;
+  MeasuredBase base;
+  measure(joints, base);
+  sensors_.reset(joints, base, tire_touches_floor(), observation_);
+  return observation_;
+}
+
+const Observation& MujocoSimulation::step(const ServoAction& action) {
+  validate_servo_action(action);
+  return advance(action, /*braked=*/false);
+}
+
+const Observation& MujocoSimulation::step_braked() {
+  static const ServoAction kNoAction{};
+  return advance(kNoAction, /*braked=*/true);
+}
+
+const Observation& MujocoSimulation::advance(const ServoAction& action, bool braked) {
+  if (diverged_) {
+    throw SimulationDivergedError("the simulation diverged earlier; reset it before stepping");
+  }
+  const mjModel* m = compiled_->model.get();
+  mjData* d = data_.get();
+  const MujocoRobotIndex& index = compiled_->index;
+  for (int substep = 0; substep < config_.nb_substeps; ++substep) {
+    for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+      const double torque =
+          joint_torque(action[servo], braked, d->qpos[index.servo_qpos[servo]],
+                       d->qvel[index.servo_dof[servo]], model_->servo_limits(servo).effort);
+      d->qfrc_applied[index.servo_dof[servo]] = torque;
+      applied_torques_[servo] = torque;
+    }
+    mj_step(m, d);
+    ++physics_steps_;
+  }
+  observation_.time += config_.agent_timestep();
+  read_observation();
+  return observation_;
+}
+
+void MujocoSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const {
+  const mjData* d = data_.get();
+  const MujocoRobotIndex& index = compiled_->index;
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    joints.position[servo] = d->qpos[index.servo_qpos[servo]];
+    joints.velocity[servo] = d->qvel[index.servo_dof[servo]];
+    joints.torque[servo] = applied_torques_[servo];
+  }
+  const mjtNum* root = d->qpos + index.root_qpos;
+  const mjtNum* root_velocity = d->qvel + index.root_dof;
+  const Eigen::Quaterniond orientation(root[3], root[4], root[5], root[6]);
+  base.pose_in_world.setIdentity();
+  // MuJoCo keeps the quaternion normalised; normalising again keeps a NaN a NaN.
+  base.pose_in_world.linear() = orientation.normalized().toRotationMatrix();
+  base.pose_in_world.translation() = Eigen::Vector3d(root[0], root[1], root[2]);
+  base.linear_velocity_in_world =
+      Eigen::Vector3d(root_velocity[0], root_velocity[1], root_velocity[2]);
+  base.angular_velocity_in_world =
+      base.pose_in_world.linear() *
+      Eigen::Vector3d(root_velocity[3], root_velocity[4], root_velocity[5]);
+}
+
+void MujocoSimulation::read_observation() {
+  MeasuredJoints joints;
+  MeasuredBase base;
+  measure(joints, base);
+  try {
+    sensors_.observe(joints, base, tire_touches_floor(), observation_);
+  } catch (const SimulationDivergedError&) {
+    diverged_ = true;
+    throw;
+  }
+}
+
+bool MujocoSimulation::tire_touches_floor() const {
+  const MujocoRobotIndex& index = compiled_->index;
+  if (index.floor_geom < 0) return false;
+  const mjData* d = data_.get();
+  for (int c = 0; c < d->ncon; ++c) {
+    const mjContact& contact = d->contact[c];
+    const int other = contact.geom[0] == index.floor_geom   ? contact.geom[1]
+                      : contact.geom[1] == index.floor_geom ? contact.geom[0]
+                                                            : -1;
+    if ((other == index.tire_geoms[0] || other == index.tire_geoms[1]) && contact.dist < 1e-3) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,65 @@
+#include "sim/simulated_sensors.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "sim/base_observer.hpp"
+#include "sim/simulation.hpp"
+
+namespace upkie_rl {
+namespace {
+
+void check_finite(const MeasuredJoints& joints, const MeasuredBase& base, double time) {
+  bool finite = base.pose_in_world.matrix().allFinite() &&
+                base.linear_velocity_in_world.allFinite() &&
+                base.angular_velocity_in_world.allFinite();
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    finite = finite && std::isfinite(joints.position[servo]) && std::isfinite(joints.velocity[servo]);
+  }
+  if (!finite) {
+    throw SimulationDivergedError("the simulated state became non-finite at t = " +
+                                  std::to_string(time) + " s; reset the simulation");
+  }
+}
+
+}  // namespace
+
+SimulatedSensors::SimulatedSensors(const RobotModel& model, const PhysicsConfig& config)
+    : imu_(model, config.physics_timestep, config.gravity), odometry_(model) {}
+
+void SimulatedSensors::observe_without_imu(const MeasuredJoints& joints, const MeasuredBase& base,
+                                           bool floor_contact, Observation& observation) const {
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    ServoObservation& measured = observation.servo[servo];
+    measured.position = joints.position[servo];
+    measured.velocity = joints.velocity[servo];
+    measured.torque = joints.torque[servo];
+    measured.temperature = kTemperature;
+    measured.voltage = kVoltage;
+  }
+  observation.has_sim = true;
+  observe_base(base, observation.sim_base, observation.base_orientation);
+  odometry_.observe(observation.servo, observation.wheel_odometry);
+  observation.floor_contact.contact = floor_contact;
+}
+
+void SimulatedSensors::reset(const MeasuredJoints& joints, const MeasuredBase& base,
+                             bool floor_contact, Observation& observation) {
+  check_finite(joints, base, 0.0);
+  observation = Observation{};
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    observation.servo[servo].position = joints.position[servo];
+  }
+  odometry_.reset(observation.servo);
+  observe_without_imu(joints, base, floor_contact, observation);
+  imu_.reset(base, observation.imu);
+}
+
+void SimulatedSensors::observe(const MeasuredJoints& joints, const MeasuredBase& base,
+                               bool floor_contact, Observation& observation) {
+  check_finite(joints, base, observation.time);
+  observe_without_imu(joints, base, floor_contact, observation);
+  imu_.observe(base, observation.imu);
+}
+
+}  // namespace upkie_rl

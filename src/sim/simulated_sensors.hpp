@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// SimulatedSensors: the observer pipeline every physics backend runs after its engine
+/// steps (servos, base, IMU, wheel odometry, floor contact), engine-independent.
+
+#include "model/robot_model.hpp"
+#include "sim/imu_observer.hpp"
+#include "sim/measured_state.hpp"
+#include "sim/observation.hpp"
+#include "sim/physics_config.hpp"
+#include "sim/wheel_odometry_observer.hpp"
+
+namespace upkie_rl {
+
+/// Turns what an engine measures into an Observation. One per simulation.
+class SimulatedSensors {
+ public:
+  SimulatedSensors(const RobotModel& model, const PhysicsConfig& config);
+
+  /// Starts an episode: time 0, odometry origin at the measured wheel angles, IMU at rest.
+  /// @throws SimulationDivergedError on a non-finite measurement.
+  void reset(const MeasuredJoints& joints, const MeasuredBase& base, bool floor_contact,
+             Observation& observation);
+
+  /// Fills `observation` (whose time the caller advances) from the measurements.
+  /// @throws SimulationDivergedError on a non-finite measurement, before writing anything.
+  void observe(const MeasuredJoints& joints, const MeasuredBase& base, bool floor_contact,
+               Observation& observation);
+
+  /// Servo temperature and bus voltage reported in simulation.
+  static constexpr double kTemperature = 42.0;  // [deg C]
+  static constexpr double kVoltage = 18.0;      // [V]
+
+ private:
+  void observe_without_imu(const MeasuredJoints& joints, const MeasuredBase& base,
+                           bool floor_contact, Observation& observation) const;
+
+  ImuObserver imu_;
+  WheelOdometryObserver odometry_;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,18 @@
+#include "sim/wheel_odometry_observer.hpp"
+
+namespace upkie_rl {
+
+void WheelOdometryObserver::reset(const std::array<ServoObservation, kNumServos>& servo) {
+  left_origin_ = servo[kLeftWheel].position;
+  right_origin_ = servo[kRightWheel].position;
+}
+
+void WheelOdometryObserver::observe(const std::array<ServoObservation, kNumServos>& servo,
+                                    WheelOdometryObservation& odometry) const {
+  const double left_angle = servo[kLeftWheel].position - left_origin_;
+  const double right_angle = servo[kRightWheel].position - right_origin_;
+  odometry.position = 0.5 * (left_angle - right_angle) * wheel_radius_;
+  odometry.velocity = 0.5 * (servo[kLeftWheel].velocity - servo[kRightWheel].velocity) * wheel_radius_;
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,133 @@
+/// `upkie-rl rollout --video` and `upkie-rl render`: videos from the real binary, checked
+/// with ffprobe.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "apps/cli_runner.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using testing::run_cli;
+
+std::filesystem::path temp_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("upkie_rl_video_cli_" + std::to_string(::getpid()) + "_" + name);
+}
+
+std::string run(const std::string& command) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  std::string output;
+  std::array<char, 256> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe.get())) output += buffer.data();
+  return output;
+}
+
+/// "frames duration" of a video's first stream.
+std::pair<int, double> probe(const std::filesystem::path& path) {
+  const std::string frames = run("ffprobe -v error -select_streams v:0 -count_frames "
+                                 "-show_entries stream=nb_read_frames -of csv=p=0 " +
+                                 path.string());
+  const std::string duration =
+      run("ffprobe -v error -show_entries format=duration -of csv=p=0 " + path.string());
+  return {frames.empty() ? -1 : std::stoi(frames), duration.empty() ? -1.0 : std::stod(duration)};
+}
+
+TEST(VideoCommand, RolloutVideoPlaysInRealTime) {
+  // 120 steps at 200 Hz: 0.6 s of simulated time, 0.6 * 30 = 18 frames (t = 0 included).
+  const auto path = temp_path("rollout.mp4");
+  const auto result = run_cli(
+      "rollout --env Upkie-MuJoCo-Pendulum --controller linear:10,1,0,0.1 --max-steps 120 "
+      "--video-size 320x240 --video " + path.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("19 frames at 30 frames/s"), std::string::npos) << result.output;
+  const auto [frames, duration] = probe(path);
+  EXPECT_EQ(frames, 19);
+  EXPECT_NEAR(duration, 19.0 / 30.0, 0.01);
+  std::filesystem::remove(path);
+}
+
+TEST(VideoCommand, BulletEpisodesRenderToo) {
+  const auto path = temp_path("bullet.gif");
+  const auto result =
+      run_cli("rollout --env Upkie-Bullet-Pendulum --max-steps 40 --video-fps 60 "
+              "--video-size 160x120 --video " + path.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(probe(path).first, 13);  // 0.2 s at 60 frames/s, t = 0 included
+  std::filesystem::remove(path);
+}
+
+TEST(VideoCommand, BadVideoPathsFailBeforeTheRollout) {
+  for (const std::string& bad : {temp_path("out.avi").string(),
+                                 std::string("/nonexistent_upkie_dir/out.mp4")}) {
+    const auto result =
+        run_cli("rollout --env Upkie-MuJoCo-Pendulum --max-steps 5 --video " + bad);
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("video " + bad), std::string::npos) << result.output;
+    EXPECT_EQ(result.output.find("episode 0"), std::string::npos) << "the rollout ran";
+  }
+}
+
+TEST(VideoCommand, RenderMakesAVideoOfARecordedRollout) {
+  const auto record = temp_path("episodes.csv");
+  const auto video = temp_path("replay.mp4");
+  const auto rollout = run_cli(
+      "rollout --env Upkie-Bullet-Pendulum --controller linear:10,1,0,0.1 --episodes 2 "
+      "--max-steps 60 --record " + record.string());
+  ASSERT_EQ(rollout.exit_code, 0) << rollout.output;
+  const auto result =
+      run_cli("render " + record.string() + " --video-size 320x240 --video " + video.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // Two episodes of 60 rows (t = 0 to 0.295 s): frames at 0, 1/30, ..., 8/30 in each.
+  EXPECT_EQ(probe(video).first, 18);
+  std::filesystem::remove(video);
+  std::filesystem::remove(record);
+}
+
+TEST(VideoCommand, RenderRefusesMalformedRecords) {
+  const auto video = temp_path("never.mp4");
+  const auto write = [](const std::filesystem::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+  };
+  const auto no_columns = temp_path("no_columns.csv");
+  write(no_columns, "episode,step,t,reward\n0,0,0,1\n");
+  auto result = run_cli("render " + no_columns.string() + " --video " + video.string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("no column \"base_x\""), std::string::npos) << result.output;
+
+  const auto record = temp_path("good.csv");
+  ASSERT_EQ(run_cli("rollout --env Upkie-Bullet-Pendulum --max-steps 3 --record " +
+                    record.string())
+                .exit_code,
+            0);
+  std::ifstream in(record);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  const auto truncated = temp_path("truncated.csv");
+  write(truncated, header + "\n" + row + "\n" + row.substr(0, row.size() / 2) + "\n");
+  result = run_cli("render " + truncated.string() + " --video " + video.string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find(":3: "), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("truncated file?"), std::string::npos) << result.output;
+
+  const auto not_number = temp_path("not_number.csv");
+  write(not_number, header + "\n" + "zero" + row.substr(row.find(',')) + "\n");
+  result = run_cli("render " + not_number.string() + " --video " + video.string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("column episode is not a number"), std::string::npos)
+      << result.output;
+  EXPECT_FALSE(std::filesystem::exists(video));
+  for (const auto& path : {no_columns, record, truncated, not_number}) {
+    std::filesystem::remove(path);
+  }
+}
+
+}  // namespace
+}  // namespace upkie_rl
