@@ -17,13 +17,14 @@ DEBIAN_PACKAGES=(
 # python3-torch SB3 needs (PyPI's torch is a multi-GB CUDA build). SB3 2.4.x is the last
 # release that accepts torch 1.13; it pins gymnasium < 1.1 and numpy < 2 (Debian's torch is
 # built against numpy 1.x). upkie: the public agent side, for the spine interoperability
-# tests. mujoco: its wheel ships libmujoco.so 3.3 and the C headers, which CMake links (Debian
-# has only MuJoCo 2.2, without the mjSpec API the model is built with).
+# tests. mujoco: its wheel ships libmujoco.so 3.3 and the C headers, which CMake links
+# (Debian has only MuJoCo 2.2, without the mjSpec API the model is built with). moviepy:
+# Gymnasium's RecordVideo writes with it.
 PYTHON_PACKAGES=(
   "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium>=1.0,<1.1" "msgpack:msgpack"
   "upkie:upkie" "tensorboard:tensorboard" "scikit_build_core:scikit-build-core"
   "pybind11:pybind11" "cloudpickle:cloudpickle" "pandas:pandas" "matplotlib:matplotlib"
-  "mujoco:mujoco>=3.3,<3.4"
+  "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy"
 )
 # Installed without their dependencies, which are listed above: Debian's torch calls
 # itself 1.13.0a0, a pre-release that SB3's "torch>=1.13" refuses, so pip would fetch
