@@ -28,8 +28,8 @@ void BM_RenderFrame(benchmark::State& state) {
   for (auto _ : state) {
     benchmark::DoNotOptimize(renderer.render(moving_pose(frame++), "time", "1.00 s").data());
   }
-  state.counters["frames_per_s"] = benchmark::Counter(static_cast<double>(frame),
-                                                      benchmark::Counter::kIsRate);
+  state.counters["frames_per_s"] =
+      benchmark::Counter(static_cast<double>(frame), benchmark::Counter::kIsRate);
 }
 
 void BM_RenderAndEncodeMp4(benchmark::State& state) {
@@ -41,11 +41,15 @@ void BM_RenderAndEncodeMp4(benchmark::State& state) {
   for (auto _ : state) writer.write(renderer.render(moving_pose(frame++), "time", "1.00 s"));
   writer.close();
   std::filesystem::remove(path);
-  state.counters["frames_per_s"] = benchmark::Counter(static_cast<double>(frame),
-                                                      benchmark::Counter::kIsRate);
+  state.counters["frames_per_s"] =
+      benchmark::Counter(static_cast<double>(frame), benchmark::Counter::kIsRate);
 }
 
-BENCHMARK(BM_RenderFrame)->Args({640, 480})->Args({320, 240})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RenderFrame)
+    ->Args({640, 480})
+    ->Args({320, 240})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_RenderAndEncodeMp4)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

@@ -3,8 +3,8 @@
 
 #include <pybind11/pybind11.h>
 
-#include "render/render_error.hpp"
 #include <pybind11/stl.h>
+#include "render/render_error.hpp"
 
 #include "bindings.hpp"
 #include "envs/registry.hpp"

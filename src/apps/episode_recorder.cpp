@@ -136,8 +136,7 @@ std::vector<RecordedStep> read_recorded_steps(const std::filesystem::path& path)
     for (std::size_t servo = 0; servo < kNumServos; ++servo) {
       step.pose.joint_angles[servo] = values[10 + servo];
     }
-    if (!step.pose.base_position.allFinite() ||
-        !step.pose.base_orientation.coeffs().allFinite() ||
+    if (!step.pose.base_position.allFinite() || !step.pose.base_orientation.coeffs().allFinite() ||
         step.pose.base_orientation.norm() < 1e-9) {
       throw std::runtime_error(path.string() + ":" + std::to_string(line_number) +
                                ": the base pose is not finite");

@@ -99,8 +99,8 @@ void run_rollout(const RolloutOptions& options) {
   if (recorder) recorder->close();
   if (video) {
     video->close();
-    std::cout << "video " << options.video.path.string() << ": " << video->frames()
-              << " frames at " << options.video.fps << " frames/s" << std::endl;
+    std::cout << "video " << options.video.path.string() << ": " << video->frames() << " frames at "
+              << options.video.fps << " frames/s" << std::endl;
   }
 
   const double n = static_cast<double>(returns.size());

@@ -123,7 +123,8 @@ void add_spine_command(CLI::App& app) {
   auto options = std::make_shared<SpineOptions>();
   CLI::App* command = app.add_subcommand(
       "spine",
-      "Run a simulation spine: Bullet or MuJoCo served over shared memory to an agent (SpineBackend, "
+      "Run a simulation spine: Bullet or MuJoCo served over shared memory to an agent "
+      "(SpineBackend, "
       "or the upkie Python package). Ctrl-C stops it and removes the shared memory.");
   command->add_option("--shm-name", options->shm_name, "Shared-memory name")->capture_default_str();
   command

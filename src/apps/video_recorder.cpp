@@ -26,20 +26,19 @@ void add_video_options(CLI::App& command, VideoOptions& options) {
   command.add_option("--video-fps", options.fps, "Video frames per second")
       ->check(CLI::IsMember({30, 60}))
       ->capture_default_str();
-  command
-      .add_option_function<std::string>(
-          "--video-size",
-          [&options](const std::string& size) {
-            const std::size_t x = size.find('x');
-            try {
-              if (x == std::string::npos) throw std::invalid_argument(size);
-              options.width = std::stoi(size.substr(0, x));
-              options.height = std::stoi(size.substr(x + 1));
-            } catch (const std::exception&) {
-              throw CLI::ValidationError("--video-size", "expected WIDTHxHEIGHT, got " + size);
-            }
-          },
-          "Frame size WIDTHxHEIGHT (default 640x480)");
+  command.add_option_function<std::string>(
+      "--video-size",
+      [&options](const std::string& size) {
+        const std::size_t x = size.find('x');
+        try {
+          if (x == std::string::npos) throw std::invalid_argument(size);
+          options.width = std::stoi(size.substr(0, x));
+          options.height = std::stoi(size.substr(x + 1));
+        } catch (const std::exception&) {
+          throw CLI::ValidationError("--video-size", "expected WIDTHxHEIGHT, got " + size);
+        }
+      },
+      "Frame size WIDTHxHEIGHT (default 640x480)");
 }
 
 void VideoRecorder::start_episode(int episode) {

@@ -18,8 +18,14 @@ struct OffscreenContext::Impl {
 OffscreenContext::OffscreenContext(int width, int height) : impl_(std::make_unique<Impl>()) {
   // RGBA, 24-bit depth, 8-bit stencil, no accumulation buffer; compatibility profile,
   // which MuJoCo's fixed-function renderer needs.
-  const int attributes[] = {OSMESA_FORMAT,     OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
-                            OSMESA_STENCIL_BITS, 8,         OSMESA_PROFILE,    OSMESA_COMPAT_PROFILE,
+  const int attributes[] = {OSMESA_FORMAT,
+                            OSMESA_RGBA,
+                            OSMESA_DEPTH_BITS,
+                            24,
+                            OSMESA_STENCIL_BITS,
+                            8,
+                            OSMESA_PROFILE,
+                            OSMESA_COMPAT_PROFILE,
                             0};
   impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);
   if (impl_->context == nullptr) {
@@ -38,8 +44,8 @@ OffscreenContext::~OffscreenContext() {
 void OffscreenContext::make_current() {
   if (!OSMesaMakeCurrent(impl_->context, impl_->buffer.data(), GL_UNSIGNED_BYTE, impl_->width,
                          impl_->height)) {
-    throw RenderError("OSMesa could not make its context current (" +
-                      std::to_string(impl_->width) + "x" + std::to_string(impl_->height) + ")");
+    throw RenderError("OSMesa could not make its context current (" + std::to_string(impl_->width) +
+                      "x" + std::to_string(impl_->height) + ")");
   }
 }
 

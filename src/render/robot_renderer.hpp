@@ -29,8 +29,8 @@ RobotPose robot_pose(const Observation& observation);
 
 /// Image size and camera. The camera tracks the base from a fixed direction.
 struct RenderConfig {
-  int width = 640;    ///< [px], at most 1920.
-  int height = 480;   ///< [px], at most 1080.
+  int width = 640;                  ///< [px], at most 1920.
+  int height = 480;                 ///< [px], at most 1080.
   double camera_distance = 1.4;     ///< From the tracked point [m].
   double camera_azimuth = 135.0;    ///< [deg], MuJoCo's convention.
   double camera_elevation = -20.0;  ///< [deg], negative looks down.

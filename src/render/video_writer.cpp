@@ -74,22 +74,23 @@ VideoFormat VideoWriter::check_path(const std::filesystem::path& path) {
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, int fps)
     : path_(path), width_(width), height_(height), fps_(fps) {
   const VideoFormat format = check_path(path);
-  if (fps < 1 || fps > 240) throw RenderError("video frame rate must be 1 to 240, got " + std::to_string(fps));
+  if (fps < 1 || fps > 240)
+    throw RenderError("video frame rate must be 1 to 240, got " + std::to_string(fps));
   if (format == VideoFormat::kMp4 && (width % 2 != 0 || height % 2 != 0)) {
     throw RenderError("H.264 needs an even frame size, got " + std::to_string(width) + "x" +
                       std::to_string(height));
   }
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   const std::string rate = std::to_string(fps);
-  std::vector<std::string> args = {"ffmpeg", "-nostdin", "-y", "-loglevel", "error",
-                                   "-f", "rawvideo", "-pix_fmt", "rgb24", "-s", size,
-                                   "-r", rate, "-i", "pipe:0"};
+  std::vector<std::string> args = {"ffmpeg", "-nostdin", "-y",       "-loglevel", "error",
+                                   "-f",     "rawvideo", "-pix_fmt", "rgb24",     "-s",
+                                   size,     "-r",       rate,       "-i",        "pipe:0"};
   if (format == VideoFormat::kMp4) {
     args.insert(args.end(), {"-c:v", "libx264", "-preset", "veryfast", "-crf", "23", "-pix_fmt",
                              "yuv420p", "-movflags", "+faststart"});
   } else {
-    args.insert(args.end(),
-                {"-vf", "split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse", "-loop", "0"});
+    args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse",
+                             "-loop", "0"});
   }
   args.push_back(path.string());
 
@@ -136,7 +137,8 @@ void VideoWriter::write(std::span<const std::uint8_t> rgb) {
   if (stdin_fd_ < 0) throw RenderError("video " + path_.string() + " is already closed");
   std::size_t written = 0;
   while (written < rgb.size()) {
-    const ssize_t sent = ::send(stdin_fd_, rgb.data() + written, rgb.size() - written, MSG_NOSIGNAL);
+    const ssize_t sent =
+        ::send(stdin_fd_, rgb.data() + written, rgb.size() - written, MSG_NOSIGNAL);
     if (sent < 0) {
       if (errno == EINTR) continue;
       throw RenderError("ffmpeg stopped while writing " + path_.string() + ": " +

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rl/ppo_gradient.hpp"
 #include "rl/ppo_loss.hpp"
 
 namespace upkie_rl {
@@ -176,6 +177,9 @@ PpoUpdateStatistics Ppo::update() {
   const torch::Tensor returns = buffer_.flat_returns();
   const std::int64_t size = buffer_.size();
   double sum_pg = 0.0, sum_value = 0.0, sum_entropy = 0.0, sum_kl = 0.0, sum_clip = 0.0;
+  // Scratch for the forward and backward passes, sized once per update for the largest
+  // minibatch (ppo.hpp could keep it as a member instead).
+  PpoGradient gradient(*policy_, std::min(ppo.batch_size, size));
   std::int64_t minibatches = 0;
   for (std::int64_t epoch = 0; epoch < ppo.n_epochs; ++epoch) {
     // A fresh permutation each epoch (Fisher-Yates on our own generator, for
@@ -190,27 +194,21 @@ PpoUpdateStatistics Ppo::update() {
         observations.index_select(0, index),  actions.index_select(0, index),
         old_log_probs.index_select(0, index), old_values.index_select(0, index),
         advantages.index_select(0, index),    returns.index_select(0, index)};
+    const PpoMinibatchView shuffled_view = view_minibatch(shuffled);
     for (std::int64_t begin = 0; begin < size; begin += ppo.batch_size) {
       const std::int64_t length = std::min(ppo.batch_size, size - begin);
-      const PpoMinibatch batch{shuffled.observations.narrow(0, begin, length),
-                               shuffled.actions.narrow(0, begin, length),
-                               shuffled.old_log_prob.narrow(0, begin, length),
-                               shuffled.old_values.narrow(0, begin, length),
-                               shuffled.advantages.narrow(0, begin, length),
-                               shuffled.returns.narrow(0, begin, length)};
-      const ActionEvaluation evaluation =
-          policy_->evaluate_actions(batch.observations, batch.actions);
-      const PpoLoss loss = compute_ppo_loss(evaluation, batch, ppo);
-      policy_->zero_gradients();
-      loss.total.backward();
+      // The hand-written equivalent of compute_ppo_loss(...).total.backward(): it
+      // overwrites the flat gradients.
+      const PpoLossStatistics loss =
+          gradient.compute(shuffled_view.rows(begin, length), *policy_, ppo);
       clip_gradient_norm(policy_->flat_gradients(), ppo.max_grad_norm);
       optimizer_.step();
-      sum_pg += loss.policy_gradient_loss.item<double>();
-      sum_value += loss.value_loss.item<double>();
-      sum_entropy += loss.entropy_loss.item<double>();
-      sum_kl += loss.approx_kl.item<double>();
-      sum_clip += loss.clip_fraction.item<double>();
-      statistics.loss = loss.total.item<double>();
+      sum_pg += loss.policy_gradient_loss;
+      sum_value += loss.value_loss;
+      sum_entropy += loss.entropy_loss;
+      sum_kl += loss.approx_kl;
+      sum_clip += loss.clip_fraction;
+      statistics.loss = loss.total;
       ++minibatches;
     }
   }

@@ -310,9 +310,9 @@ void BulletSimulation::apply_servo_torques(const ServoAction& action, bool brake
   btMultiBody& multibody = *world_->multibody;
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     const int link = world_->servo_link[servo];
-    const double torque = joint_torque(action[servo], braked, multibody.getJointPos(link),
-                                       multibody.getJointVel(link),
-                                       model_->servo_limits(servo).effort);
+    const double torque =
+        joint_torque(action[servo], braked, multibody.getJointPos(link),
+                     multibody.getJointVel(link), model_->servo_limits(servo).effort);
     multibody.addJointTorque(link, torque);
     applied_torques_[servo] = torque;
   }

@@ -77,10 +77,11 @@ void add_collision_geoms(mjsBody& body, const RigidBody& rigid_body, const Robot
       // penetrating ones push.
       geom->margin = kTireContactDistance;
       geom->gap = kTireContactDistance;
-      if (collision.contact.is_soft()) set_soft_contact(*geom, collision.contact, tire_carried_mass);
+      if (collision.contact.is_soft())
+        set_soft_contact(*geom, collision.contact, tire_carried_mass);
       geom->rgba[0] = geom->rgba[1] = geom->rgba[2] = 0.12f;
-      const std::string name = collision.link == robot.tire_link(kLeftWheel) ? "left_tire"
-                                                                             : "right_tire";
+      const std::string name =
+          collision.link == robot.tire_link(kLeftWheel) ? "left_tire" : "right_tire";
       mjs_setName(geom->element, name.c_str());
     }
   }
@@ -130,8 +131,8 @@ void add_floor(mjsBody& world) {
   floor->type = mjGEOM_PLANE;
   floor->size[0] = 100.0;  // as Bullet's 200 m x 200 m ground box
   floor->size[1] = 100.0;
-  floor->size[2] = 0.05;   // grid spacing of the drawn plane [m]
-  floor->group = 2;  // drawn apart from the robot's geoms (group 0)
+  floor->size[2] = 0.05;  // grid spacing of the drawn plane [m]
+  floor->group = 2;       // drawn apart from the robot's geoms (group 0)
   floor->contype = 0;
   floor->conaffinity = 1;
   floor->condim = 3;
@@ -163,7 +164,7 @@ std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
   std::unique_ptr<mjSpec, SpecDeleter> spec(mj_makeSpec());
   mjs_setString(spec->modelname, "upkie");
   spec->compiler.inertiafromgeom = mjINERTIAFROMGEOM_FALSE;  // the tree's inertias, exactly
-  spec->compiler.alignfree = mjALIGNFREE_FALSE;  // free joint at the base link frame
+  spec->compiler.alignfree = mjALIGNFREE_FALSE;              // free joint at the base link frame
   spec->compiler.degree = 0;  // joint ranges in radians, as in the URDF
   spec->compiler.autolimits = 1;
   spec->compiler.boundmass = 0.0;
@@ -222,8 +223,8 @@ std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
 
   MujocoModelPtr model(mj_compile(spec.get(), nullptr));
   if (!model) {
-    throw ModelError(std::string("MuJoCo could not compile the model of ") +
-                     robot.path().string() + ": " + mjs_getError(spec.get()));
+    throw ModelError(std::string("MuJoCo could not compile the model of ") + robot.path().string() +
+                     ": " + mjs_getError(spec.get()));
   }
 
   auto result = std::make_shared<MujocoModel>();

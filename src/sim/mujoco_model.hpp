@@ -27,13 +27,13 @@ using MujocoDataPtr = std::unique_ptr<mjData_, MujocoDataDeleter>;
 
 /// Where the robot's parts are in a compiled mjModel.
 struct MujocoRobotIndex {
-  int root_body = -1;                                 ///< Body of the base link.
-  int root_qpos = -1;                                 ///< Free joint: position then quaternion.
-  int root_dof = -1;                                  ///< Free joint: linear then angular.
-  std::array<int, kNumServos> servo_qpos{};           ///< qpos address of each servo joint.
-  std::array<int, kNumServos> servo_dof{};            ///< dof address of each servo joint.
-  std::array<int, 2> tire_geoms{-1, -1};              ///< Left, right tire geoms.
-  int floor_geom = -1;                                ///< -1 without a floor.
+  int root_body = -1;                        ///< Body of the base link.
+  int root_qpos = -1;                        ///< Free joint: position then quaternion.
+  int root_dof = -1;                         ///< Free joint: linear then angular.
+  std::array<int, kNumServos> servo_qpos{};  ///< qpos address of each servo joint.
+  std::array<int, kNumServos> servo_dof{};   ///< dof address of each servo joint.
+  std::array<int, 2> tire_geoms{-1, -1};     ///< Left, right tire geoms.
+  int floor_geom = -1;                       ///< -1 without a floor.
 };
 
 /// A compiled model with its index. Immutable once built; shared by every simulation and

@@ -14,9 +14,9 @@ struct PhysicsConfig {
   double physics_timestep = 1e-3;  ///< Duration of one physics step [s].
   int nb_substeps = 5;             ///< Physics steps per agent step.
   InertiaSource inertia_source = InertiaSource::kBulletBoxRule;
-  bool floor = true;          ///< A ground plane at z = 0.
-  double gravity = 9.81;      ///< [m/s^2], along -z.
-  ServoGains servo_gains{};   ///< Servo law gains at construction.
+  bool floor = true;         ///< A ground plane at z = 0.
+  double gravity = 9.81;     ///< [m/s^2], along -z.
+  ServoGains servo_gains{};  ///< Servo law gains at construction.
 
   /// Duration of one agent step [s].
   double agent_timestep() const { return physics_timestep * nb_substeps; }

@@ -14,7 +14,8 @@ void check_finite(const MeasuredJoints& joints, const MeasuredBase& base, double
                 base.linear_velocity_in_world.allFinite() &&
                 base.angular_velocity_in_world.allFinite();
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-    finite = finite && std::isfinite(joints.position[servo]) && std::isfinite(joints.velocity[servo]);
+    finite =
+        finite && std::isfinite(joints.position[servo]) && std::isfinite(joints.velocity[servo]);
   }
   if (!finite) {
     throw SimulationDivergedError("the simulated state became non-finite at t = " +

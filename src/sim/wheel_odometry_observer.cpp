@@ -12,7 +12,8 @@ void WheelOdometryObserver::observe(const std::array<ServoObservation, kNumServo
   const double left_angle = servo[kLeftWheel].position - left_origin_;
   const double right_angle = servo[kRightWheel].position - right_origin_;
   odometry.position = 0.5 * (left_angle - right_angle) * wheel_radius_;
-  odometry.velocity = 0.5 * (servo[kLeftWheel].velocity - servo[kRightWheel].velocity) * wheel_radius_;
+  odometry.velocity =
+      0.5 * (servo[kLeftWheel].velocity - servo[kRightWheel].velocity) * wheel_radius_;
 }
 
 }  // namespace upkie_rl

@@ -31,9 +31,10 @@ std::string run(const std::string& command) {
 
 /// "frames duration" of a video's first stream.
 std::pair<int, double> probe(const std::filesystem::path& path) {
-  const std::string frames = run("ffprobe -v error -select_streams v:0 -count_frames "
-                                 "-show_entries stream=nb_read_frames -of csv=p=0 " +
-                                 path.string());
+  const std::string frames =
+      run("ffprobe -v error -select_streams v:0 -count_frames "
+          "-show_entries stream=nb_read_frames -of csv=p=0 " +
+          path.string());
   const std::string duration =
       run("ffprobe -v error -show_entries format=duration -of csv=p=0 " + path.string());
   return {frames.empty() ? -1 : std::stoi(frames), duration.empty() ? -1.0 : std::stod(duration)};
@@ -44,7 +45,8 @@ TEST(VideoCommand, RolloutVideoPlaysInRealTime) {
   const auto path = temp_path("rollout.mp4");
   const auto result = run_cli(
       "rollout --env Upkie-MuJoCo-Pendulum --controller linear:10,1,0,0.1 --max-steps 120 "
-      "--video-size 320x240 --video " + path.string());
+      "--video-size 320x240 --video " +
+      path.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("19 frames at 30 frames/s"), std::string::npos) << result.output;
   const auto [frames, duration] = probe(path);
@@ -55,19 +57,19 @@ TEST(VideoCommand, RolloutVideoPlaysInRealTime) {
 
 TEST(VideoCommand, BulletEpisodesRenderToo) {
   const auto path = temp_path("bullet.gif");
-  const auto result =
-      run_cli("rollout --env Upkie-Bullet-Pendulum --max-steps 40 --video-fps 60 "
-              "--video-size 160x120 --video " + path.string());
+  const auto result = run_cli(
+      "rollout --env Upkie-Bullet-Pendulum --max-steps 40 --video-fps 60 "
+      "--video-size 160x120 --video " +
+      path.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_EQ(probe(path).first, 13);  // 0.2 s at 60 frames/s, t = 0 included
   std::filesystem::remove(path);
 }
 
 TEST(VideoCommand, BadVideoPathsFailBeforeTheRollout) {
-  for (const std::string& bad : {temp_path("out.avi").string(),
-                                 std::string("/nonexistent_upkie_dir/out.mp4")}) {
-    const auto result =
-        run_cli("rollout --env Upkie-MuJoCo-Pendulum --max-steps 5 --video " + bad);
+  for (const std::string& bad :
+       {temp_path("out.avi").string(), std::string("/nonexistent_upkie_dir/out.mp4")}) {
+    const auto result = run_cli("rollout --env Upkie-MuJoCo-Pendulum --max-steps 5 --video " + bad);
     EXPECT_EQ(result.exit_code, 1) << result.output;
     EXPECT_NE(result.output.find("video " + bad), std::string::npos) << result.output;
     EXPECT_EQ(result.output.find("episode 0"), std::string::npos) << "the rollout ran";
@@ -79,7 +81,8 @@ TEST(VideoCommand, RenderMakesAVideoOfARecordedRollout) {
   const auto video = temp_path("replay.mp4");
   const auto rollout = run_cli(
       "rollout --env Upkie-Bullet-Pendulum --controller linear:10,1,0,0.1 --episodes 2 "
-      "--max-steps 60 --record " + record.string());
+      "--max-steps 60 --record " +
+      record.string());
   ASSERT_EQ(rollout.exit_code, 0) << rollout.output;
   const auto result =
       run_cli("render " + record.string() + " --video-size 320x240 --video " + video.string());
@@ -102,8 +105,7 @@ TEST(VideoCommand, RenderRefusesMalformedRecords) {
   EXPECT_NE(result.output.find("no column \"base_x\""), std::string::npos) << result.output;
 
   const auto record = temp_path("good.csv");
-  ASSERT_EQ(run_cli("rollout --env Upkie-Bullet-Pendulum --max-steps 3 --record " +
-                    record.string())
+  ASSERT_EQ(run_cli("rollout --env Upkie-Bullet-Pendulum --max-steps 3 --record " + record.string())
                 .exit_code,
             0);
   std::ifstream in(record);

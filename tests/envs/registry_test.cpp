@@ -25,12 +25,12 @@ bool contains(const std::string& text, const std::string& part) {
 
 TEST(Registry, ListsEveryKindForEachBackend) {
   const std::vector<std::string> ids = registered_env_ids();
-  for (const char* id : {"Upkie-Mock-Servos", "Upkie-Mock-Pendulum", "Upkie-Mock-Gyropod",
-                         "Upkie-Mock-ServosTask", "Upkie-Bullet-Servos", "Upkie-Bullet-Pendulum",
-                         "Upkie-Bullet-Gyropod", "Upkie-Bullet-ServosTask", "Upkie-MuJoCo-Servos",
-                         "Upkie-MuJoCo-Pendulum", "Upkie-MuJoCo-Gyropod",
-                         "Upkie-MuJoCo-ServosTask", "Upkie-Spine-Servos",
-                         "Upkie-Spine-Pendulum", "Upkie-Spine-Gyropod", "Upkie-Spine-ServosTask"}) {
+  for (const char* id :
+       {"Upkie-Mock-Servos", "Upkie-Mock-Pendulum", "Upkie-Mock-Gyropod", "Upkie-Mock-ServosTask",
+        "Upkie-Bullet-Servos", "Upkie-Bullet-Pendulum", "Upkie-Bullet-Gyropod",
+        "Upkie-Bullet-ServosTask", "Upkie-MuJoCo-Servos", "Upkie-MuJoCo-Pendulum",
+        "Upkie-MuJoCo-Gyropod", "Upkie-MuJoCo-ServosTask", "Upkie-Spine-Servos",
+        "Upkie-Spine-Pendulum", "Upkie-Spine-Gyropod", "Upkie-Spine-ServosTask"}) {
     EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
   }
 }

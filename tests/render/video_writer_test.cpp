@@ -48,10 +48,11 @@ TEST(VideoWriter, Mp4HasTheFramesAndDuration) {
     writer.close();
     EXPECT_EQ(writer.frames(), 60);
   }
-  const std::string probe = run("ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-                                "stream=codec_name,pix_fmt,nb_read_frames -show_entries "
-                                "format=duration -of default=noprint_wrappers=1 " +
-                                path.string());
+  const std::string probe =
+      run("ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+          "stream=codec_name,pix_fmt,nb_read_frames -show_entries "
+          "format=duration -of default=noprint_wrappers=1 " +
+          path.string());
   EXPECT_NE(probe.find("codec_name=h264"), std::string::npos) << probe;
   EXPECT_NE(probe.find("pix_fmt=yuv420p"), std::string::npos) << probe;
   EXPECT_NE(probe.find("nb_read_frames=60"), std::string::npos) << probe;
@@ -66,9 +67,10 @@ TEST(VideoWriter, GifIsWritten) {
     write_frames(writer, 15);
     writer.close();
   }
-  const std::string probe = run("ffprobe -v error -count_frames -show_entries "
-                                "stream=codec_name,nb_read_frames -of default=noprint_wrappers=1 " +
-                                path.string());
+  const std::string probe =
+      run("ffprobe -v error -count_frames -show_entries "
+          "stream=codec_name,nb_read_frames -of default=noprint_wrappers=1 " +
+          path.string());
   EXPECT_NE(probe.find("codec_name=gif"), std::string::npos) << probe;
   EXPECT_NE(probe.find("nb_read_frames=15"), std::string::npos) << probe;
   std::filesystem::remove(path);
@@ -78,8 +80,9 @@ TEST(VideoWriter, BadPathsAreRefusedBeforeEncoding) {
   EXPECT_THROW(VideoWriter::check_path(temp_path("clip.avi")), RenderError);
   EXPECT_THROW(VideoWriter::check_path(temp_path("clip")), RenderError);
   EXPECT_THROW(VideoWriter::check_path("/nonexistent_directory_upkie/clip.mp4"), RenderError);
-  EXPECT_THROW(VideoWriter::check_path(std::filesystem::temp_directory_path() / "x" / ".." / ".mp4"),
-               RenderError);
+  EXPECT_THROW(
+      VideoWriter::check_path(std::filesystem::temp_directory_path() / "x" / ".." / ".mp4"),
+      RenderError);
   try {
     VideoWriter::check_path(temp_path("clip.webm"));
     FAIL() << "webm accepted";
