@@ -231,11 +231,10 @@ const BulletConfig& validated(const BulletConfig& config) {
 
 BulletSimulation::BulletSimulation(std::shared_ptr<const RobotModel> model,
                                    const BulletConfig& config)
-    : PhysicsSimulation(validated(config).servo_gains),
+    : PhysicsSimulation(*model, validated(config)),
       model_(std::move(model)),
       config_(config),
-      tree_(*model_, config.inertia_source, config.merge_fixed_links),
-      sensors_(*model_, config_) {
+      tree_(*model_, config.inertia_source, config.merge_fixed_links) {
   reset(ResetState{});
 }
 
@@ -273,40 +272,10 @@ const Observation& BulletSimulation::reset(const ResetState& state) {
   multibody.forwardKinematics(scratch_rotations, scratch_vectors);
   multibody.updateCollisionObjectWorldTransforms(scratch_rotations, scratch_vectors);
 
-  applied_torques_.fill(0.0);
-  diverged_ = false;
-  MeasuredJoints joints;
-  MeasuredBase base;
-  measure(joints, base);
-  sensors_.reset(joints, base, tire_touches_floor(), observation_);
-  return observation_;
+  return observe_reset();
 }
 
-const Observation& BulletSimulation::step(const ServoAction& action) {
-  validate_servo_action(action);
-  return advance(action, /*braked=*/false);
-}
-
-const Observation& BulletSimulation::step_braked() {
-  static const ServoAction kNoAction{};
-  return advance(kNoAction, /*braked=*/true);
-}
-
-const Observation& BulletSimulation::advance(const ServoAction& action, bool braked) {
-  if (diverged_) {
-    throw SimulationDivergedError("the simulation diverged earlier; reset it before stepping");
-  }
-  for (int substep = 0; substep < config_.nb_substeps; ++substep) {
-    apply_servo_torques(action, braked);
-    world_->world.stepSimulation(config_.physics_timestep, 0, config_.physics_timestep);
-    ++physics_steps_;
-  }
-  observation_.time += config_.physics_timestep * config_.nb_substeps;
-  read_observation();
-  return observation_;
-}
-
-void BulletSimulation::apply_servo_torques(const ServoAction& action, bool braked) {
+void BulletSimulation::step_physics(const ServoAction& action, bool braked) {
   btMultiBody& multibody = *world_->multibody;
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     const int link = world_->servo_link[servo];
@@ -316,6 +285,7 @@ void BulletSimulation::apply_servo_torques(const ServoAction& action, bool brake
     multibody.addJointTorque(link, torque);
     applied_torques_[servo] = torque;
   }
+  world_->world.stepSimulation(config_.physics_timestep, 0, config_.physics_timestep);
 }
 
 void BulletSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const {
@@ -337,18 +307,6 @@ void BulletSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const
       to_eigen(multibody.getBaseVel()) +
       base.angular_velocity_in_world.cross(base.pose_in_world.translation() -
                                            com_in_world.translation());
-}
-
-void BulletSimulation::read_observation() {
-  MeasuredJoints joints;
-  MeasuredBase base;
-  measure(joints, base);
-  try {
-    sensors_.observe(joints, base, tire_touches_floor(), observation_);
-  } catch (const SimulationDivergedError&) {
-    diverged_ = true;
-    throw;
-  }
 }
 
 bool BulletSimulation::tire_touches_floor() const {

@@ -9,7 +9,6 @@
 #include "model/robot_model.hpp"
 #include "sim/bullet_config.hpp"
 #include "sim/physics_simulation.hpp"
-#include "sim/simulated_sensors.hpp"
 
 namespace upkie_rl {
 
@@ -34,32 +33,19 @@ class BulletSimulation final : public PhysicsSimulation {
   /// @throws std::invalid_argument on a non-finite state.
   const Observation& reset(const ResetState& state) override;
 
-  /// @throws InvalidCommandError on non-finite commands (see validate_servo_action).
-  /// @throws SimulationDivergedError when the state becomes non-finite; reset to go on.
-  const Observation& step(const ServoAction& action) override;
-
-  const Observation& step_braked() override;
-
-  const Observation& observation() const override { return observation_; }
   const PhysicsConfig& physics_config() const override { return config_; }
   const BulletConfig& config() const { return config_; }
   const RobotModel& model() const override { return *model_; }
 
  private:
-  const Observation& advance(const ServoAction& action, bool braked);
-  void apply_servo_torques(const ServoAction& action, bool braked);
-  void read_observation();
-  void measure(MeasuredJoints& joints, MeasuredBase& base) const;
-  bool tire_touches_floor() const;
+  void step_physics(const ServoAction& action, bool braked) override;
+  void measure(MeasuredJoints& joints, MeasuredBase& base) const override;
+  bool tire_touches_floor() const override;
 
   std::shared_ptr<const RobotModel> model_;
   BulletConfig config_;
   RigidBodyTree tree_;
   std::unique_ptr<BulletWorld> world_;
-  Observation observation_;
-  SimulatedSensors sensors_;
-  std::array<double, kNumServos> applied_torques_{};
-  bool diverged_ = false;
 };
 
 }  // namespace upkie_rl

@@ -21,12 +21,11 @@ MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
 MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
                                    const MujocoConfig& config,
                                    std::shared_ptr<const MujocoModel> compiled)
-    : PhysicsSimulation(validated(config).servo_gains),
+    : PhysicsSimulation(*model, validated(config)),
       model_(std::move(model)),
       config_(config),
       compiled_(std::move(compiled)),
-      data_(mj_makeData(compiled_->model.get())),
-      sensors_(*model_, config_) {
+      data_(mj_makeData(compiled_->model.get())) {
   if (!data_) throw std::runtime_error("MuJoCo could not allocate its simulation data");
   reset(ResetState{});
 }
@@ -56,47 +55,21 @@ const Observation& MujocoSimulation::reset(const ResetState& state) {
     d->qpos[index.servo_qpos[servo]] = state.joint_configuration[servo];
   }
   mj_forward(m, d);
-
-  applied_torques_.fill(0.0);
-  diverged_ = false;
-  MeasuredJoints joints;
-  MeasuredBase base;
-  measure(joints, base);
-  sensors_.reset(joints, base, tire_touches_floor(), observation_);
-  return observation_;
+  return observe_reset();
 }
 
-const Observation& MujocoSimulation::step(const ServoAction& action) {
-  validate_servo_action(action);
-  return advance(action, /*braked=*/false);
-}
-
-const Observation& MujocoSimulation::step_braked() {
-  static const ServoAction kNoAction{};
-  return advance(kNoAction, /*braked=*/true);
-}
-
-const Observation& MujocoSimulation::advance(const ServoAction& action, bool braked) {
-  if (diverged_) {
-    throw SimulationDivergedError("the simulation diverged earlier; reset it before stepping");
-  }
+void MujocoSimulation::step_physics(const ServoAction& action, bool braked) {
   const mjModel* m = compiled_->model.get();
   mjData* d = data_.get();
   const MujocoRobotIndex& index = compiled_->index;
-  for (int substep = 0; substep < config_.nb_substeps; ++substep) {
-    for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-      const double torque =
-          joint_torque(action[servo], braked, d->qpos[index.servo_qpos[servo]],
-                       d->qvel[index.servo_dof[servo]], model_->servo_limits(servo).effort);
-      d->qfrc_applied[index.servo_dof[servo]] = torque;
-      applied_torques_[servo] = torque;
-    }
-    mj_step(m, d);
-    ++physics_steps_;
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    const double torque =
+        joint_torque(action[servo], braked, d->qpos[index.servo_qpos[servo]],
+                     d->qvel[index.servo_dof[servo]], model_->servo_limits(servo).effort);
+    d->qfrc_applied[index.servo_dof[servo]] = torque;
+    applied_torques_[servo] = torque;
   }
-  observation_.time += config_.agent_timestep();
-  read_observation();
-  return observation_;
+  mj_step(m, d);
 }
 
 void MujocoSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const {
@@ -119,18 +92,6 @@ void MujocoSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const
   base.angular_velocity_in_world =
       base.pose_in_world.linear() *
       Eigen::Vector3d(root_velocity[3], root_velocity[4], root_velocity[5]);
-}
-
-void MujocoSimulation::read_observation() {
-  MeasuredJoints joints;
-  MeasuredBase base;
-  measure(joints, base);
-  try {
-    sensors_.observe(joints, base, tire_touches_floor(), observation_);
-  } catch (const SimulationDivergedError&) {
-    diverged_ = true;
-    throw;
-  }
 }
 
 bool MujocoSimulation::tire_touches_floor() const {

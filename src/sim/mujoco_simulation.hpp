@@ -8,7 +8,6 @@
 #include "sim/mujoco_config.hpp"
 #include "sim/mujoco_model.hpp"
 #include "sim/physics_simulation.hpp"
-#include "sim/simulated_sensors.hpp"
 
 namespace upkie_rl {
 
@@ -34,32 +33,20 @@ class MujocoSimulation final : public PhysicsSimulation {
   /// @throws std::invalid_argument on a non-finite state.
   const Observation& reset(const ResetState& state) override;
 
-  /// @throws InvalidCommandError on non-finite commands (see validate_servo_action).
-  /// @throws SimulationDivergedError when the state becomes non-finite; reset to go on.
-  const Observation& step(const ServoAction& action) override;
-
-  const Observation& step_braked() override;
-
-  const Observation& observation() const override { return observation_; }
   const PhysicsConfig& physics_config() const override { return config_; }
   const MujocoConfig& config() const { return config_; }
   const RobotModel& model() const override { return *model_; }
   const MujocoModel& mujoco_model() const { return *compiled_; }
 
  private:
-  const Observation& advance(const ServoAction& action, bool braked);
-  void read_observation();
-  void measure(MeasuredJoints& joints, MeasuredBase& base) const;
-  bool tire_touches_floor() const;
+  void step_physics(const ServoAction& action, bool braked) override;
+  void measure(MeasuredJoints& joints, MeasuredBase& base) const override;
+  bool tire_touches_floor() const override;
 
   std::shared_ptr<const RobotModel> model_;
   MujocoConfig config_;
   std::shared_ptr<const MujocoModel> compiled_;
   MujocoDataPtr data_;
-  Observation observation_;
-  SimulatedSensors sensors_;
-  std::array<double, kNumServos> applied_torques_{};
-  bool diverged_ = false;
 };
 
 }  // namespace upkie_rl

@@ -10,33 +10,24 @@
 #include <memory>
 
 #include "apps/cli_runner.hpp"
+#include "common/shell_output.hpp"
+#include "common/temp_files.hpp"
 
 namespace upkie_rl {
 namespace {
 
 using testing::run_cli;
-
-std::filesystem::path temp_path(const std::string& name) {
-  return std::filesystem::temp_directory_path() /
-         ("upkie_rl_video_cli_" + std::to_string(::getpid()) + "_" + name);
-}
-
-std::string run(const std::string& command) {
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string output;
-  std::array<char, 256> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe.get())) output += buffer.data();
-  return output;
-}
+using testing::shell_output;
+using testing::temp_path;
 
 /// "frames duration" of a video's first stream.
 std::pair<int, double> probe(const std::filesystem::path& path) {
-  const std::string frames =
-      run("ffprobe -v error -select_streams v:0 -count_frames "
-          "-show_entries stream=nb_read_frames -of csv=p=0 " +
-          path.string());
+  const std::string frames = shell_output(
+      "ffprobe -v error -select_streams v:0 -count_frames "
+      "-show_entries stream=nb_read_frames -of csv=p=0 " +
+      path.string());
   const std::string duration =
-      run("ffprobe -v error -show_entries format=duration -of csv=p=0 " + path.string());
+      shell_output("ffprobe -v error -show_entries format=duration -of csv=p=0 " + path.string());
   return {frames.empty() ? -1 : std::stoi(frames), duration.empty() ? -1.0 : std::stod(duration)};
 }
 

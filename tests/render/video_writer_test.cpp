@@ -9,24 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "common/shell_output.hpp"
+#include "common/temp_files.hpp"
 #include "render/render_error.hpp"
 
 namespace upkie_rl {
 namespace {
 
-std::filesystem::path temp_path(const std::string& name) {
-  return std::filesystem::temp_directory_path() /
-         ("upkie_rl_video_test_" + std::to_string(::getpid()) + "_" + name);
-}
-
-/// Output of a shell command.
-std::string run(const std::string& command) {
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string output;
-  std::array<char, 256> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe.get())) output += buffer.data();
-  return output;
-}
+using testing::shell_output;
+using testing::temp_path;
 
 /// Frames of a square moving across a 64x48 image.
 void write_frames(VideoWriter& writer, int count) {
@@ -48,11 +39,11 @@ TEST(VideoWriter, Mp4HasTheFramesAndDuration) {
     writer.close();
     EXPECT_EQ(writer.frames(), 60);
   }
-  const std::string probe =
-      run("ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-          "stream=codec_name,pix_fmt,nb_read_frames -show_entries "
-          "format=duration -of default=noprint_wrappers=1 " +
-          path.string());
+  const std::string probe = shell_output(
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+      "stream=codec_name,pix_fmt,nb_read_frames -show_entries "
+      "format=duration -of default=noprint_wrappers=1 " +
+      path.string());
   EXPECT_NE(probe.find("codec_name=h264"), std::string::npos) << probe;
   EXPECT_NE(probe.find("pix_fmt=yuv420p"), std::string::npos) << probe;
   EXPECT_NE(probe.find("nb_read_frames=60"), std::string::npos) << probe;
@@ -67,10 +58,10 @@ TEST(VideoWriter, GifIsWritten) {
     write_frames(writer, 15);
     writer.close();
   }
-  const std::string probe =
-      run("ffprobe -v error -count_frames -show_entries "
-          "stream=codec_name,nb_read_frames -of default=noprint_wrappers=1 " +
-          path.string());
+  const std::string probe = shell_output(
+      "ffprobe -v error -count_frames -show_entries "
+      "stream=codec_name,nb_read_frames -of default=noprint_wrappers=1 " +
+      path.string());
   EXPECT_NE(probe.find("codec_name=gif"), std::string::npos) << probe;
   EXPECT_NE(probe.find("nb_read_frames=15"), std::string::npos) << probe;
   std::filesystem::remove(path);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sim/servo_actions.hpp"
+
 /// Bullet only; what every backend must do is in physics_behaviour_test.cpp.
 
 namespace upkie_rl {
@@ -9,15 +11,7 @@ namespace {
 
 std::shared_ptr<const RobotModel> model() { return RobotModel::default_model(); }
 
-/// Zero torque on every joint.
-ServoAction limp_action() {
-  ServoAction action{};
-  for (auto& command : action) {
-    command.kp_scale = 0.0;
-    command.kd_scale = 0.0;
-  }
-  return action;
-}
+using testing::limp_action;
 
 TEST(BulletSimulationTest, MergedAndUnmergedLinksAgree) {
   BulletConfig unmerged;

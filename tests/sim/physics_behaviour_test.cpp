@@ -9,6 +9,7 @@
 
 #include "sim/bullet_simulation.hpp"
 #include "sim/mujoco_simulation.hpp"
+#include "sim/servo_actions.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -40,27 +41,8 @@ std::unique_ptr<PhysicsSimulation> make_mujoco(const PhysicsConfig& physics) {
   return std::make_unique<MujocoSimulation>(model(), config);
 }
 
-/// Zero torque on every joint.
-ServoAction limp_action() {
-  ServoAction action{};
-  for (auto& command : action) {
-    command.kp_scale = 0.0;
-    command.kd_scale = 0.0;
-  }
-  return action;
-}
-
-/// Legs held at 0, wheels rolling the base at ground velocity `ground_velocity` [m/s].
-ServoAction pendulum_action(double ground_velocity, double wheel_radius) {
-  ServoAction action{};
-  for (std::size_t servo : {kLeftHip, kLeftKnee, kRightHip, kRightKnee}) {
-    action[servo].position = 0.0;
-    action[servo].velocity = 0.0;
-  }
-  action[kLeftWheel].velocity = ground_velocity / wheel_radius;
-  action[kRightWheel].velocity = -ground_velocity / wheel_radius;
-  return action;
-}
+using testing::limp_action;
+using testing::pendulum_action;
 
 class PhysicsBehaviour : public ::testing::TestWithParam<Backend> {
  protected:
