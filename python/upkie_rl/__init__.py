@@ -7,7 +7,7 @@
 >>> sb3_venv = upkie_rl.make_sb3_vec_env("Upkie-Bullet-Pendulum", num_envs=10, seed=0)
 >>> policy = upkie_rl.load_policy("runs/pendulum/model_20261121-144733.ckpt")
 
-Importing the package registers every id (``upkie_rl/Upkie-{Bullet,Mock,Spine}-{Servos,
+Importing the package registers every id (``upkie_rl/Upkie-{Bullet,MuJoCo,Mock,Spine}-{Servos,
 Pendulum,Gyropod,ServosTask}``, and the Bullet ones without the namespace too).
 """
 
@@ -19,8 +19,31 @@ _PACKAGED_MODEL = _Path(__file__).parent / "models" / "upkie" / "upkie.urdf"
 if _PACKAGED_MODEL.exists():
     _os.environ.setdefault("UPKIE_RL_MODEL", str(_PACKAGED_MODEL))
 
+
+
+def _load_mujoco_library():
+    """Loads libmujoco.so from the `mujoco` wheel, wherever it is installed, before the
+    extension module that links it: the dynamic linker then finds it by its soname."""
+    import ctypes
+    import importlib.util
+
+    spec = importlib.util.find_spec("mujoco")
+    for directory in (spec.submodule_search_locations or []) if spec else []:
+        for library in sorted(_Path(directory).glob("libmujoco.so*")):
+            ctypes.CDLL(str(library), mode=ctypes.RTLD_GLOBAL)
+            return
+
+
+_load_mujoco_library()
+
 from . import _core  # noqa: E402
-from ._core import CheckpointError, ModelError, SimulationDivergedError, SpineError  # noqa: E402
+from ._core import (  # noqa: E402
+    CheckpointError,
+    ModelError,
+    RenderError,
+    SimulationDivergedError,
+    SpineError,
+)
 from .env import UpkieEnv  # noqa: E402
 from .policy import Policy, evaluate, load_policy  # noqa: E402
 from .registration import register  # noqa: E402
