@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python bench train sanitize sanitize-thread fuzz format tidy clean
+.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco sanitize sanitize-thread fuzz format tidy clean
 
 all: build
 
@@ -40,12 +40,13 @@ test: build
 # the training figures. TRAIN_CONFIG and RUN_DIR can be overridden.
 TRAIN_CONFIG ?= configs/pendulum.yaml
 TRAIN_ENV ?= Upkie-Bullet-Pendulum
+TRAIN_SET ?=
 ifndef RUN_DIR
 RUN_DIR := runs/pendulum-$(shell date +%Y%m%d-%H%M%S)
 endif
 
 train: build
-	$(BUILD_DIR)/upkie-rl train --config $(TRAIN_CONFIG) --run-dir $(RUN_DIR)
+	$(BUILD_DIR)/upkie-rl train --config $(TRAIN_CONFIG) $(TRAIN_SET) --run-dir $(RUN_DIR)
 	@model=$$(ls -t $(RUN_DIR)/model_*.ckpt | head -n 1); \
 	  echo "evaluating $$model on 10 episodes"; \
 	  $(BUILD_DIR)/upkie-rl rollout --env $(TRAIN_ENV) --model $$model --episodes 10 \
@@ -54,6 +55,11 @@ train: build
 	@echo "run directory: $(RUN_DIR) (config.yaml, progress.csv, TensorBoard events," \
 	  "checkpoints/, model_*.ckpt and model_*.pt, evaluation.txt, loss.png, kl.png, return.png)"
 	@echo "TensorBoard: tensorboard --logdir $(RUN_DIR)"
+
+# The same job on MuJoCo: the seed's configuration on Upkie-MuJoCo-Pendulum.
+train-mujoco:
+	$(MAKE) train TRAIN_ENV=Upkie-MuJoCo-Pendulum TRAIN_SET="--set env.id=Upkie-MuJoCo-Pendulum" \
+	  RUN_DIR=runs/pendulum-mujoco-$(shell date +%Y%m%d-%H%M%S)
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done

@@ -1,4 +1,5 @@
-// `upkie-rl rollout` through the spine gives the same result as in-process simulation.
+// `upkie-rl rollout` through the spine gives the same result as in-process simulation, on
+// Bullet and on MuJoCo.
 //
 // Tolerance: the on-request spine runs the same BulletSimulation code with the same
 // physics settings (1 ms steps, 5 per 200 Hz agent step), resets rebuild the Bullet world
@@ -48,10 +49,12 @@ nlohmann::json last_line_json(const std::string& output) {
   return nlohmann::json::parse(output.substr(start == std::string::npos ? 0 : start + 1));
 }
 
-TEST(SpineRollout, SameReturnsThroughTheSpineAsInProcess) {
+/// Rolls the PD law out on `env_id` in process and on `upkie-rl spine --backend backend`.
+void expect_same_returns_through_the_spine(const std::string& backend, const std::string& env_id) {
   const std::string cli = UPKIE_RL_CLI_PATH;
-  const std::string shm_name = "/upkie_rl_rollout_" + std::to_string(::getpid());
-  std::vector<std::string> args = {cli, "spine", "--shm-name", shm_name, "--nb-substeps", "5"};
+  const std::string shm_name = "/upkie_rl_rollout_" + backend + std::to_string(::getpid());
+  std::vector<std::string> args = {cli, "spine",     "--shm-name", shm_name, "--nb-substeps",
+                                   "5", "--backend", backend};
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
@@ -64,8 +67,7 @@ TEST(SpineRollout, SameReturnsThroughTheSpineAsInProcess) {
   const std::string common =
       " --controller linear:10,1,0,0.1 --episodes 2 --max-steps 300 --seed 3 --json";
   int bullet_exit = -1;
-  const std::string bullet =
-      run(cli + " rollout --env Upkie-Bullet-Pendulum" + common, bullet_exit);
+  const std::string bullet = run(cli + " rollout --env " + env_id + common, bullet_exit);
   int spine_exit = -1;
   const std::string through_spine =
       run(cli + " rollout --env Upkie-Spine-Pendulum --env-option shm_name=" + shm_name +
@@ -91,6 +93,14 @@ TEST(SpineRollout, SameReturnsThroughTheSpineAsInProcess) {
     EXPECT_EQ(actual["lengths"][e], expected["lengths"][e]);
   }
   EXPECT_EQ(expected["lengths"][0].get<int>(), 300);  // the law balances: full episodes
+}
+
+TEST(SpineRollout, SameReturnsThroughTheSpineAsInProcess) {
+  expect_same_returns_through_the_spine("bullet", "Upkie-Bullet-Pendulum");
+}
+
+TEST(SpineRollout, SameReturnsThroughAMujocoSpine) {
+  expect_same_returns_through_the_spine("mujoco", "Upkie-MuJoCo-Pendulum");
 }
 
 }  // namespace
