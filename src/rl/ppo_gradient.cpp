@@ -1,0 +1,646 @@
+#include "rl/ppo_gradient.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+namespace upkie_rl {
+
+namespace {
+
+constexpr double kHalfLog2Pi = 0.91893853320467274178;  // ½·log(2π)
+
+using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using MatrixMap = Eigen::Map<RowMatrix>;
+using ConstMatrixMap = Eigen::Map<const RowMatrix>;
+using RowVectorMap = Eigen::Map<Eigen::RowVectorXf>;
+using ConstRowVectorMap = Eigen::Map<const Eigen::RowVectorXf>;
+
+std::span<const float> tensor_span(const torch::Tensor& tensor, const char* name) {
+  if (!tensor.defined() || tensor.scalar_type() != torch::kFloat32 || !tensor.is_cpu() ||
+      !tensor.is_contiguous()) {
+    throw std::invalid_argument(std::string("PPO minibatch: '") + name +
+                                "' must be a contiguous float32 CPU tensor");
+  }
+  return {tensor.data_ptr<float>(), static_cast<std::size_t>(tensor.numel())};
+}
+
+void check_span(std::span<const float> span, std::int64_t expected, const char* name) {
+  if (static_cast<std::int64_t>(span.size()) != expected) {
+    throw std::invalid_argument(std::string("PpoGradient: '") + name + "' has " +
+                                std::to_string(span.size()) + " values, expected " +
+                                std::to_string(expected));
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define UPKIE_RL_PPO_GRADIENT_AVX2 1
+#endif
+
+// What happens to C = A·B (+ bias) before it is stored.
+enum class Epilogue {
+  kNone,
+  kRelu,      // max(C, 0): a hidden layer's forward pass.
+  kReluGate,  // C where gate > 0, else 0: ∂L/∂z from ∂L/∂y of y = relu(z) (gate = y).
+  kTanhGate,  // C·(1 − gate²): ∂L/∂z from ∂L/∂y of y = tanh(z) (gate = y).
+};
+
+// C = A·B (+ a bias row) (then the epilogue) for the products of a dense layer's forward
+// and backward passes. The build targets baseline x86-64, where Eigen's GEMM only has SSE2
+// and needs about 1.4 instructions per multiply-add on these shapes; on CPUs with AVX2 and
+// FMA this kernel, compiled for them and chosen at run time, needs about 0.25.
+struct GemmArguments {
+  std::int64_t m = 0;             // Rows of C and of A.
+  std::int64_t n = 0;             // Columns of C and of B.
+  std::int64_t k = 0;             // Depth: columns of A, rows of B.
+  const float* a = nullptr;       // A(r, p) = a[r·a_row_stride + p·a_depth_stride]: A can be
+  std::int64_t a_row_stride = 0;  // a transposed view, or one value repeated (strides 0).
+  std::int64_t a_depth_stride = 0;
+  const float* b = nullptr;  // Row-major, leading dimension ldb.
+  std::int64_t ldb = 0;
+  float* c = nullptr;  // Row-major, leading dimension ldc; overwritten.
+  std::int64_t ldc = 0;
+  const float* bias = nullptr;  // n values added to every row of C, or null.
+  Epilogue epilogue = Epilogue::kNone;
+  const float* gate = nullptr;  // Laid out like C, for the gate epilogues.
+};
+
+#ifdef UPKIE_RL_PPO_GRADIENT_AVX2
+
+template <bool Masked>
+__attribute__((target("avx2,fma"))) inline __m256 load(const float* p, __m256i mask) {
+  if constexpr (Masked) {
+    return _mm256_maskload_ps(p, mask);
+  } else {
+    return _mm256_loadu_ps(p);
+  }
+}
+
+template <bool Masked>
+__attribute__((target("avx2,fma"))) inline __m256 finish(const GemmArguments& g, __m256 y,
+                                                         std::int64_t offset, __m256i mask) {
+  switch (g.epilogue) {
+    case Epilogue::kNone:
+      return y;
+    case Epilogue::kRelu:
+      return _mm256_max_ps(y, _mm256_setzero_ps());
+    case Epilogue::kReluGate: {
+      const __m256 gate = load<Masked>(g.gate + offset, mask);
+      return _mm256_and_ps(y, _mm256_cmp_ps(gate, _mm256_setzero_ps(), _CMP_GT_OQ));
+    }
+    case Epilogue::kTanhGate: {
+      const __m256 gate = load<Masked>(g.gate + offset, mask);
+      return _mm256_mul_ps(y, _mm256_sub_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(gate, gate)));
+    }
+  }
+  return y;
+}
+
+// How A is laid out, known at compile time so that the inner loop needs no address
+// arithmetic: rows of A contiguous (a_depth_stride = 1: x and ∂y as they are), columns of A
+// contiguous (a_row_stride = 1: ∂y read transposed), or anything else.
+enum class Layout { kRowMajor, kColumnMajor, kStrided };
+
+// Rows x (8·Vectors) block of C at (row, column), accumulated in registers over the whole
+// depth. Masked: one vector of which only the first `width` lanes exist (the last columns).
+template <int Rows, int Vectors, bool Masked, Layout A>
+__attribute__((target("avx2,fma"))) inline void gemm_block(const GemmArguments& g, std::int64_t row,
+                                                           std::int64_t column, int width) {
+  static_assert(!Masked || Vectors == 1);
+  const __m256i mask =
+      _mm256_cmpgt_epi32(_mm256_set1_epi32(width), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  // Locals, and loops unrolled before scalar replacement, so that the accumulators stay
+  // in registers (GCC otherwise keeps the array on the stack).
+  const std::int64_t depth = g.k;
+  const std::int64_t a_row_stride = A == Layout::kColumnMajor ? 1 : g.a_row_stride;
+  const std::int64_t a_depth_stride = A == Layout::kRowMajor ? 1 : g.a_depth_stride;
+  const std::int64_t ldb = g.ldb;
+  __m256 sum[Rows][Vectors];
+#pragma GCC unroll 8
+  for (int v = 0; v < Vectors; ++v) {
+    const __m256 start =
+        g.bias != nullptr ? load<Masked>(g.bias + column + 8 * v, mask) : _mm256_setzero_ps();
+#pragma GCC unroll 8
+    for (int i = 0; i < Rows; ++i) sum[i][v] = start;
+  }
+  const float* a_rows[Rows];
+#pragma GCC unroll 8
+  for (int i = 0; i < Rows; ++i) a_rows[i] = g.a + (row + i) * a_row_stride;
+  const float* b = g.b + column;
+#pragma GCC unroll 2
+  for (std::int64_t p = 0; p < depth; ++p) {
+    __m256 b_row[Vectors];
+#pragma GCC unroll 8
+    for (int v = 0; v < Vectors; ++v) b_row[v] = load<Masked>(b + 8 * v, mask);
+    b += ldb;
+#pragma GCC unroll 8
+    for (int i = 0; i < Rows; ++i) {
+      const float* a = A == Layout::kRowMajor      ? a_rows[i] + p
+                       : A == Layout::kColumnMajor ? a_rows[0] + p * a_depth_stride + i
+                                                   : a_rows[i] + p * a_depth_stride;
+      const __m256 a_value = _mm256_broadcast_ss(a);
+#pragma GCC unroll 8
+      for (int v = 0; v < Vectors; ++v) sum[i][v] = _mm256_fmadd_ps(a_value, b_row[v], sum[i][v]);
+    }
+  }
+#pragma GCC unroll 8
+  for (int i = 0; i < Rows; ++i) {
+    const std::int64_t offset = (row + i) * g.ldc + column;
+#pragma GCC unroll 8
+    for (int v = 0; v < Vectors; ++v) {
+      const __m256 y = finish<Masked>(g, sum[i][v], offset + 8 * v, mask);
+      if constexpr (Masked) {
+        _mm256_maskstore_ps(g.c + offset, mask, y);
+      } else {
+        _mm256_storeu_ps(g.c + offset + 8 * v, y);
+      }
+    }
+  }
+}
+
+template <int Rows, Layout A>
+__attribute__((target("avx2,fma"))) inline void gemm_rows(const GemmArguments& g,
+                                                          std::int64_t row) {
+  std::int64_t column = 0;
+  for (; column + 16 <= g.n; column += 16) gemm_block<Rows, 2, false, A>(g, row, column, 8);
+  if (column + 8 <= g.n) {
+    gemm_block<Rows, 1, false, A>(g, row, column, 8);
+    column += 8;
+  }
+  if (column < g.n) gemm_block<Rows, 1, true, A>(g, row, column, static_cast<int>(g.n - column));
+}
+
+template <Layout A>
+__attribute__((target("avx2,fma"))) void gemm_layout(const GemmArguments& g) {
+  std::int64_t row = 0;
+  for (; row + 6 <= g.m; row += 6) gemm_rows<6, A>(g, row);
+  switch (g.m - row) {
+    case 5:
+      gemm_rows<5, A>(g, row);
+      break;
+    case 4:
+      gemm_rows<4, A>(g, row);
+      break;
+    case 3:
+      gemm_rows<3, A>(g, row);
+      break;
+    case 2:
+      gemm_rows<2, A>(g, row);
+      break;
+    case 1:
+      gemm_rows<1, A>(g, row);
+      break;
+    default:
+      break;
+  }
+}
+
+// One column of C (a layer with one output): dot products along contiguous rows of A.
+__attribute__((target("avx2,fma"))) void gemv_avx2(const GemmArguments& g) {
+  const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (std::int64_t row = 0; row < g.m; ++row) {
+    const float* a = g.a + row * g.a_row_stride;
+    __m256 sum = _mm256_setzero_ps();
+    std::int64_t p = 0;
+    for (; p + 8 <= g.k; p += 8) {
+      sum = _mm256_fmadd_ps(_mm256_loadu_ps(a + p), _mm256_loadu_ps(g.b + p), sum);
+    }
+    if (p < g.k) {
+      const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(g.k - p)), lanes);
+      sum =
+          _mm256_fmadd_ps(_mm256_maskload_ps(a + p, mask), _mm256_maskload_ps(g.b + p, mask), sum);
+    }
+    __m128 half = _mm_add_ps(_mm256_castps256_ps128(sum), _mm256_extractf128_ps(sum, 1));
+    half = _mm_add_ps(half, _mm_movehl_ps(half, half));
+    half = _mm_add_ss(half, _mm_movehdup_ps(half));
+    float y = _mm_cvtss_f32(half) + (g.bias != nullptr ? g.bias[0] : 0.0f);
+    const float gate = g.gate != nullptr ? g.gate[row * g.ldc] : 0.0f;
+    switch (g.epilogue) {
+      case Epilogue::kNone:
+        break;
+      case Epilogue::kRelu:
+        y = std::max(y, 0.0f);
+        break;
+      case Epilogue::kReluGate:
+        y = gate > 0.0f ? y : 0.0f;
+        break;
+      case Epilogue::kTanhGate:
+        y *= 1.0f - gate * gate;
+        break;
+    }
+    g.c[row * g.ldc] = y;
+  }
+}
+
+__attribute__((target("avx2,fma"))) void gemm_avx2(const GemmArguments& g) {
+  if (g.n == 1 && g.a_depth_stride == 1 && g.ldb == 1) {
+    gemv_avx2(g);
+  } else if (g.a_depth_stride == 1) {
+    gemm_layout<Layout::kRowMajor>(g);
+  } else if (g.a_row_stride == 1) {
+    gemm_layout<Layout::kColumnMajor>(g);
+  } else {
+    gemm_layout<Layout::kStrided>(g);
+  }
+}
+
+// dst (columns x rows, row-major) = srcᵀ (src: rows x columns, row-major), by 8x8 blocks in
+// registers (Eigen's transposed copy is element by element: several instructions each).
+__attribute__((target("avx2,fma"))) void transpose_avx2(const float* src, std::int64_t rows,
+                                                        std::int64_t columns, float* dst) {
+  std::int64_t row = 0;
+  for (; row + 8 <= rows; row += 8) {
+    std::int64_t column = 0;
+    for (; column + 8 <= columns; column += 8) {
+      __m256 r[8], t[8];
+      for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(src + (row + i) * columns + column);
+      for (int i = 0; i < 8; i += 2) {
+        t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]);
+        t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+      }
+      for (int i = 0; i < 8; i += 4) {
+        r[i] = _mm256_shuffle_ps(t[i], t[i + 2], _MM_SHUFFLE(1, 0, 1, 0));
+        r[i + 1] = _mm256_shuffle_ps(t[i], t[i + 2], _MM_SHUFFLE(3, 2, 3, 2));
+        r[i + 2] = _mm256_shuffle_ps(t[i + 1], t[i + 3], _MM_SHUFFLE(1, 0, 1, 0));
+        r[i + 3] = _mm256_shuffle_ps(t[i + 1], t[i + 3], _MM_SHUFFLE(3, 2, 3, 2));
+      }
+      for (int i = 0; i < 4; ++i) {
+        _mm256_storeu_ps(dst + (column + i) * rows + row,
+                         _mm256_permute2f128_ps(r[i], r[i + 4], 0x20));
+        _mm256_storeu_ps(dst + (column + i + 4) * rows + row,
+                         _mm256_permute2f128_ps(r[i], r[i + 4], 0x31));
+      }
+    }
+    for (; column < columns; ++column) {
+      for (std::int64_t i = row; i < row + 8; ++i)
+        dst[column * rows + i] = src[i * columns + column];
+    }
+  }
+  for (; row < rows; ++row) {
+    for (std::int64_t column = 0; column < columns; ++column) {
+      dst[column * rows + row] = src[row * columns + column];
+    }
+  }
+}
+
+bool cpu_has_avx2_fma() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}
+
+#else
+
+void gemm_avx2(const GemmArguments&) { throw std::logic_error("PpoGradient: no AVX2 kernel"); }
+void transpose_avx2(const float*, std::int64_t, std::int64_t, float*) {
+  throw std::logic_error("PpoGradient: no AVX2 kernel");
+}
+bool cpu_has_avx2_fma() { return false; }
+
+#endif
+
+std::int64_t widest_layer(const ActorCriticLayout& layout) {
+  std::int64_t width = 1;
+  for (const auto* network : {&layout.actor, &layout.critic}) {
+    for (const DenseLayerLayout& layer : *network) width = std::max({width, layer.in, layer.out});
+  }
+  return width;
+}
+
+}  // namespace
+
+PpoMinibatchView PpoMinibatchView::rows(std::int64_t begin, std::int64_t length) const {
+  if (begin < 0 || length < 0 || begin + length > size) {
+    throw std::out_of_range("PpoMinibatchView: rows [" + std::to_string(begin) + ", " +
+                            std::to_string(begin + length) + ") of " + std::to_string(size));
+  }
+  const auto slice = [&](std::span<const float> all) {
+    const auto width = static_cast<std::size_t>(all.size() / static_cast<std::size_t>(size));
+    return all.subspan(static_cast<std::size_t>(begin) * width,
+                       static_cast<std::size_t>(length) * width);
+  };
+  return {length,
+          slice(observations),
+          slice(actions),
+          slice(old_log_prob),
+          slice(old_values),
+          slice(advantages),
+          slice(returns)};
+}
+
+PpoMinibatchView view_minibatch(const PpoMinibatch& batch) {
+  PpoMinibatchView view;
+  view.observations = tensor_span(batch.observations, "observations");
+  view.actions = tensor_span(batch.actions, "actions");
+  view.old_log_prob = tensor_span(batch.old_log_prob, "old_log_prob");
+  view.old_values = tensor_span(batch.old_values, "old_values");
+  view.advantages = tensor_span(batch.advantages, "advantages");
+  view.returns = tensor_span(batch.returns, "returns");
+  view.size = static_cast<std::int64_t>(view.old_log_prob.size());
+  return view;
+}
+
+PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
+                         PpoGradientKernel kernel)
+    : avx2_(kernel == PpoGradientKernel::kFastest && cpu_has_avx2_fma()),
+      observation_size_(policy.observation_size()),
+      action_size_(policy.action_size()),
+      max_batch_size_(max_batch_size),
+      layout_(actor_critic_layout(policy.observation_size(), policy.action_size(),
+                                  policy.config().actor_hidden_sizes,
+                                  policy.config().critic_hidden_sizes)) {
+  if (max_batch_size < 1) throw std::invalid_argument("PpoGradient: max_batch_size must be >= 1");
+  const auto rows = static_cast<std::size_t>(max_batch_size);
+  const auto allocate = [rows](Network& network, const std::vector<DenseLayerLayout>& layout) {
+    network.layout = layout;
+    for (const DenseLayerLayout& layer : layout) {
+      network.outputs.emplace_back(rows * static_cast<std::size_t>(layer.out));
+    }
+  };
+  allocate(actor_, layout_.actor);
+  allocate(critic_, layout_.critic);
+  const std::size_t widest = rows * static_cast<std::size_t>(widest_layer(layout_));
+  output_gradient_.resize(widest);
+  input_gradient_.resize(widest);
+  std::int64_t largest_weight = 0;
+  for (const auto* network : {&layout_.actor, &layout_.critic}) {
+    for (const DenseLayerLayout& layer : *network) {
+      largest_weight = std::max(largest_weight, layer.in * layer.out);
+    }
+  }
+  transposed_weight_.resize(static_cast<std::size_t>(largest_weight));
+  log_prob_gradient_.resize(rows);
+  advantages_.resize(rows);
+}
+
+void PpoGradient::forward(Network& network, const float* parameters, const float* input,
+                          std::int64_t rows, bool relu) {
+  const float* x = input;
+  for (std::size_t i = 0; i < network.layout.size(); ++i) {
+    const DenseLayerLayout& layer = network.layout[i];
+    const bool hidden = i + 1 < network.layout.size();
+    const ConstMatrixMap in(x, rows, layer.in);
+    const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
+    float* y_data = network.outputs[i].data();
+    MatrixMap y(y_data, rows, layer.out);
+    if (avx2_) {
+      // y = x·Wᵀ + b with Wᵀ copied row-major (in x out) for the kernel.
+      transpose_avx2(weight.data(), layer.out, layer.in, transposed_weight_.data());
+      GemmArguments product;
+      product.m = rows, product.n = layer.out, product.k = layer.in;
+      product.a = x, product.a_row_stride = layer.in, product.a_depth_stride = 1;
+      product.b = transposed_weight_.data(), product.ldb = layer.out;
+      product.c = y_data, product.ldc = layer.out;
+      product.bias = parameters + layer.bias;
+      product.epilogue = hidden && relu ? Epilogue::kRelu : Epilogue::kNone;
+      gemm_avx2(product);
+      if (hidden && !relu) y = y.array().tanh().matrix();
+    } else {
+      y.noalias() = in * weight.transpose();
+      y.rowwise() += ConstRowVectorMap(parameters + layer.bias, layer.out);
+      if (hidden) {
+        if (relu) {
+          y = y.cwiseMax(0.0f);
+        } else {
+          y = y.array().tanh().matrix();
+        }
+      }
+    }
+    x = y_data;
+  }
+}
+
+void PpoGradient::backward(const Network& network, const float* parameters, const float* input,
+                           std::int64_t rows, bool relu, float* gradients) {
+  // output_gradient_ holds ∂L/∂(output of the last layer) on entry, and ∂L/∂z (before the
+  // activation) of the layer below at the end of each iteration. Through the activation,
+  // from its output y: relu passes the gradient where y > 0 (none at 0, like torch's
+  // threshold_backward); tanh' = 1 − y².
+  for (std::size_t k = network.layout.size(); k-- > 0;) {
+    const DenseLayerLayout& layer = network.layout[k];
+    const float* in_data = k == 0 ? input : network.outputs[k - 1].data();
+    const ConstMatrixMap in(in_data, rows, layer.in);
+    const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
+    MatrixMap d_output(output_gradient_.data(), rows, layer.out);
+    MatrixMap d_weight(gradients + layer.weight, layer.out, layer.in);
+    RowVectorMap d_bias(gradients + layer.bias, layer.out);
+    MatrixMap d_input(input_gradient_.data(), rows, layer.in);
+    if (!avx2_) {
+      d_bias = d_output.colwise().sum();
+      d_weight.noalias() = d_output.transpose() * in;
+      if (k > 0) {
+        // Through the activation of the layer below, whose output y is our input.
+        d_input.noalias() = d_output * weight;
+        if (relu) {
+          d_input.array() = (in.array() > 0.0f).select(d_input.array(), 0.0f);
+        } else {
+          d_input.array() *= 1.0f - in.array().square();
+        }
+      }
+    } else {
+      // ∂b = 1ᵀ·∂y: A is a row of ones (one value, strides 0).
+      static constexpr float kOne = 1.0f;
+      GemmArguments bias_sum;
+      bias_sum.m = 1, bias_sum.n = layer.out, bias_sum.k = rows;
+      bias_sum.a = &kOne;
+      bias_sum.b = d_output.data(), bias_sum.ldb = layer.out;
+      bias_sum.c = d_bias.data(), bias_sum.ldc = layer.out;
+      gemm_avx2(bias_sum);
+      if (layer.in < 16 && layer.in < layer.out) {
+        // Few inputs (the observation): ∂Wᵀ = xᵀ·∂y has the longer rows, then transpose.
+        GemmArguments d_weight_t;
+        d_weight_t.m = layer.in, d_weight_t.n = layer.out, d_weight_t.k = rows;
+        d_weight_t.a = in_data, d_weight_t.a_row_stride = 1, d_weight_t.a_depth_stride = layer.in;
+        d_weight_t.b = d_output.data(), d_weight_t.ldb = layer.out;
+        d_weight_t.c = transposed_weight_.data(), d_weight_t.ldc = layer.out;
+        gemm_avx2(d_weight_t);
+        transpose_avx2(transposed_weight_.data(), layer.in, layer.out, d_weight.data());
+      } else {
+        // ∂W = ∂yᵀ·x: A is ∂y read transposed.
+        GemmArguments product;
+        product.m = layer.out, product.n = layer.in, product.k = rows;
+        product.a = d_output.data(), product.a_row_stride = 1, product.a_depth_stride = layer.out;
+        product.b = in_data, product.ldb = layer.in;
+        product.c = d_weight.data(), product.ldc = layer.in;
+        gemm_avx2(product);
+      }
+      if (k > 0) {
+        // ∂z of the layer below = (∂y·W) through its activation, whose output is our input.
+        GemmArguments product;
+        product.m = rows, product.n = layer.in, product.k = layer.out;
+        product.a = d_output.data(), product.a_row_stride = layer.out, product.a_depth_stride = 1;
+        product.b = weight.data(), product.ldb = layer.in;
+        product.c = d_input.data(), product.ldc = layer.in;
+        product.epilogue = relu ? Epilogue::kReluGate : Epilogue::kTanhGate;
+        product.gate = in_data;
+        gemm_avx2(product);
+      }
+    }
+    if (k > 0) std::swap(output_gradient_, input_gradient_);  // Swaps pointers, no copy.
+  }
+}
+
+bool PpoGradient::same_shape(const ActorCritic& policy) const {
+  const PolicyConfig& config = policy.config();
+  if (policy.observation_size() != observation_size_ || policy.action_size() != action_size_ ||
+      config.actor_hidden_sizes.size() + 1 != layout_.actor.size() ||
+      config.critic_hidden_sizes.size() + 1 != layout_.critic.size() ||
+      policy.flat_parameters().numel() != layout_.size) {
+    return false;
+  }
+  for (std::size_t i = 0; i < config.actor_hidden_sizes.size(); ++i) {
+    if (config.actor_hidden_sizes[i] != layout_.actor[i].out) return false;
+  }
+  for (std::size_t i = 0; i < config.critic_hidden_sizes.size(); ++i) {
+    if (config.critic_hidden_sizes[i] != layout_.critic[i].out) return false;
+  }
+  return true;
+}
+
+PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCritic& policy,
+                                       const PpoConfig& config) {
+  const std::int64_t n = batch.size;
+  if (n < 1 || n > max_batch_size_) {
+    throw std::invalid_argument("PpoGradient: minibatch of " + std::to_string(n) +
+                                " samples, expected 1 to " + std::to_string(max_batch_size_));
+  }
+  if (!same_shape(policy)) {
+    throw std::invalid_argument("PpoGradient: the policy's shape differs from the constructor's");
+  }
+  check_span(batch.observations, n * observation_size_, "observations");
+  check_span(batch.actions, n * action_size_, "actions");
+  check_span(batch.old_log_prob, n, "old_log_prob");
+  check_span(batch.old_values, n, "old_values");
+  check_span(batch.advantages, n, "advantages");
+  check_span(batch.returns, n, "returns");
+
+  const float* parameters = policy.flat_parameters().data_ptr<float>();
+  float* gradients = policy.flat_gradients().data_ptr<float>();
+  const bool relu = policy.config().activation == Activation::kReLU;
+  const std::int64_t a_size = action_size_;
+
+  forward(actor_, parameters, batch.observations.data(), n, relu);
+  forward(critic_, parameters, batch.observations.data(), n, relu);
+  const float* means = actor_.outputs.back().data();
+  const float* values = critic_.outputs.back().data();
+
+  // Advantages, normalised over the minibatch like compute_ppo_loss (unbiased std).
+  if (config.normalize_advantage && n > 1) {
+    double sum = 0.0;
+    for (std::int64_t i = 0; i < n; ++i) sum += batch.advantages[i];
+    const double mean = sum / static_cast<double>(n);
+    double squares = 0.0;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double d = batch.advantages[i] - mean;
+      squares += d * d;
+    }
+    const double scale = 1.0 / (std::sqrt(squares / static_cast<double>(n - 1)) + 1e-8);
+    for (std::int64_t i = 0; i < n; ++i) {
+      advantages_[i] = static_cast<float>((batch.advantages[i] - mean) * scale);
+    }
+  } else {
+    std::copy_n(batch.advantages.data(), n, advantages_.data());
+  }
+
+  // Policy term. log π = −½Σ z² − Σ log σ − ½·A·log 2π with z = (a − μ)/σ, so
+  // ∂log π/∂μ = z/σ and ∂log π/∂log σ = z² − 1.
+  const float* log_std = parameters + layout_.log_std;
+  double log_normaliser = kHalfLog2Pi * static_cast<double>(a_size);
+  double entropy = 0.0;
+  for (std::int64_t j = 0; j < a_size; ++j) {
+    log_normaliser += log_std[j];
+    entropy += log_std[j] + 0.5 + kHalfLog2Pi;
+  }
+  // Float bounds, as torch compares float tensors with the double scalars cast to float.
+  const float low = static_cast<float>(1.0 - config.clip_range);
+  const float high = static_cast<float>(1.0 + config.clip_range);
+  const float clip_range = static_cast<float>(config.clip_range);
+  const double inverse_n = 1.0 / static_cast<double>(n);
+  double surrogate_sum = 0.0, kl_sum = 0.0;
+  std::int64_t clipped_count = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const float* action = batch.actions.data() + i * a_size;
+    const float* mean = means + i * a_size;
+    double squares = 0.0;
+    for (std::int64_t j = 0; j < a_size; ++j) {
+      const float z = (action[j] - mean[j]) * std::exp(-log_std[j]);
+      squares += static_cast<double>(z) * z;
+    }
+    const double log_ratio = -0.5 * squares - log_normaliser - batch.old_log_prob[i];
+    const double ratio = std::exp(log_ratio);
+    kl_sum += (ratio - 1.0) - log_ratio;
+    const float ratio_f = static_cast<float>(ratio);
+    if (std::abs(ratio_f - 1.0f) > clip_range) ++clipped_count;
+    // min(A·ρ, A·clamp(ρ)) with torch's gradient rules: the smaller operand takes the
+    // whole gradient, equal operands half each (the usual case: ρ inside the range);
+    // clamp passes the gradient inside [low, high], bounds included.
+    const float advantage = advantages_[i];
+    const float surrogate = advantage * ratio_f;
+    const float clipped = advantage * std::clamp(ratio_f, low, high);
+    surrogate_sum += std::min(surrogate, clipped);
+    double surrogate_weight = 0.5, clipped_weight = 0.5;
+    if (surrogate < clipped) {
+      surrogate_weight = 1.0, clipped_weight = 0.0;
+    } else if (surrogate > clipped) {
+      surrogate_weight = 0.0, clipped_weight = 1.0;
+    }
+    const bool inside = ratio_f >= low && ratio_f <= high;
+    const double ratio_gradient =
+        -inverse_n * advantage * (surrogate_weight + (inside ? clipped_weight : 0.0));
+    log_prob_gradient_[i] = ratio_gradient * ratio;  // ∂ρ/∂log π = ρ
+  }
+
+  // ∂L/∂μ into the actor's output gradient, ∂L/∂log σ straight into the flat gradient.
+  float* d_log_std = gradients + layout_.log_std;
+  for (std::int64_t j = 0; j < a_size; ++j) {
+    const float inverse_std = std::exp(-log_std[j]);
+    double sum = config.ent_coef != 0.0 ? -config.ent_coef : 0.0;  // ∂(c_ent·(−entropy))
+    for (std::int64_t i = 0; i < n; ++i) {
+      const float z = (batch.actions[i * a_size + j] - means[i * a_size + j]) * inverse_std;
+      const double g = log_prob_gradient_[i];
+      sum += g * (static_cast<double>(z) * z - 1.0);
+      output_gradient_[i * a_size + j] = static_cast<float>(g * z * inverse_std);
+    }
+    d_log_std[j] = static_cast<float>(sum);
+  }
+  backward(actor_, parameters, batch.observations.data(), n, relu, gradients);
+
+  // Value term: V_pred = V_old + clamp(V − V_old, ±c) (clamp passes the gradient inside
+  // the range, bounds included), L_v = mean((R − V_pred)²).
+  const bool clip_values = config.clip_range_vf > 0.0;
+  const float value_clip = static_cast<float>(config.clip_range_vf);
+  double value_sum = 0.0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    float predicted = values[i];
+    bool inside = true;
+    if (clip_values) {
+      const float old_value = batch.old_values[i];
+      const float change = values[i] - old_value;
+      predicted = old_value + std::clamp(change, -value_clip, value_clip);
+      inside = change >= -value_clip && change <= value_clip;
+    }
+    const double error = static_cast<double>(batch.returns[i]) - predicted;
+    value_sum += error * error;
+    output_gradient_[i] =
+        inside ? static_cast<float>(-2.0 * config.vf_coef * inverse_n * error) : 0.0f;
+  }
+  backward(critic_, parameters, batch.observations.data(), n, relu, gradients);
+
+  PpoLossStatistics statistics;
+  statistics.policy_gradient_loss = -surrogate_sum * inverse_n;
+  statistics.value_loss = value_sum * inverse_n;
+  statistics.entropy_loss = -entropy;
+  statistics.approx_kl = kl_sum * inverse_n;
+  statistics.clip_fraction = static_cast<double>(clipped_count) * inverse_n;
+  statistics.total = statistics.policy_gradient_loss + config.vf_coef * statistics.value_loss;
+  if (config.ent_coef != 0.0) statistics.total += config.ent_coef * statistics.entropy_loss;
+  return statistics;
+}
+
+}  // namespace upkie_rl
