@@ -48,6 +48,7 @@ Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
       learning_rate_{config.ppo.learning_rate_initial, config.ppo.learning_rate_final},
       buffer_(config.steps_per_env(), num_envs_, observation_size_, action_size_),
       inference_(*policy_, num_envs_),
+      gradient_(*policy_, std::min(config.ppo.batch_size, buffer_.size())),
       rng_(config.seed),
       last_observations_(num_envs_ * observation_size_),
       clipped_actions_(num_envs_ * action_size_),
@@ -179,7 +180,6 @@ PpoUpdateStatistics Ppo::update() {
   double sum_pg = 0.0, sum_value = 0.0, sum_entropy = 0.0, sum_kl = 0.0, sum_clip = 0.0;
   // Scratch for the forward and backward passes, sized once per update for the largest
   // minibatch (ppo.hpp could keep it as a member instead).
-  PpoGradient gradient(*policy_, std::min(ppo.batch_size, size));
   std::int64_t minibatches = 0;
   for (std::int64_t epoch = 0; epoch < ppo.n_epochs; ++epoch) {
     // A fresh permutation each epoch (Fisher-Yates on our own generator, for
@@ -200,7 +200,7 @@ PpoUpdateStatistics Ppo::update() {
       // The hand-written equivalent of compute_ppo_loss(...).total.backward(): it
       // overwrites the flat gradients.
       const PpoLossStatistics loss =
-          gradient.compute(shuffled_view.rows(begin, length), *policy_, ppo);
+          gradient_.compute(shuffled_view.rows(begin, length), *policy_, ppo);
       clip_gradient_norm(policy_->flat_gradients(), ppo.max_grad_norm);
       optimizer_.step();
       sum_pg += loss.policy_gradient_loss;

@@ -13,6 +13,7 @@
 #include "rl/episode_statistics.hpp"
 #include "rl/flat_adam.hpp"
 #include "rl/linear_schedule.hpp"
+#include "rl/ppo_gradient.hpp"
 #include "rl/rollout_buffer.hpp"
 #include "rl/training_config.hpp"
 #include "vec/vector_env.hpp"
@@ -93,6 +94,7 @@ class Ppo {
   LinearSchedule learning_rate_;
   RolloutBuffer buffer_;
   PolicyInference inference_;
+  PpoGradient gradient_;  ///< Loss and gradient of a minibatch, buffers sized once.
   EpisodeStatistics episodes_;
   PpoTimings timings_;
   std::mt19937_64 rng_;
