@@ -1,5 +1,6 @@
-/// Checks that environment steps allocate nothing (hot-path rule), on the Mock backend
-/// (the Bullet engine's own allocations are the sim layer's business).
+/// Checks that environment steps allocate nothing (hot-path rule), on the Mock backend and
+/// on MuJoCo, whose engine steps in the arena of its mjData (the Bullet engine's own
+/// allocations are the sim layer's business).
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,8 @@ namespace {
 
 TEST(AllocationFree, EnvironmentStepsAllocateNothing) {
   for (const char* id : {"Upkie-Mock-Servos", "Upkie-Mock-Pendulum", "Upkie-Mock-Gyropod",
-                         "Upkie-Mock-ServosTask"}) {
+                         "Upkie-Mock-ServosTask", "Upkie-MuJoCo-Servos", "Upkie-MuJoCo-Pendulum",
+                         "Upkie-MuJoCo-Gyropod", "Upkie-MuJoCo-ServosTask"}) {
     auto env = make_env(id);
     std::vector<float> observation(env->observation_space().size());
     std::vector<float> action(env->action_space().size());
