@@ -1,4 +1,4 @@
-/// Frames per second of the offscreen renderer (OSMesa, software) and of the H.264 encoder
+/// Frames per second of the offscreen renderer (Mesa EGL, software) and of the H.264 encoder
 /// that `rollout --video` feeds, at the default 640x480.
 #include <benchmark/benchmark.h>
 

@@ -11,7 +11,8 @@ DEBIAN_PACKAGES=(
   libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox fonts-liberation
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
   python3-dev pybind11-dev  # the upkie_rl Python extension module
-  libosmesa6-dev ffmpeg     # offscreen rendering in software, videos (H.264 MP4, GIF)
+  # offscreen rendering without display or GPU (EGL, Mesa's llvmpipe), videos (H.264, GIF)
+  libegl-dev libegl-mesa0 libgl1-mesa-dri ffmpeg
 )
 # Python packages as "module:requirement". They go to Debian's interpreter, whose
 # python3-torch SB3 needs (PyPI's torch is a multi-GB CUDA build). SB3 2.4.x is the last

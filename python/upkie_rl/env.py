@@ -98,7 +98,7 @@ class UpkieEnv(gym.Env):
         return self._neutral_action.copy()
 
     def render(self):
-        """With render_mode="rgb_array": the robot drawn offscreen (OSMesa, no display or
+        """With render_mode="rgb_array": the robot drawn offscreen (EGL, no display or
         GPU) from the simulator's ground truth, a (height, width, 3) uint8 array."""
         if self.render_mode is None:
             gym.logger.warn(

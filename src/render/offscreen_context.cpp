@@ -1,51 +1,89 @@
 #include "render/offscreen_context.hpp"
 
-#include <GL/osmesa.h>
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
 
+#include <cstdio>
 #include <string>
 
 #include "render/render_error.hpp"
 
 namespace upkie_rl {
 
+// EGL on Mesa's surfaceless platform, not OSMesa: processes that also load libGL (PyTorch
+// from Debian does, through Qt) resolve GL functions through glvnd's dispatcher, which
+// knows EGL contexts but not OSMesa's, and MuJoCo's loader then fails.
 struct OffscreenContext::Impl {
-  OSMesaContext context = nullptr;
-  std::vector<unsigned char> buffer;  ///< The default framebuffer (MuJoCo draws offscreen).
-  int width = 0;
-  int height = 0;
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
 };
 
-OffscreenContext::OffscreenContext(int width, int height) : impl_(std::make_unique<Impl>()) {
-  // RGBA, 24-bit depth, 8-bit stencil, no accumulation buffer; compatibility profile,
-  // which MuJoCo's fixed-function renderer needs.
-  const int attributes[] = {OSMESA_FORMAT,
-                            OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,
-                            24,
-                            OSMESA_STENCIL_BITS,
-                            8,
-                            OSMESA_PROFILE,
-                            OSMESA_COMPAT_PROFILE,
-                            0};
-  impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);
-  if (impl_->context == nullptr) {
-    throw RenderError("OSMesa could not create an OpenGL context (is libosmesa6 installed?)");
+namespace {
+
+std::string egl_error(const char* what) {
+  char code[16];
+  std::snprintf(code, sizeof(code), "0x%04x", static_cast<unsigned>(eglGetError()));
+  return std::string(what) + " failed (EGL error " + code +
+         "); is Mesa's EGL installed (libegl-mesa0, libgl1-mesa-dri)?";
+}
+
+}  // namespace
+
+OffscreenContext::OffscreenContext(int /*width*/, int /*height*/)
+    : impl_(std::make_unique<Impl>()) {
+  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  if (get_platform_display == nullptr) {
+    throw RenderError("EGL has no eglGetPlatformDisplayEXT (Mesa's EGL is needed)");
   }
-  impl_->width = width;
-  impl_->height = height;
-  impl_->buffer.resize(static_cast<std::size_t>(width) * height * 4);
+  impl_->display =
+      get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  if (impl_->display == EGL_NO_DISPLAY) throw RenderError(egl_error("eglGetPlatformDisplayEXT"));
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(impl_->display, &major, &minor)) {
+    throw RenderError(egl_error("eglInitialize"));
+  }
+  // clang-format off
+  const EGLint config_attributes[] = {
+      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
+      EGL_DEPTH_SIZE, 24, EGL_STENCIL_SIZE, 8,
+      EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+      EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,  // surfaceless offers pbuffer configs only
+      EGL_NONE};
+  // clang-format on
+  EGLConfig config = nullptr;
+  EGLint count = 0;
+  if (!eglChooseConfig(impl_->display, config_attributes, &config, 1, &count) || count < 1) {
+    eglTerminate(impl_->display);
+    throw RenderError(egl_error("eglChooseConfig"));
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    eglTerminate(impl_->display);
+    throw RenderError(egl_error("eglBindAPI(OpenGL)"));
+  }
+  // A compatibility-profile context: MuJoCo's renderer uses fixed-function OpenGL.
+  const EGLint context_attributes[] = {EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                       EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT, EGL_NONE};
+  impl_->context = eglCreateContext(impl_->display, config, EGL_NO_CONTEXT, context_attributes);
+  if (impl_->context == EGL_NO_CONTEXT) {
+    eglTerminate(impl_->display);
+    throw RenderError(egl_error("eglCreateContext"));
+  }
   make_current();
 }
 
 OffscreenContext::~OffscreenContext() {
-  if (impl_ && impl_->context != nullptr) OSMesaDestroyContext(impl_->context);
+  if (!impl_ || impl_->display == EGL_NO_DISPLAY) return;
+  eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (impl_->context != EGL_NO_CONTEXT) eglDestroyContext(impl_->display, impl_->context);
+  // The display is shared by the process (EGL returns the same one each time): it is not
+  // terminated, so that other renderers keep theirs.
 }
 
 void OffscreenContext::make_current() {
-  if (!OSMesaMakeCurrent(impl_->context, impl_->buffer.data(), GL_UNSIGNED_BYTE, impl_->width,
-                         impl_->height)) {
-    throw RenderError("OSMesa could not make its context current (" + std::to_string(impl_->width) +
-                      "x" + std::to_string(impl_->height) + ")");
+  // Surfaceless: MuJoCo draws into its own framebuffer object.
+  if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context)) {
+    throw RenderError(egl_error("eglMakeCurrent"));
   }
 }
 

@@ -1,18 +1,18 @@
 #pragma once
 /// @file
-/// OffscreenContext: an OpenGL context in memory (Mesa's OSMesa, software rendering), so
-/// frames render with no display and no GPU.
+/// OffscreenContext: an OpenGL context with no window (EGL on Mesa's surfaceless platform,
+/// llvmpipe software rendering without a GPU), so frames render with no display.
 
 #include <memory>
-#include <vector>
 
 namespace upkie_rl {
 
-/// An OSMesa context made current on the calling thread for its lifetime. OpenGL contexts
+/// An EGL context made current on the calling thread for its lifetime. OpenGL contexts
 /// belong to one thread: create, use and destroy it on the same one.
 class OffscreenContext {
  public:
-  /// @throws RenderError when Mesa cannot create or bind the context.
+  /// @throws RenderError when Mesa cannot create or bind the context. The size is that of
+  ///         the frames drawn (MuJoCo renders into its own offscreen framebuffer).
   OffscreenContext(int width, int height);
   ~OffscreenContext();
   OffscreenContext(const OffscreenContext&) = delete;

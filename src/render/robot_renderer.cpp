@@ -61,7 +61,7 @@ struct RobotRenderer::Impl {
     if (render_context.offFBO == 0) {
       mjv_freeScene(&scene);
       mjr_freeContext(&render_context);
-      throw RenderError("MuJoCo could not create its offscreen framebuffer in OSMesa's context");
+      throw RenderError("MuJoCo could not create its offscreen framebuffer in its EGL context");
     }
     mjr_setBuffer(mjFB_OFFSCREEN, &render_context);
     // The robot's geoms are in group 0, the floor in group 2 (see build_mujoco_model).
