@@ -71,3 +71,24 @@ def test_record_video_writes_a_playable_mp4(tmp_path):
         capture_output=True, text=True, check=True,
     ).stdout.strip()
     assert int(frames) > 1
+
+
+def test_rendering_works_after_importing_torch():
+    """Debian's PyTorch loads libGL (through Qt); rendering must not depend on the order of
+    imports (with an OSMesa context, MuJoCo then failed to load OpenGL and exited)."""
+    import os
+    import sys
+
+    script = (
+        "import torch, gymnasium as gym, numpy as np, upkie_rl\n"
+        "env = gym.make('upkie_rl/Upkie-MuJoCo-Pendulum', render_mode='rgb_array',"
+        " render_width=64, render_height=48)\n"
+        "env.reset(seed=0)\n"
+        "frame = env.render()\n"
+        "assert frame.shape == (48, 64, 3) and frame.std() > 0, frame.shape\n"
+        "print('rendered')\n"
+    )
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            env=dict(os.environ), timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert "rendered" in result.stdout
