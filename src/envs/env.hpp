@@ -58,6 +58,11 @@ class Env {
     }
   }
 
+  /// Multiplies every randomisation bound (initial state, perturbations, noise, action lag,
+  /// pushes) by `scale` in [0, 1] from the next reset on: the curriculum of a training run
+  /// ramps it from 0 to 1. Wrappers pass it on; environments without randomisation ignore it.
+  virtual void set_randomization_scale(double scale) { static_cast<void>(scale); }
+
   /// Duration of one step [s].
   virtual double timestep() const = 0;
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <random>
 
+#include "sim/random_draws.hpp"
 #include "sim/reset_state.hpp"
 
 namespace upkie_rl {
@@ -23,15 +24,15 @@ struct InitRandomization {
   double v_y = 0.0;      ///< Same along y [m/s].
   double v_z = 0.0;      ///< Same along z [m/s].
 
+  /// These ranges multiplied by `scale` (a curriculum's ramp).
+  InitRandomization scaled(double scale) const {
+    return {scale * roll,    scale * pitch,   scale * x,   scale * z,  scale * omega_x,
+            scale * omega_y, scale * v_x,     scale * v_y, scale * v_z};
+  }
+
   /// Draws an initial state. Always consumes the same number of draws, so the sequence of
   /// states from a seed does not depend on which ranges are zero.
   ResetState sample(std::mt19937_64& generator) const;
 };
-
-/// A uniform draw in [0, 1) from 53 random bits (portable across standard libraries,
-/// unlike std::uniform_real_distribution).
-inline double uniform_unit(std::mt19937_64& generator) {
-  return static_cast<double>(generator() >> 11) * 0x1.0p-53;
-}
 
 }  // namespace upkie_rl

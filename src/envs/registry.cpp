@@ -5,7 +5,9 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "envs/action_lag.hpp"
 #include "envs/gyropod_env.hpp"
+#include "envs/observation_noise.hpp"
 #include "envs/option_table.hpp"
 #include "envs/pendulum_env.hpp"
 #include "envs/servos_env.hpp"
@@ -81,6 +83,9 @@ struct EnvSettings {
   int nb_substeps = 0;       // 0: round(1000 / frequency), physics at about 1 kHz.
   InertiaSource inertia_source = InertiaSource::kBulletBoxRule;
   InitRandomization init_rand;
+  PerturbationSettings perturbations;  // physics backends only
+  double observation_noise = 0.0;      // half-width, in the observation's units
+  ActionLagSettings action_lag;
   SpineBackendConfig spine;
   int max_episode_steps = 0;  // 0: no time limit.
   PendulumConfig pendulum;
@@ -140,7 +145,16 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
               choice == 0 ? InertiaSource::kBulletBoxRule : InertiaSource::kUrdf;
         },
         "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
+    if (id.backend != Backend::kMock) settings.perturbations.add_options(table);
   }
+  table.add_double("observation_noise", &settings.observation_noise, 0.0, kHuge,
+                   "uniform noise in +-it on every observation component");
+  table.add_double("action_lag_min", &settings.action_lag.time_constant_min, 0.0, kHuge,
+                   "first-order action lag: time constant drawn in U(min, max) at reset [s]");
+  table.add_double("action_lag_max", &settings.action_lag.time_constant_max, 0.0, kHuge,
+                   "largest action lag time constant [s], 0 for no lag");
+  table.add_int("action_delay", &settings.action_lag.delay_steps, 0, 10000,
+                "steps between an action and its application");
   table.add_int("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
                 "truncate episodes after this many steps, 0 for never");
   InitRandomization& init = settings.init_rand;
@@ -179,9 +193,26 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
                        "gain scales of the held legs");
       break;
     }
-    case Kind::kServosTask:
-      add_balance_options(table, settings.task.reward, settings.task.termination);
+    case Kind::kServosTask: {
+      ServosTaskConfig& task = settings.task;
+      add_balance_options(table, task.reward, task.termination);
+      table.add_choice(
+          "observe_pitch", {"false", "true"},
+          [&task](std::size_t choice) { task.observe_pitch = choice == 1; },
+          "append the base pitch and pitch rate (the IMU's) to the 12 joint components");
+      table.add_choice(
+          "action_magnitude", {"servo", "normalized"},
+          [&task](std::size_t choice) {
+            task.action_magnitude = choice == 0 ? ServosTaskConfig::ActionMagnitude::kServo
+                                                : ServosTaskConfig::ActionMagnitude::kNormalized;
+          },
+          "|a| of the reward: wheel rad/s + leg rad (seed) or mean |u| of the action");
+      table.add_double("max_wheel_velocity", &task.max_wheel_velocity, 0.0, kHuge,
+                       "wheel velocity at action 1 [rad/s], 0 for the velocity limit");
+      table.add_double("leg_action_scale", &task.leg_action_scale, 1e-3, 1.0,
+                       "fraction of each leg joint's range spanned by the action");
       break;
+    }
   }
   return table;
 }
@@ -235,8 +266,9 @@ std::unique_ptr<Env> build(const EnvId& id, const EnvSettings& settings) {
   int physics_steps_per_step = 0;
   std::unique_ptr<Simulation> simulation =
       make_simulation(id.backend, settings, model, physics_steps_per_step);
-  auto servos = std::make_unique<ServosEnv>(std::move(simulation), std::move(model),
-                                            settings.init_rand, physics_steps_per_step);
+  auto servos =
+      std::make_unique<ServosEnv>(std::move(simulation), std::move(model), settings.init_rand,
+                                  physics_steps_per_step, settings.perturbations);
   std::unique_ptr<Env> env;
   switch (id.kind) {
     case Kind::kServos:
@@ -251,6 +283,12 @@ std::unique_ptr<Env> build(const EnvId& id, const EnvSettings& settings) {
     case Kind::kServosTask:
       env = std::make_unique<ServosTaskEnv>(std::move(servos), settings.task);
       break;
+  }
+  if (settings.action_lag.any()) {
+    env = std::make_unique<ActionLag>(std::move(env), settings.action_lag);
+  }
+  if (settings.observation_noise > 0.0) {
+    env = std::make_unique<ObservationNoise>(std::move(env), settings.observation_noise);
   }
   if (settings.max_episode_steps > 0) {
     env = std::make_unique<TimeLimit>(std::move(env), settings.max_episode_steps);
@@ -274,6 +312,12 @@ EnvFactory make_env_factory(const std::string& id, const EnvOptions& options) {
   const EnvId parsed = parse_id(id);
   EnvSettings settings;
   option_table(parsed, settings).apply(options, id);
+  try {
+    settings.perturbations.validate();
+    settings.action_lag.validate();
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(id + ": " + error.what());
+  }
   // Fail here, not in the factory, on the model or a settings error.
   const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
   if (parsed.backend == Backend::kMujoco) {

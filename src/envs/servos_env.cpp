@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/random_draws.hpp"
+
 namespace upkie_rl {
 
 namespace {
@@ -17,17 +19,28 @@ constexpr std::size_t kObservationKeys = kServoObservationKeys.size();
 constexpr float kMaxTemperature = 100.0f;
 constexpr float kMaxVoltage = 64.0f;
 
+/// Stream of the perturbation generator, derived from a reset's seed.
+constexpr std::uint64_t kPerturbationStream = 1;
+
 }  // namespace
 
 ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
                      std::shared_ptr<const RobotModel> model,
-                     const InitRandomization& init_randomization, int physics_steps_per_step)
+                     const InitRandomization& init_randomization, int physics_steps_per_step,
+                     const PerturbationSettings& perturbations)
     : simulation_(std::move(simulation)),
       model_(std::move(model)),
       init_randomization_(init_randomization),
-      physics_steps_per_step_(physics_steps_per_step) {
+      physics_steps_per_step_(physics_steps_per_step),
+      perturbations_(perturbations) {
   if (!simulation_) throw std::invalid_argument("ServosEnv: the simulation is null");
   if (!model_) throw std::invalid_argument("ServosEnv: the robot model is null");
+  physics_ = dynamic_cast<PhysicsSimulation*>(simulation_.get());
+  if (perturbations_.any() && physics_ == nullptr) {
+    throw std::invalid_argument(
+        "ServosEnv: perturbations need a physics backend (Bullet or MuJoCo)");
+  }
+  perturbations_.validate();
   const float gain = static_cast<float>(kMaxGainScale);
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const JointLimits& limits = model_->servo_limits(i);
@@ -61,8 +74,23 @@ ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
 }
 
 const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
-  if (seed) generator_.seed(*seed);
-  return simulation_->reset(init_randomization_.sample(generator_));
+  if (seed) {
+    generator_.seed(*seed);
+    perturbation_generator_.seed(derive_seed(*seed, kPerturbationStream));
+  }
+  if (perturbations_.any()) {
+    physics_->set_variation(perturbations_.sample(perturbation_generator_, randomization_scale_));
+    pushes_.reset(perturbations_.push, randomization_scale_, perturbation_generator_());
+  }
+  return simulation_->reset(init_randomization_.scaled(randomization_scale_).sample(generator_));
+}
+
+void ServosEnv::set_randomization_scale(double scale) {
+  if (!(scale >= 0.0 && scale <= 1.0)) {
+    throw std::invalid_argument("randomization scale must be in [0, 1], got " +
+                                std::to_string(scale));
+  }
+  randomization_scale_ = scale;
 }
 
 void ServosEnv::clamp_servo_action(const ServoAction& action, ServoAction& clamped) const {
@@ -89,6 +117,12 @@ void ServosEnv::clamp_servo_action(const ServoAction& action, ServoAction& clamp
 
 const Observation& ServosEnv::step_servos(const ServoAction& action) {
   clamp_servo_action(action, clamped_buffer_);
+  if (perturbations_.push.enabled()) {
+    const Observation& last = simulation_->observation();
+    const Eigen::Matrix3d& rotation = last.base_orientation.rotation_base_to_world;
+    const double yaw = std::atan2(rotation(1, 0), rotation(0, 0));
+    physics_->set_base_force(pushes_.force(last.time, yaw));
+  }
   return simulation_->step(clamped_buffer_);
 }
 

@@ -9,7 +9,10 @@
 #include "envs/dict_space.hpp"
 #include "envs/env.hpp"
 #include "envs/init_randomization.hpp"
+#include "envs/perturbation_settings.hpp"
+#include "envs/push_schedule.hpp"
 #include "model/robot_model.hpp"
+#include "sim/physics_simulation.hpp"
 #include "sim/simulation.hpp"
 
 namespace upkie_rl {
@@ -45,13 +48,19 @@ class ServosEnv final : public Env {
   /// @param model Robot description (joint limits).
   /// @param init_randomization Ranges of the initial state drawn at each reset.
   /// @param physics_steps_per_step Physics steps the backend runs per step (reporting only).
+  /// @param perturbations Physical perturbations drawn at each reset (physics backends).
+  /// @throws std::invalid_argument on a null argument, inconsistent perturbations, or
+  ///         perturbations with a backend that is not a PhysicsSimulation.
   ServosEnv(std::unique_ptr<Simulation> simulation, std::shared_ptr<const RobotModel> model,
-            const InitRandomization& init_randomization = {}, int physics_steps_per_step = 0);
+            const InitRandomization& init_randomization = {}, int physics_steps_per_step = 0,
+            const PerturbationSettings& perturbations = {});
 
-  /// Starts an episode; a seed re-seeds the generator the initial state is drawn from.
+  /// Starts an episode; a seed re-seeds the generators the initial state and the
+  /// perturbations are drawn from (two streams: the initial states do not depend on
+  /// whether perturbations are on).
   const Observation& reset_servos(std::optional<std::uint64_t> seed);
 
-  /// Clamps `action` to the bounds and holds it for one step.
+  /// Clamps `action` to the bounds and holds it for one step, pushes included.
   /// @throws InvalidCommandError on a NaN velocity, torque or gain, or an infinite position.
   const Observation& step_servos(const ServoAction& action);
 
@@ -78,6 +87,7 @@ class ServosEnv final : public Env {
   void neutral_action(std::span<float> action) const override;
   double timestep() const override { return simulation_->agent_timestep(); }
   int physics_steps_per_step() const override { return physics_steps_per_step_; }
+  void set_randomization_scale(double scale) override;
 
  private:
   void write_observation(const Observation& full, std::span<float> observation) const;
@@ -86,7 +96,12 @@ class ServosEnv final : public Env {
   std::shared_ptr<const RobotModel> model_;
   InitRandomization init_randomization_;
   int physics_steps_per_step_;
+  PerturbationSettings perturbations_;
+  PhysicsSimulation* physics_ = nullptr;  ///< simulation_ when it simulates physics.
+  double randomization_scale_ = 1.0;
   std::mt19937_64 generator_{0};
+  std::mt19937_64 perturbation_generator_{0};
+  PushSchedule pushes_;
   DictSpace action_dict_space_;
   DictSpace observation_dict_space_;
   BoxSpace action_space_;

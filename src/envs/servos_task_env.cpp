@@ -1,7 +1,9 @@
 #include "envs/servos_task_env.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +21,16 @@ ServosTaskEnv::ServosTaskEnv(std::unique_ptr<ServosEnv> servos, const ServosTask
       observation_space_.add(joint + "." + servo_observation.names[key], servo_observation.low[key],
                              servo_observation.high[key]);
     }
+    const double velocity_limit = servos_->model().servo_limits(i).velocity;
+    wheel_velocity_scale_[i] = config.max_wheel_velocity > 0.0
+                                   ? std::min(config.max_wheel_velocity, velocity_limit)
+                                   : velocity_limit;
+  }
+  if (config.observe_pitch) {
+    constexpr auto kPi = static_cast<float>(std::numbers::pi);
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    observation_space_.add("base.pitch", -kPi, kPi);
+    observation_space_.add("base.pitch_rate", -kInf, kInf);
   }
 }
 
@@ -33,11 +45,12 @@ void ServosTaskEnv::servo_action_from_normalized(std::span<const float> normaliz
     command.maximum_torque = limits.effort;
     if (is_wheel(i)) {
       command.position = std::numeric_limits<double>::quiet_NaN();
-      command.velocity = u * limits.velocity;
+      command.velocity = u * wheel_velocity_scale_[i];
       command.kp_scale = config_.wheel_kp_scale;
       command.kd_scale = config_.wheel_kd_scale;
     } else {
-      command.position = limits.lower + 0.5 * (u + 1.0) * (limits.upper - limits.lower);
+      command.position =
+          limits.lower + 0.5 * (config_.leg_action_scale * u + 1.0) * (limits.upper - limits.lower);
       command.velocity = 0.0;
       command.kp_scale = config_.leg_kp_scale;
       command.kd_scale = config_.leg_kd_scale;
@@ -53,14 +66,26 @@ double ServosTaskEnv::action_magnitude(const ServoAction& action) {
   return magnitude;
 }
 
+double ServosTaskEnv::normalized_action_magnitude(std::span<const float> normalized) {
+  double sum = 0.0;
+  for (const float u : normalized) sum += std::abs(u);
+  return normalized.empty() ? 0.0 : sum / static_cast<double>(normalized.size());
+}
+
 void ServosTaskEnv::write_observation(const Observation& full, std::span<float> observation) const {
-  if (observation.size() != 2 * kNumServos) {
+  if (observation.size() != observation_space_.size()) {
     throw std::invalid_argument("ServosTaskEnv: observation buffer has " +
-                                std::to_string(observation.size()) + " components, expected 12");
+                                std::to_string(observation.size()) + " components, expected " +
+                                std::to_string(observation_space_.size()));
   }
   for (std::size_t i = 0; i < kNumServos; ++i) {
     observation[2 * i] = static_cast<float>(full.servo[i].position);
     observation[2 * i + 1] = static_cast<float>(full.servo[i].velocity);
+  }
+  if (config_.observe_pitch) {
+    observation[2 * kNumServos] = static_cast<float>(full.base_orientation.pitch);
+    observation[2 * kNumServos + 1] =
+        static_cast<float>(full.base_orientation.angular_velocity.y());
   }
 }
 
@@ -75,7 +100,11 @@ StepResult ServosTaskEnv::step(std::span<const float> action, std::span<float> o
   servo_action_from_normalized(clamped_, servo_action_);
   const Observation& full = servos_->step_servos(servo_action_);
   write_observation(full, observation);
-  return task_.evaluate(full, action_magnitude(servo_action_));
+  const double magnitude =
+      config_.action_magnitude == ServosTaskConfig::ActionMagnitude::kNormalized
+          ? normalized_action_magnitude(clamped_)
+          : action_magnitude(servo_action_);
+  return task_.evaluate(full, magnitude);
 }
 
 }  // namespace upkie_rl

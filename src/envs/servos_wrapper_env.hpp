@@ -21,6 +21,7 @@ class ServosWrapperEnv : public Env {
   const BoxSpace& observation_space() const override { return observation_space_; }
   const BoxSpace& action_space() const override { return action_space_; }
   const Observation* full_observation() const override { return servos_->full_observation(); }
+  void set_randomization_scale(double scale) override { servos_->set_randomization_scale(scale); }
   double timestep() const override { return servos_->timestep(); }
   int physics_steps_per_step() const override { return servos_->physics_steps_per_step(); }
 

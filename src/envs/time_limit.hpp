@@ -4,19 +4,19 @@
 
 #include <memory>
 #include <stdexcept>
+#include <string>
 
-#include "envs/env.hpp"
+#include "envs/env_wrapper.hpp"
 
 namespace upkie_rl {
 
 /// Sets `truncated` on the step that brings the episode length to max_episode_steps,
 /// independently of `terminated`.
-class TimeLimit final : public Env {
+class TimeLimit final : public EnvWrapper {
  public:
   /// @throws std::invalid_argument on a null env or a non-positive limit.
   TimeLimit(std::unique_ptr<Env> env, int max_episode_steps)
-      : env_(std::move(env)), max_episode_steps_(max_episode_steps) {
-    if (!env_) throw std::invalid_argument("TimeLimit: null environment");
+      : EnvWrapper(std::move(env), "TimeLimit"), max_episode_steps_(max_episode_steps) {
     if (max_episode_steps_ <= 0) {
       throw std::invalid_argument("TimeLimit: max_episode_steps must be positive, got " +
                                   std::to_string(max_episode_steps_));
@@ -26,10 +26,7 @@ class TimeLimit final : public Env {
   int max_episode_steps() const { return max_episode_steps_; }
   /// Steps taken since the last reset.
   int elapsed_steps() const { return elapsed_steps_; }
-  Env& inner() { return *env_; }
 
-  const BoxSpace& observation_space() const override { return env_->observation_space(); }
-  const BoxSpace& action_space() const override { return env_->action_space(); }
   void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override {
     env_->reset(seed, observation);
     elapsed_steps_ = 0;
@@ -40,13 +37,8 @@ class TimeLimit final : public Env {
     if (elapsed_steps_ >= max_episode_steps_) result.truncated = true;
     return result;
   }
-  const Observation* full_observation() const override { return env_->full_observation(); }
-  void neutral_action(std::span<float> action) const override { env_->neutral_action(action); }
-  double timestep() const override { return env_->timestep(); }
-  int physics_steps_per_step() const override { return env_->physics_steps_per_step(); }
 
  private:
-  std::unique_ptr<Env> env_;
   int max_episode_steps_;
   int elapsed_steps_ = 0;
 };

@@ -101,8 +101,9 @@ void configure_solver(btMultiBodyDynamicsWorld& world, double gravity) {
   info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
 }
 
-void add_ground(BulletWorld& bullet) {
-  // A fixed box 200 x 200 x 10 m with its top face at z = 0, lateral friction 1.
+void add_ground(BulletWorld& bullet, double friction_scale) {
+  // A fixed box 200 x 200 x 10 m with its top face at z = 0, lateral friction 1 (Bullet
+  // multiplies the frictions of the two bodies in contact, so this scales the tires').
   auto box = std::make_unique<btBoxShape>(btVector3(100.0, 100.0, 5.0));
   box->setMargin(kCollisionMargin);
   btTransform pose;
@@ -110,7 +111,7 @@ void add_ground(BulletWorld& bullet) {
   pose.setOrigin(btVector3(0.0, 0.0, -5.0));
   bullet.ground_motion_state = std::make_unique<btDefaultMotionState>(pose);
   btRigidBody::btRigidBodyConstructionInfo info(0.0, bullet.ground_motion_state.get(), box.get());
-  info.m_friction = 1.0;
+  info.m_friction = friction_scale;
   info.m_restitution = 0.0;
   bullet.ground = std::make_unique<btRigidBody>(info);
   bullet.world.addRigidBody(bullet.ground.get(), btBroadphaseProxy::StaticFilter,
@@ -127,13 +128,25 @@ ContactParameters body_contact(const RigidBody& body) {
   return body.collisions.empty() ? ContactParameters{} : body.collisions.front().contact;
 }
 
-void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel& model) {
+/// Factor of the episode's variation on the mass and inertia of body `body` of `tree`.
+double mass_scale(const RigidBodyTree& tree, int body, const PhysicsVariation& variation) {
+  std::array<int, kNumServos> servo_bodies{};
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    servo_bodies[servo] = tree.servo_body(servo);
+  }
+  const auto parent_of = [&tree](int b) { return tree.bodies()[b].parent_body; };
+  return variation.mass_scale[mass_scale_index(body, servo_bodies, parent_of)];
+}
+
+void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel& model,
+               const PhysicsVariation& variation) {
   const auto& bodies = tree.bodies();
   const RigidBody& root = bodies.front();
   const int num_links = static_cast<int>(bodies.size()) - 1;
+  const double root_scale = mass_scale(tree, 0, variation);
   bullet.multibody = std::make_unique<btMultiBody>(
-      num_links, root.mass, to_bullet(root.principal_inertia), /*fixedBase=*/false,
-      /*canSleep=*/false);
+      num_links, root_scale * root.mass, to_bullet(Eigen::Vector3d(root_scale * root.principal_inertia)),
+      /*fixedBase=*/false, /*canSleep=*/false);
   btMultiBody& multibody = *bullet.multibody;
   bullet.base_com_in_base = root.principal_frame;
 
@@ -152,12 +165,15 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
         to_bullet(Eigen::Vector3d(com.linear().transpose() * com.translation()));
     const int parent_link = body.parent_body - 1;
     const Joint& joint = model.joints()[body.joint];
+    const double scale = mass_scale(tree, b, variation);
+    const double mass = scale * body.mass;
+    const btVector3 inertia = to_bullet(Eigen::Vector3d(scale * body.principal_inertia));
     if (joint.type == Joint::Type::kFixed) {
-      multibody.setupFixed(b - 1, body.mass, to_bullet(body.principal_inertia), parent_link,
-                           rot_parent_to_this, parent_com_to_pivot, pivot_to_com, true);
+      multibody.setupFixed(b - 1, mass, inertia, parent_link, rot_parent_to_this,
+                           parent_com_to_pivot, pivot_to_com, true);
     } else {
       const Eigen::Vector3d axis_in_com = com.linear().transpose() * body.joint_axis;
-      multibody.setupRevolute(b - 1, body.mass, to_bullet(body.principal_inertia), parent_link,
+      multibody.setupRevolute(b - 1, mass, inertia, parent_link,
                               rot_parent_to_this, to_bullet(axis_in_com), parent_com_to_pivot,
                               pivot_to_com, true);
     }
@@ -245,8 +261,8 @@ const Observation& BulletSimulation::reset(const ResetState& state) {
   world_.reset();  // the old world goes first: the new one must not share its memory pools
   world_ = std::make_unique<BulletWorld>();
   configure_solver(world_->world, config_.gravity);
-  if (config_.floor) add_ground(*world_);
-  add_robot(*world_, tree_, *model_);
+  if (config_.floor) add_ground(*world_, variation().floor_friction_scale);
+  add_robot(*world_, tree_, *model_, variation());
 
   btMultiBody& multibody = *world_->multibody;
   const Eigen::Quaterniond orientation = state.orientation_base_in_world.normalized();
@@ -279,12 +295,12 @@ void BulletSimulation::step_physics(const ServoAction& action, bool braked) {
   btMultiBody& multibody = *world_->multibody;
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     const int link = world_->servo_link[servo];
-    const double torque =
-        joint_torque(action[servo], braked, multibody.getJointPos(link),
-                     multibody.getJointVel(link), model_->servo_limits(servo).effort);
-    multibody.addJointTorque(link, torque);
-    applied_torques_[servo] = torque;
+    multibody.addJointTorque(link, joint_torque(servo, action[servo], braked,
+                                                multibody.getJointPos(link),
+                                                multibody.getJointVel(link)));
   }
+  // The multibody's base is its centre of mass: the force acts there.
+  if (!base_force().isZero(0.0)) multibody.addBaseForce(to_bullet(base_force()));
   world_->world.stepSimulation(config_.physics_timestep, 0, config_.physics_timestep);
 }
 

@@ -1,5 +1,7 @@
 #include "sim/imu_observer.hpp"
 
+#include "sim/random_draws.hpp"
+
 namespace upkie_rl {
 namespace {
 
@@ -35,6 +37,21 @@ void ImuObserver::observe(const MeasuredBase& base, ImuObservation& imu) {
   imu.linear_acceleration = rotation_imu_to_world.transpose() * acceleration_world;
   imu.raw_linear_acceleration =
       rotation_imu_to_world.transpose() * (acceleration_world - gravity_world_);
+}
+
+Eigen::Vector3d ImuObserver::add_uncertainty(const ImuUncertainty& uncertainty,
+                                             std::mt19937_64& generator,
+                                             ImuObservation& imu) const {
+  Eigen::Vector3d accelerometer_error = uncertainty.accelerometer_bias;
+  Eigen::Vector3d gyroscope_error = uncertainty.gyroscope_bias;
+  for (int i = 0; i < 3; ++i) {
+    accelerometer_error[i] += uncertainty.accelerometer_noise * standard_normal(generator);
+    gyroscope_error[i] += uncertainty.gyroscope_noise * standard_normal(generator);
+  }
+  imu.linear_acceleration += accelerometer_error;
+  imu.raw_linear_acceleration += accelerometer_error;
+  imu.angular_velocity += gyroscope_error;
+  return rotation_base_to_imu_ * gyroscope_error;
 }
 
 }  // namespace upkie_rl

@@ -2,7 +2,10 @@
 /// @file
 /// ImuObserver: the IMU of a simulated robot, from the base state at each agent step.
 
+#include <random>
+
 #include "model/robot_model.hpp"
+#include "sim/imu_uncertainty.hpp"
 #include "sim/measured_state.hpp"
 #include "sim/observation.hpp"
 
@@ -22,6 +25,12 @@ class ImuObserver {
   void reset(const MeasuredBase& base, ImuObservation& imu);
 
   void observe(const MeasuredBase& base, ImuObservation& imu);
+
+  /// Adds the bias and a draw of white noise of `uncertainty` to the angular velocity and
+  /// both accelerations of `imu`; returns the angular velocity error in the base frame
+  /// (what an attitude observer built on the gyroscope sees).
+  Eigen::Vector3d add_uncertainty(const ImuUncertainty& uncertainty, std::mt19937_64& generator,
+                                  ImuObservation& imu) const;
 
  private:
   Eigen::Vector3d imu_velocity(const MeasuredBase& base) const;

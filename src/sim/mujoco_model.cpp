@@ -238,6 +238,7 @@ std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
     const int joint = checked_id(model.get(), mjOBJ_JOINT, name);
     index.servo_qpos[servo] = model->jnt_qposadr[joint];
     index.servo_dof[servo] = model->jnt_dofadr[joint];
+    index.servo_body[servo] = model->jnt_bodyid[joint];
   }
   index.tire_geoms[0] = checked_id(model.get(), mjOBJ_GEOM, "left_tire");
   index.tire_geoms[1] = checked_id(model.get(), mjOBJ_GEOM, "right_tire");

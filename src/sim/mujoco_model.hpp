@@ -32,6 +32,7 @@ struct MujocoRobotIndex {
   int root_dof = -1;                         ///< Free joint: linear then angular.
   std::array<int, kNumServos> servo_qpos{};  ///< qpos address of each servo joint.
   std::array<int, kNumServos> servo_dof{};   ///< dof address of each servo joint.
+  std::array<int, kNumServos> servo_body{};  ///< Body each servo joint moves.
   std::array<int, 2> tire_geoms{-1, -1};     ///< Left, right tire geoms.
   int floor_geom = -1;                       ///< -1 without a floor.
 };

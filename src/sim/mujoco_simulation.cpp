@@ -25,6 +25,7 @@ MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
       model_(std::move(model)),
       config_(config),
       compiled_(std::move(compiled)),
+      episode_model_(compiled_->model.get()),
       data_(mj_makeData(compiled_->model.get())) {
   if (!data_) throw std::runtime_error("MuJoCo could not allocate its simulation data");
   reset(ResetState{});
@@ -32,9 +33,43 @@ MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
 
 MujocoSimulation::~MujocoSimulation() = default;
 
+void MujocoSimulation::apply_model_variation() {
+  const PhysicsVariation& variation = this->variation();
+  if (!variation.changes_model()) {
+    episode_model_ = compiled_->model.get();
+    return;
+  }
+  const mjModel* nominal = compiled_->model.get();
+  if (!varied_model_) {
+    varied_model_.reset(mj_copyModel(nullptr, nominal));
+    if (!varied_model_) throw std::runtime_error("MuJoCo could not copy the model");
+  }
+  mjModel* varied = varied_model_.get();
+  const MujocoRobotIndex& index = compiled_->index;
+  const auto parent_of = [nominal, &index](int body) {
+    return body == index.root_body ? -1 : nominal->body_parentid[body];
+  };
+  for (int body = index.root_body; body < nominal->nbody; ++body) {
+    const double scale =
+        variation.mass_scale[mass_scale_index(body, index.servo_body, parent_of)];
+    varied->body_mass[body] = scale * nominal->body_mass[body];
+    for (int i = 0; i < 3; ++i) {
+      varied->body_inertia[3 * body + i] = scale * nominal->body_inertia[3 * body + i];
+    }
+  }
+  // The tires have contact priority: their friction is the contact's.
+  for (const int tire : index.tire_geoms) {
+    varied->geom_friction[3 * tire] =
+        variation.floor_friction_scale * nominal->geom_friction[3 * tire];
+  }
+  mj_setConst(varied, data_.get());  // masses enter derived constants (subtree masses...)
+  episode_model_ = varied;
+}
+
 const Observation& MujocoSimulation::reset(const ResetState& state) {
   validate_reset_state(state);
-  const mjModel* m = compiled_->model.get();
+  apply_model_variation();
+  const mjModel* m = episode_model_;
   mjData* d = data_.get();
   const MujocoRobotIndex& index = compiled_->index;
   mj_resetData(m, d);
@@ -59,17 +94,16 @@ const Observation& MujocoSimulation::reset(const ResetState& state) {
 }
 
 void MujocoSimulation::step_physics(const ServoAction& action, bool braked) {
-  const mjModel* m = compiled_->model.get();
   mjData* d = data_.get();
   const MujocoRobotIndex& index = compiled_->index;
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-    const double torque =
-        joint_torque(action[servo], braked, d->qpos[index.servo_qpos[servo]],
-                     d->qvel[index.servo_dof[servo]], model_->servo_limits(servo).effort);
-    d->qfrc_applied[index.servo_dof[servo]] = torque;
-    applied_torques_[servo] = torque;
+    d->qfrc_applied[index.servo_dof[servo]] =
+        joint_torque(servo, action[servo], braked, d->qpos[index.servo_qpos[servo]],
+                     d->qvel[index.servo_dof[servo]]);
   }
-  mj_step(m, d);
+  // xfrc_applied acts at the body's centre of mass, as Bullet's base force.
+  for (int i = 0; i < 3; ++i) d->xfrc_applied[6 * index.root_body + i] = base_force()[i];
+  mj_step(episode_model_, d);
 }
 
 void MujocoSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const {

@@ -39,6 +39,10 @@ class MujocoSimulation final : public PhysicsSimulation {
   const MujocoModel& mujoco_model() const { return *compiled_; }
 
  private:
+  /// Points episode_model_ at the shared model, or at the simulation's own copy given the
+  /// masses and floor friction of variation().
+  void apply_model_variation();
+
   void step_physics(const ServoAction& action, bool braked) override;
   void measure(MeasuredJoints& joints, MeasuredBase& base) const override;
   bool tire_touches_floor() const override;
@@ -46,6 +50,8 @@ class MujocoSimulation final : public PhysicsSimulation {
   std::shared_ptr<const RobotModel> model_;
   MujocoConfig config_;
   std::shared_ptr<const MujocoModel> compiled_;
+  MujocoModelPtr varied_model_;  ///< Made at the first reset with a model variation.
+  const mjModel_* episode_model_ = nullptr;
   MujocoDataPtr data_;
 };
 

@@ -1,10 +1,22 @@
 #include "sim/physics_simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "sim/random_draws.hpp"
+
 namespace upkie_rl {
+namespace {
+
+/// Joints slower than this feel no kinetic friction [rad/s] (public Upkie's threshold).
+constexpr double kFrictionVelocityThreshold = 1e-3;
+
+/// Noise streams of an episode, derived from PhysicsVariation::noise_seed.
+enum NoiseStream : std::uint64_t { kTorqueNoise = 0, kImuNoise = 1 };
+
+}  // namespace
 
 PhysicsSimulation::PhysicsSimulation(const RobotModel& model, const PhysicsConfig& config)
     : servo_gains_(config.servo_gains), sensors_(model, config) {}
@@ -32,6 +44,11 @@ const Observation& PhysicsSimulation::advance(const ServoAction& action, bool br
   MeasuredJoints joints;
   MeasuredBase base;
   measure(joints, base);
+  if (variation_.torque_measurement_noise > 0.0) {
+    for (double& torque : joints.torque) {
+      torque += variation_.torque_measurement_noise * standard_normal(torque_noise_);
+    }
+  }
   try {
     sensors_.observe(joints, base, tire_touches_floor(), observation_);
   } catch (const SimulationDivergedError&) {
@@ -44,6 +61,9 @@ const Observation& PhysicsSimulation::advance(const ServoAction& action, bool br
 const Observation& PhysicsSimulation::observe_reset() {
   applied_torques_.fill(0.0);
   diverged_ = false;
+  base_force_.setZero();
+  torque_noise_.seed(derive_seed(variation_.noise_seed, kTorqueNoise));
+  sensors_.set_imu_uncertainty(variation_.imu, derive_seed(variation_.noise_seed, kImuNoise));
   MeasuredJoints joints;
   MeasuredBase base;
   measure(joints, base);
@@ -59,10 +79,33 @@ void PhysicsSimulation::set_servo_gains(const ServoGains& gains) {
   servo_gains_ = gains;
 }
 
-double PhysicsSimulation::joint_torque(const ServoCommand& command, bool braked, double position,
-                                       double velocity, double effort) const {
-  if (braked) return std::clamp(-servo_gains_.kd * velocity, -kBrakeTorque, kBrakeTorque);
-  return servo_torque(command, position, velocity, servo_gains_, effort);
+void PhysicsSimulation::set_variation(const PhysicsVariation& variation) {
+  variation.validate();
+  variation_ = variation;
+}
+
+void PhysicsSimulation::set_base_force(const Eigen::Vector3d& force_in_world) {
+  if (!force_in_world.allFinite()) {
+    throw std::invalid_argument("the force on the base must be finite");
+  }
+  base_force_ = force_in_world;
+}
+
+double PhysicsSimulation::joint_torque(std::size_t servo, const ServoCommand& command,
+                                       bool braked, double position, double velocity) {
+  double torque =
+      braked ? std::clamp(-servo_gains_.kd * velocity, -kBrakeTorque, kBrakeTorque)
+             : servo_torque(command, position, velocity, servo_gains_,
+                            model().servo_limits(servo).effort);
+  if (variation_.torque_control_noise > 0.0) {
+    torque += variation_.torque_control_noise * standard_normal(torque_noise_);
+  }
+  applied_torques_[servo] = torque;
+  const double friction = variation_.joint_friction[servo];
+  if (friction > 0.0 && std::abs(velocity) > kFrictionVelocityThreshold) {
+    torque -= std::copysign(friction, velocity);
+  }
+  return torque;
 }
 
 }  // namespace upkie_rl

@@ -4,10 +4,12 @@
 /// the spine server and the benchmarks drive either one.
 
 #include <memory>
+#include <random>
 
 #include "model/robot_model.hpp"
 #include "sim/measured_state.hpp"
 #include "sim/physics_config.hpp"
+#include "sim/physics_variation.hpp"
 #include "sim/servo_law.hpp"
 #include "sim/simulated_sensors.hpp"
 #include "sim/simulation.hpp"
@@ -40,6 +42,18 @@ class PhysicsSimulation : public Simulation {
   void set_servo_gains(const ServoGains& gains);
   const ServoGains& servo_gains() const { return servo_gains_; }
 
+  /// Sets what differs from the nominal robot and world (masses, frictions, noise) in the
+  /// episodes that the next resets start.
+  /// @throws std::invalid_argument on a value out of its domain; nothing changes.
+  void set_variation(const PhysicsVariation& variation);
+  const PhysicsVariation& variation() const { return variation_; }
+
+  /// Applies `force_in_world` [N] to the base's centre of mass at every physics step, until
+  /// it is replaced or the simulation is reset (a push is a force held for a while).
+  /// @throws std::invalid_argument on a non-finite force; nothing changes.
+  void set_base_force(const Eigen::Vector3d& force_in_world);
+  const Eigen::Vector3d& base_force() const { return base_force_; }
+
   /// Settings it was built with.
   virtual const PhysicsConfig& physics_config() const = 0;
   virtual const RobotModel& model() const = 0;
@@ -53,19 +67,22 @@ class PhysicsSimulation : public Simulation {
   /// @throws std::invalid_argument on a setting out of its domain.
   PhysicsSimulation(const RobotModel& model, const PhysicsConfig& config);
 
-  /// Servo torque of one joint for `command` (or the brake) at its measured state.
-  double joint_torque(const ServoCommand& command, bool braked, double position, double velocity,
-                      double effort) const;
+  /// Torque on joint `servo` in this physics step: the servo law of `command` (or the brake)
+  /// at the measured state plus the episode's torque-control noise, which is what the
+  /// servo applies and reports (recorded in applied_torques_), plus the joint's friction.
+  double joint_torque(std::size_t servo, const ServoCommand& command, bool braked,
+                      double position, double velocity);
 
-  /// One physics step with the servo law of `action` (or the brake); records the applied
-  /// torques in applied_torques_.
+  /// One physics step with the servo law of `action` (or the brake), through joint_torque,
+  /// and base_force() on the base.
   virtual void step_physics(const ServoAction& action, bool braked) = 0;
   /// Joint and base state as the engine has it now.
   virtual void measure(MeasuredJoints& joints, MeasuredBase& base) const = 0;
   /// Whether a tire is within 1 mm of the floor.
   virtual bool tire_touches_floor() const = 0;
 
-  /// Ends an engine's reset: observes the state it set, at time 0.
+  /// Ends an engine's reset (which builds the variation() into its model): clears the base
+  /// force, seeds the episode's noise and observes the state it set, at time 0.
   const Observation& observe_reset();
 
   std::array<double, kNumServos> applied_torques_{};  ///< Of the last physics step [N.m].
@@ -74,6 +91,9 @@ class PhysicsSimulation : public Simulation {
   const Observation& advance(const ServoAction& action, bool braked);
 
   ServoGains servo_gains_;
+  PhysicsVariation variation_;
+  Eigen::Vector3d base_force_ = Eigen::Vector3d::Zero();
+  std::mt19937_64 torque_noise_{0};
   SimulatedSensors sensors_;
   Observation observation_;
   long physics_steps_ = 0;

@@ -54,6 +54,22 @@ void SimulatedSensors::reset(const MeasuredJoints& joints, const MeasuredBase& b
   odometry_.reset(observation.servo);
   observe_without_imu(joints, base, floor_contact, observation);
   imu_.reset(base, observation.imu);
+  add_imu_uncertainty(observation);
+}
+
+void SimulatedSensors::set_imu_uncertainty(const ImuUncertainty& uncertainty,
+                                           std::uint64_t noise_seed) {
+  uncertainty.validate();
+  imu_uncertainty_ = uncertainty;
+  imu_noise_.seed(noise_seed);
+}
+
+void SimulatedSensors::add_imu_uncertainty(Observation& observation) {
+  // The pitch rate of base_orientation comes from the gyroscope, so it carries its error.
+  if (!imu_uncertainty_.is_zero()) {
+    observation.base_orientation.angular_velocity +=
+        imu_.add_uncertainty(imu_uncertainty_, imu_noise_, observation.imu);
+  }
 }
 
 void SimulatedSensors::observe(const MeasuredJoints& joints, const MeasuredBase& base,
@@ -61,6 +77,7 @@ void SimulatedSensors::observe(const MeasuredJoints& joints, const MeasuredBase&
   check_finite(joints, base, observation.time);
   observe_without_imu(joints, base, floor_contact, observation);
   imu_.observe(base, observation.imu);
+  add_imu_uncertainty(observation);
 }
 
 }  // namespace upkie_rl

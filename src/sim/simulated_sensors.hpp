@@ -3,6 +3,9 @@
 /// SimulatedSensors: the observer pipeline every physics backend runs after its engine
 /// steps (servos, base, IMU, wheel odometry, floor contact), engine-independent.
 
+#include <cstdint>
+#include <random>
+
 #include "model/robot_model.hpp"
 #include "sim/imu_observer.hpp"
 #include "sim/measured_state.hpp"
@@ -22,6 +25,10 @@ class SimulatedSensors {
   void reset(const MeasuredJoints& joints, const MeasuredBase& base, bool floor_contact,
              Observation& observation);
 
+  /// Sets the IMU's bias and noise for the episode that the next reset starts, and seeds
+  /// its noise.
+  void set_imu_uncertainty(const ImuUncertainty& uncertainty, std::uint64_t noise_seed);
+
   /// Fills `observation` (whose time the caller advances) from the measurements.
   /// @throws SimulationDivergedError on a non-finite measurement, before writing anything.
   void observe(const MeasuredJoints& joints, const MeasuredBase& base, bool floor_contact,
@@ -35,8 +42,12 @@ class SimulatedSensors {
   void observe_without_imu(const MeasuredJoints& joints, const MeasuredBase& base,
                            bool floor_contact, Observation& observation) const;
 
+  void add_imu_uncertainty(Observation& observation);
+
   ImuObserver imu_;
   WheelOdometryObserver odometry_;
+  ImuUncertainty imu_uncertainty_;
+  std::mt19937_64 imu_noise_{0};
 };
 
 }  // namespace upkie_rl

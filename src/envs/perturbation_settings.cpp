@@ -1,0 +1,96 @@
+#include "envs/perturbation_settings.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "sim/random_draws.hpp"
+
+namespace upkie_rl {
+namespace {
+
+constexpr double kHuge = 1e9;
+
+}  // namespace
+
+bool PerturbationSettings::any() const {
+  return mass_scale != 1.0 || inertia_variation != 0.0 || joint_friction != 0.0 ||
+         torque_control_noise != 0.0 || torque_measurement_noise != 0.0 ||
+         imu_accelerometer_bias != 0.0 || imu_accelerometer_noise != 0.0 ||
+         imu_gyroscope_bias != 0.0 || imu_gyroscope_noise != 0.0 || floor_friction != 1.0 ||
+         floor_friction_variation != 0.0 || push.enabled();
+}
+
+PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double scale) const {
+  PhysicsVariation variation;
+  for (double& body_scale : variation.mass_scale) {
+    body_scale = mass_scale * (1.0 + uniform_symmetric(generator, scale * inertia_variation));
+  }
+  for (double& friction : variation.joint_friction) {
+    friction = scale * joint_friction * uniform_unit(generator);
+  }
+  variation.torque_control_noise = scale * torque_control_noise;
+  variation.torque_measurement_noise = scale * torque_measurement_noise;
+  ImuUncertainty& imu = variation.imu;
+  for (int i = 0; i < 3; ++i) {
+    imu.accelerometer_bias[i] = uniform_symmetric(generator, scale * imu_accelerometer_bias);
+    imu.gyroscope_bias[i] = uniform_symmetric(generator, scale * imu_gyroscope_bias);
+  }
+  imu.accelerometer_noise = scale * imu_accelerometer_noise;
+  imu.gyroscope_noise = scale * imu_gyroscope_noise;
+  variation.floor_friction_scale =
+      floor_friction * (1.0 + uniform_symmetric(generator, scale * floor_friction_variation));
+  variation.noise_seed = generator();
+  return variation;
+}
+
+void PerturbationSettings::add_options(OptionTable& table) {
+  table.add_double("mass_scale", &mass_scale, 0.01, 100.0,
+                   "factor on every body's mass and inertia");
+  table.add_double("inertia_variation", &inertia_variation, 0.0, 0.99,
+                   "each body's mass and inertia times 1 + U(-it, it), drawn at reset");
+  table.add_double("joint_friction", &joint_friction, 0.0, kHuge,
+                   "each joint's kinetic friction drawn in U(0, it) at reset [N.m]");
+  table.add_double("torque_control_noise", &torque_control_noise, 0.0, kHuge,
+                   "std of Gaussian noise on applied joint torques [N.m]");
+  table.add_double("torque_measurement_noise", &torque_measurement_noise, 0.0, kHuge,
+                   "std of Gaussian noise on observed joint torques [N.m]");
+  table.add_double("imu_accelerometer_bias", &imu_accelerometer_bias, 0.0, kHuge,
+                   "accelerometer bias components drawn in U(-it, it) at reset [m/s^2]");
+  table.add_double("imu_accelerometer_noise", &imu_accelerometer_noise, 0.0, kHuge,
+                   "std of accelerometer white noise [m/s^2]");
+  table.add_double("imu_gyroscope_bias", &imu_gyroscope_bias, 0.0, kHuge,
+                   "gyroscope bias components drawn in U(-it, it) at reset [rad/s]");
+  table.add_double("imu_gyroscope_noise", &imu_gyroscope_noise, 0.0, kHuge,
+                   "std of gyroscope white noise (it reaches the pitch rate) [rad/s]");
+  table.add_double("floor_friction", &floor_friction, 0.01, 100.0,
+                   "factor on the tire-floor friction");
+  table.add_double("floor_friction_variation", &floor_friction_variation, 0.0, 0.99,
+                   "tire-floor friction times 1 + U(-it, it), drawn at reset");
+  table.add_double("push_force", &push.force, 0.0, kHuge,
+                   "largest push on the base [N], 0 for no pushes");
+  table.add_double("push_force_min", &push.force_min, 0.0, kHuge,
+                   "smallest push [N]; magnitudes drawn in U(push_force_min, push_force)");
+  table.add_double("push_duration", &push.duration, 1e-6, kHuge, "duration of a push [s]");
+  table.add_double("push_start", &push.start, 0.0, kHuge, "start of the first push window [s]");
+  table.add_double("push_interval", &push.interval, 1e-6, kHuge,
+                   "one push at a random time in each window of this length [s]");
+  table.add_choice(
+      "push_direction", {"sagittal", "forward", "backward", "lateral", "any"},
+      [this](std::size_t choice) { push.direction = static_cast<PushDirection>(choice); },
+      "direction of pushes relative to the robot's heading");
+}
+
+void PerturbationSettings::validate() const {
+  if (push.enabled() && push.force_min > push.force) {
+    throw std::invalid_argument("push_force_min (" + std::to_string(push.force_min) +
+                                " N) is above push_force (" + std::to_string(push.force) +
+                                " N)");
+  }
+  if (push.enabled() && push.duration > push.interval) {
+    throw std::invalid_argument("push_duration (" + std::to_string(push.duration) +
+                                " s) is longer than push_interval (" +
+                                std::to_string(push.interval) + " s)");
+  }
+}
+
+}  // namespace upkie_rl

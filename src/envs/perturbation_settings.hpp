@@ -1,0 +1,68 @@
+#pragma once
+/// @file
+/// PerturbationSettings: the physical perturbations of a simulated environment (masses,
+/// frictions, torque and IMU noise, pushes), as options, drawn at each reset.
+
+#include <random>
+
+#include "envs/option_table.hpp"
+#include "sim/physics_variation.hpp"
+
+namespace upkie_rl {
+
+/// Where a push points, relative to the robot's heading at the push.
+enum class PushDirection {
+  kSagittal,  ///< Forward or backward, each with probability 1/2.
+  kForward,
+  kBackward,
+  kLateral,  ///< Left or right.
+  kAny,      ///< Any horizontal direction.
+};
+
+/// Pushes: a horizontal force on the base's centre of mass held for `duration`, starting at
+/// a random time in each window of `interval` seconds, the first window at `start`. Forces
+/// change at agent steps, so a push lasts a whole number of them.
+struct PushSettings {
+  double force = 0.0;      ///< Largest magnitude [N]; 0 disables pushes.
+  double force_min = 0.0;  ///< Smallest magnitude [N]; drawn uniformly in [force_min, force].
+  double duration = 0.1;   ///< [s]
+  double start = 0.25;     ///< Start of the first window [s].
+  double interval = 1.0;   ///< Length of a window [s], at least the duration.
+  PushDirection direction = PushDirection::kSagittal;
+
+  bool enabled() const { return force > 0.0; }
+};
+
+/// Ranges of the perturbations, all off by default. Randomised values are drawn at each
+/// reset from the environment's seeded generator; "randomisation bounds" (everything but
+/// the fixed factors mass_scale and floor_friction) are multiplied by the curriculum scale.
+struct PerturbationSettings {
+  double mass_scale = 1.0;         ///< Fixed factor on every body's mass and inertia.
+  double inertia_variation = 0.0;  ///< ε: each body's mass and inertia × (1 + U(-ε, ε)).
+  double joint_friction = 0.0;     ///< Each joint's kinetic friction in U(0, it) [N.m].
+  double torque_control_noise = 0.0;      ///< Std of the noise on applied torques [N.m].
+  double torque_measurement_noise = 0.0;  ///< Std of the noise on observed torques [N.m].
+  double imu_accelerometer_bias = 0.0;    ///< Each bias component in U(-it, it) [m/s^2].
+  double imu_accelerometer_noise = 0.0;   ///< Std of the white noise [m/s^2].
+  double imu_gyroscope_bias = 0.0;        ///< Each bias component in U(-it, it) [rad/s].
+  double imu_gyroscope_noise = 0.0;       ///< Std of the white noise [rad/s].
+  double floor_friction = 1.0;            ///< Fixed factor on the tire-floor friction.
+  double floor_friction_variation = 0.0;  ///< ε: friction × (1 + U(-ε, ε)).
+  PushSettings push;
+
+  /// Whether any setting differs from the nominal robot and world.
+  bool any() const;
+
+  /// The variation of one episode, every randomisation bound multiplied by `scale`. Always
+  /// the same number of draws, whatever the settings.
+  PhysicsVariation sample(std::mt19937_64& generator, double scale) const;
+
+  /// Declares the options (names as the fields, pushes as push_*) in `table`.
+  void add_options(OptionTable& table);
+
+  /// @throws std::invalid_argument naming an inconsistent pair (force_min above force, a
+  ///         push longer than its interval).
+  void validate() const;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,66 @@
+#include "sim/physics_variation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace upkie_rl {
+namespace {
+
+void check(bool valid, const std::string& what, double value) {
+  if (!valid) {
+    throw std::invalid_argument("PhysicsVariation: " + what + " is out of its domain, got " +
+                                std::to_string(value));
+  }
+}
+
+bool finite_non_negative(double value) { return std::isfinite(value) && value >= 0.0; }
+
+}  // namespace
+
+bool PhysicsVariation::changes_model() const {
+  for (const double scale : mass_scale) {
+    if (scale != 1.0) return true;
+  }
+  return floor_friction_scale != 1.0;
+}
+
+void PhysicsVariation::validate() const {
+  for (std::size_t body = 0; body < mass_scale.size(); ++body) {
+    check(std::isfinite(mass_scale[body]) && mass_scale[body] > 0.0,
+          "mass_scale[" + std::to_string(body) + "] (must be positive)", mass_scale[body]);
+  }
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    check(finite_non_negative(joint_friction[servo]),
+          "joint_friction of " + std::string(kServoNames[servo]), joint_friction[servo]);
+  }
+  check(finite_non_negative(torque_control_noise), "torque_control_noise", torque_control_noise);
+  check(finite_non_negative(torque_measurement_noise), "torque_measurement_noise",
+        torque_measurement_noise);
+  check(std::isfinite(floor_friction_scale) && floor_friction_scale > 0.0,
+        "floor_friction_scale (must be positive)", floor_friction_scale);
+  imu.validate();
+}
+
+void ImuUncertainty::validate() const {
+  const auto check_vector = [](const Eigen::Vector3d& bias, const char* name) {
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(bias[i])) {
+        throw std::invalid_argument(std::string("IMU uncertainty: ") + name + "[" +
+                                    std::to_string(i) + "] is not finite");
+      }
+    }
+  };
+  check_vector(accelerometer_bias, "accelerometer_bias");
+  check_vector(gyroscope_bias, "gyroscope_bias");
+  for (const auto& [value, name] : {std::pair{accelerometer_noise, "accelerometer_noise"},
+                                    std::pair{gyroscope_noise, "gyroscope_noise"}}) {
+    if (!finite_non_negative(value)) {
+      throw std::invalid_argument(std::string("IMU uncertainty: ") + name +
+                                  " must be a finite non-negative deviation, got " +
+                                  std::to_string(value));
+    }
+  }
+}
+
+}  // namespace upkie_rl

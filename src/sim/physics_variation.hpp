@@ -1,0 +1,59 @@
+#pragma once
+/// @file
+/// PhysicsVariation: what differs from the nominal robot and world in one episode (domain
+/// randomisation), set on a physics simulation before its reset.
+
+#include <array>
+#include <cstdint>
+
+#include "model/robot_model.hpp"
+#include "sim/imu_uncertainty.hpp"
+
+namespace upkie_rl {
+
+/// Physical parameters of one episode. The default is the nominal robot, bit for bit: a
+/// simulation with the default variation gives the same trajectory as one never varied.
+struct PhysicsVariation {
+  /// Index of the base in mass_scale; servo s moves the body of index 1 + s.
+  static constexpr std::size_t kBaseBody = 0;
+
+  /// Factor on the mass and the principal inertias of each rigid body: the base, then the
+  /// body each servo moves (links welded to a body by fixed joints share its factor).
+  std::array<double, kNumServos + 1> mass_scale{1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  /// Kinetic friction of each joint: torque -friction·sign(v) when |v| > 1e-3 rad/s [N.m].
+  std::array<double, kNumServos> joint_friction{};
+  /// Standard deviation of Gaussian noise added to each servo torque at every physics
+  /// step (it is part of the torque the servo reports) [N.m].
+  double torque_control_noise = 0.0;
+  /// Standard deviation of Gaussian noise on the observed servo torques [N.m].
+  double torque_measurement_noise = 0.0;
+  /// Factor on the friction coefficient between the tires and the floor.
+  double floor_friction_scale = 1.0;
+  ImuUncertainty imu;
+  /// Seeds the noise drawn during the episode (torques, IMU).
+  std::uint64_t noise_seed = 0;
+
+  /// Whether the masses or the floor friction differ from the nominal model.
+  bool changes_model() const;
+
+  /// @throws std::invalid_argument naming the first value out of its domain (scales must be
+  ///         positive, frictions and deviations non-negative, everything finite).
+  void validate() const;
+};
+
+/// The index in PhysicsVariation::mass_scale of a body of an engine's tree: 1 + the servo
+/// that moves the nearest body up from `body` (itself included), or kBaseBody.
+/// @param servo_bodies The body each servo moves.
+/// @param parent_of    The parent of a body, -1 above the base.
+template <class ParentOf>
+std::size_t mass_scale_index(int body, const std::array<int, kNumServos>& servo_bodies,
+                             ParentOf parent_of) {
+  for (int ancestor = body; ancestor >= 0; ancestor = parent_of(ancestor)) {
+    for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+      if (servo_bodies[servo] == ancestor) return 1 + servo;
+    }
+  }
+  return PhysicsVariation::kBaseBody;
+}
+
+}  // namespace upkie_rl
