@@ -1,5 +1,7 @@
 #include "apps/policy_controller.hpp"
 
+#include "envs/registry.hpp"
+
 #include "policy/deployed_policy.hpp"
 
 namespace upkie_rl::apps {
@@ -29,6 +31,14 @@ std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& 
                           ") does not fit this environment: " + error.what());
   }
   return std::make_unique<PolicyController>(std::move(policy));
+}
+
+EnvOptions options_for_model(const std::filesystem::path& model, const std::string& env_id,
+                             const EnvOptions& extra) {
+  const DeployedPolicy policy = DeployedPolicy::load(model);
+  EnvOptions options = task_options(policy.env_id(), policy.env_options(), env_id);
+  options.insert(options.end(), extra.begin(), extra.end());
+  return options;
 }
 
 }  // namespace upkie_rl::apps

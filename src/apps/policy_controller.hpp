@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "envs/controller.hpp"
+#include "envs/env_options.hpp"
 #include "envs/env.hpp"
 
 namespace upkie_rl::apps {
@@ -16,5 +17,11 @@ namespace upkie_rl::apps {
 /// the mismatch or damage.
 std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& model,
                                                    const Env& env);
+
+/// The environment options that the model was trained with, without its randomisation
+/// ones, that `env_id` accepts (envs/registry.hpp task_options), followed by `extra` (which
+/// override them): the environment the policy's task needs, under the caller's conditions.
+EnvOptions options_for_model(const std::filesystem::path& model, const std::string& env_id,
+                             const EnvOptions& extra);
 
 }  // namespace upkie_rl::apps

@@ -51,7 +51,13 @@ std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& option
 }
 
 void run_rollout(const RolloutOptions& options) {
-  const EnvOptions env_options = parse_env_options(options.env_options);
+  EnvOptions env_options = parse_env_options(options.env_options);
+  if (!options.model.empty()) {
+    env_options = options_for_model(options.model, options.env_id, env_options);
+    if (!env_options.empty()) {
+      std::cout << "environment options: " << format_env_options(env_options) << std::endl;
+    }
+  }
   std::optional<EpisodeRecorder> recorder;  // Opened first: a bad path is refused at once.
   if (!options.record_path.empty()) recorder.emplace(options.record_path);
   std::optional<VideoRecorder> video;  // Checked first too: a bad path is refused at once.

@@ -14,4 +14,7 @@ using EnvOptions = std::vector<std::pair<std::string, std::string>>;
 /// Parses "k=v" strings; throws std::invalid_argument naming a malformed one.
 EnvOptions parse_env_options(const std::vector<std::string>& key_values);
 
+/// "k1=v1 k2=v2", for messages.
+std::string format_env_options(const EnvOptions& options);
+
 }  // namespace upkie_rl

@@ -40,6 +40,12 @@ EnvOptions parse_env_options(const std::vector<std::string>& key_values) {
   return options;
 }
 
+std::string format_env_options(const EnvOptions& options) {
+  std::string text;
+  for (const auto& [key, value] : options) text += (text.empty() ? "" : " ") + key + "=" + value;
+  return text;
+}
+
 void OptionTable::add_double(std::string name, double* target, double min, double max,
                              std::string help) {
   Entry entry{{std::move(name),
@@ -118,6 +124,10 @@ void OptionTable::add_choice(std::string name, std::vector<std::string> choices,
     throw std::invalid_argument(where + ": \"" + value + "\" is not one of " + join(choices, ", "));
   };
   entries_.push_back(std::move(entry));
+}
+
+void OptionTable::mark_randomization(std::size_t first) {
+  for (std::size_t i = first; i < entries_.size(); ++i) entries_[i].info.randomization = true;
 }
 
 const OptionTable::Entry* OptionTable::find(const std::string& name) const {

@@ -21,6 +21,10 @@ struct OptionInfo {
   double min = 0.0;                  ///< kReal and kInteger: lower bound.
   double max = 0.0;                  ///< kReal and kInteger: upper bound.
   std::vector<std::string> choices;  ///< kChoice: the accepted values, default first.
+  /// Whether it sets the conditions an episode runs in (initial-state randomisation,
+  /// perturbations, noise, lag) rather than the task: a trained policy carries its task
+  /// options to a rollout, not these.
+  bool randomization = false;
 };
 
 /// A table of named options, each bound to a typed field it writes.
@@ -36,6 +40,11 @@ class OptionTable {
   /// index of the chosen one.
   void add_choice(std::string name, std::vector<std::string> choices,
                   std::function<void(std::size_t)> set, std::string help);
+
+  /// Number of options so far.
+  std::size_t size() const { return entries_.size(); }
+  /// Marks the options from index `first` on as randomisation (OptionInfo::randomization).
+  void mark_randomization(std::size_t first);
 
   /// Writes every option into its field, in order (a repeated key: the last one wins).
   /// @throws std::invalid_argument naming an unknown key (listing the valid ones) or a

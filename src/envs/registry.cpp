@@ -1,5 +1,6 @@
 #include "envs/registry.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -145,8 +146,13 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
               choice == 0 ? InertiaSource::kBulletBoxRule : InertiaSource::kUrdf;
         },
         "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
-    if (id.backend != Backend::kMock) settings.perturbations.add_options(table);
+    if (id.backend != Backend::kMock) {
+      const std::size_t first = table.size();
+      settings.perturbations.add_options(table);
+      table.mark_randomization(first);
+    }
   }
+  const std::size_t first_noise_option = table.size();
   table.add_double("observation_noise", &settings.observation_noise, 0.0, kHuge,
                    "uniform noise in +-it on every observation component");
   table.add_double("action_lag_min", &settings.action_lag.time_constant_min, 0.0, kHuge,
@@ -155,8 +161,10 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
                    "largest action lag time constant [s], 0 for no lag");
   table.add_int("action_delay", &settings.action_lag.delay_steps, 0, 10000,
                 "steps between an action and its application");
+  table.mark_randomization(first_noise_option);
   table.add_int("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
                 "truncate episodes after this many steps, 0 for never");
+  const std::size_t first_init_option = table.size();
   InitRandomization& init = settings.init_rand;
   table.add_double("init_rand_roll", &init.roll, 0.0, 3.2, "initial roll drawn in +-it [rad]");
   table.add_double("init_rand_pitch", &init.pitch, 0.0, 3.2, "initial pitch drawn in +-it [rad]");
@@ -169,6 +177,7 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
   table.add_double("init_rand_v_x", &init.v_x, 0.0, kHuge, "initial x velocity in +-it [m/s]");
   table.add_double("init_rand_v_y", &init.v_y, 0.0, kHuge, "initial y velocity in +-it [m/s]");
   table.add_double("init_rand_v_z", &init.v_z, 0.0, kHuge, "initial z velocity in +-it [m/s]");
+  table.mark_randomization(first_init_option);
   switch (kind) {
     case Kind::kServos:
       break;
@@ -335,6 +344,24 @@ std::unique_ptr<Env> make_env(const std::string& id, const EnvOptions& options) 
 std::vector<std::string> env_option_help(const std::string& id) {
   EnvSettings settings;
   return option_table(parse_id(id), settings).describe();
+}
+
+EnvOptions task_options(const std::string& source_id, const EnvOptions& options,
+                        const std::string& target_id) {
+  const std::vector<OptionInfo> source = env_option_info(source_id);
+  const std::vector<OptionInfo> target = env_option_info(target_id);
+  const auto find = [](const std::vector<OptionInfo>& list, const std::string& name) {
+    return std::find_if(list.begin(), list.end(),
+                        [&name](const OptionInfo& info) { return info.name == name; });
+  };
+  EnvOptions kept;
+  for (const auto& [key, value] : options) {
+    const auto in_source = find(source, key);
+    if (in_source == source.end() || in_source->randomization) continue;
+    if (find(target, key) == target.end()) continue;
+    kept.emplace_back(key, value);
+  }
+  return kept;
 }
 
 std::vector<OptionInfo> env_option_info(const std::string& id) {

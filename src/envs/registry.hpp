@@ -35,6 +35,13 @@ EnvFactory make_env_factory(const std::string& id, const EnvOptions& options = {
 /// @throws std::invalid_argument on an unknown id.
 std::vector<std::string> env_option_help(const std::string& id);
 
+/// The options of `options` (given to `source_id`) that define the task rather than the
+/// conditions (OptionInfo::randomization) and that `target_id` accepts, in order: what a
+/// policy trained on source_id needs to be rolled out on target_id.
+/// @throws std::invalid_argument on an unknown id.
+EnvOptions task_options(const std::string& source_id, const EnvOptions& options,
+                        const std::string& target_id);
+
 /// The options `id` accepts, typed, with their defaults and bounds.
 /// @throws std::invalid_argument on an unknown id.
 std::vector<OptionInfo> env_option_info(const std::string& id);

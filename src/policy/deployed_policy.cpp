@@ -33,6 +33,7 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
       throw CheckpointError("not an upkie-rl model");
     }
     policy.env_id_ = checkpoint_env_id(header);
+    policy.env_options_ = checkpoint_env_options(header);
     policy.observation_space_ = space_from_json(header.at("observation_space"));
     policy.action_space_ = space_from_json(header.at("action_space"));
     policy.shape_ = policy_shape_from_json(header.at("policy"));

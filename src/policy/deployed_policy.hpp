@@ -30,6 +30,8 @@ class DeployedPolicy {
 
   /// Environment id the policy was trained on.
   const std::string& env_id() const { return env_id_; }
+  /// Environment options it was trained with (env.options of the configuration).
+  const EnvOptions& env_options() const { return env_options_; }
   const BoxSpace& observation_space() const { return observation_space_; }
   const BoxSpace& action_space() const { return action_space_; }
   const PolicyShape& shape() const { return shape_; }
@@ -53,6 +55,7 @@ class DeployedPolicy {
   DeployedPolicy() = default;
 
   std::string env_id_;
+  EnvOptions env_options_;
   BoxSpace observation_space_;
   BoxSpace action_space_;
   PolicyShape shape_;

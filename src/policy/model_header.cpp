@@ -50,4 +50,20 @@ std::string checkpoint_env_id(const nlohmann::json& header) {
   }
 }
 
+EnvOptions checkpoint_env_options(const nlohmann::json& header) {
+  const std::string config = checkpoint_config_yaml(header);
+  EnvOptions options;
+  try {
+    const YAML::Node node = YAML::Load(config)["env"]["options"];
+    if (!node || node.IsNull()) return options;
+    if (!node.IsMap()) throw CheckpointError("configuration's env.options is not a map");
+    for (const auto& entry : node) {
+      options.emplace_back(entry.first.as<std::string>(), entry.second.as<std::string>());
+    }
+  } catch (const YAML::Exception& error) {
+    throw CheckpointError(std::string("configuration's env.options: ") + error.what());
+  }
+  return options;
+}
+
 }  // namespace upkie_rl

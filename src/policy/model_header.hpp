@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "envs/env_options.hpp"
+
 #include "policy/activation.hpp"
 
 namespace upkie_rl {
@@ -39,5 +41,10 @@ std::string checkpoint_config_yaml(const nlohmann::json& header);
 /// The environment id of that configuration (key env.id), read without the trainer's
 /// configuration parser. Throws CheckpointError if absent.
 std::string checkpoint_env_id(const nlohmann::json& header);
+
+/// The environment options (env.options) of the training configuration, in order; empty
+/// when it has none.
+/// @throws CheckpointError when the configuration is missing or env.options is malformed.
+EnvOptions checkpoint_env_options(const nlohmann::json& header);
 
 }  // namespace upkie_rl
