@@ -33,6 +33,12 @@ std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& 
   return std::make_unique<PolicyController>(std::move(policy));
 }
 
+DesignEnvFactory design_env_factory(const std::string& env_id, const EnvOptions& options) {
+  return [env_id, nominal = task_options(env_id, options, env_id)] {
+    return make_env(env_id, nominal);
+  };
+}
+
 EnvOptions options_for_model(const std::filesystem::path& model, const std::string& env_id,
                              const EnvOptions& extra) {
   const DeployedPolicy policy = DeployedPolicy::load(model);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "envs/builtin_controllers.hpp"
 #include "envs/controller.hpp"
 #include "envs/env_options.hpp"
 #include "envs/env.hpp"
@@ -21,6 +22,10 @@ std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& 
 /// The environment options that the model was trained with, without its randomisation
 /// ones, that `env_id` accepts (envs/registry.hpp task_options), followed by `extra` (which
 /// override them): the environment the policy's task needs, under the caller's conditions.
+/// Makes, for controller designs (LQR), the environment `env_id` with the task options of
+/// `options` and none of its randomisation: the nominal robot.
+DesignEnvFactory design_env_factory(const std::string& env_id, const EnvOptions& options);
+
 EnvOptions options_for_model(const std::filesystem::path& model, const std::string& env_id,
                              const EnvOptions& extra);
 

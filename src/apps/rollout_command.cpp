@@ -45,9 +45,13 @@ void add_video_frame(VideoRecorder& video, const Env& env, double episode_return
   video.add(robot_pose(*full), full->time, episode_return, full->base_orientation.pitch);
 }
 
-std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options, const Env& env) {
+std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options,
+                                                    const EnvOptions& env_options, const Env& env) {
   if (!options.model.empty()) return make_policy_controller(options.model, env);
-  return make_builtin_controller(options.controller, env);
+  const std::string spec =
+      resolve_controller_spec(options.controller, design_env_factory(options.env_id, env_options));
+  if (spec != options.controller) std::cout << options.controller << ": " << spec << std::endl;
+  return make_builtin_controller(spec, env);
 }
 
 void run_rollout(const RolloutOptions& options) {
@@ -63,7 +67,7 @@ void run_rollout(const RolloutOptions& options) {
   std::optional<VideoRecorder> video;  // Checked first too: a bad path is refused at once.
   if (!options.video.path.empty()) video.emplace(RobotModel::default_model(), options.video);
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
-  std::unique_ptr<Controller> controller = make_rollout_controller(options, *env);
+  std::unique_ptr<Controller> controller = make_rollout_controller(options, env_options, *env);
   if (recorder) recorder->write_header(*env);
 
   std::vector<float> observation(env->observation_space().size());

@@ -3,16 +3,23 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
+
+#include "envs/lqr_design.hpp"
 
 namespace upkie_rl {
 
 namespace {
 
-constexpr const char* kValidSpecs = "valid controllers: zero, linear:k1,k2,k3,k4";
+constexpr const char* kValidSpecs =
+    "valid controllers: zero, linear:k1,k2,k3,k4, lqr, lqr:theta,p,theta_dot,p_dot,command";
 
-std::array<float, 4> parse_gains(const std::string& spec, const std::string& list) {
-  std::array<float, 4> gains{};
+/// `N` finite numbers separated by commas in `list`.
+template <std::size_t N>
+std::array<float, N> parse_numbers(const std::string& spec, const std::string& list,
+                                   const char* expected) {
+  std::array<float, N> gains{};
   std::size_t count = 0;
   std::size_t start = 0;
   while (start <= list.size()) {
@@ -23,18 +30,18 @@ std::array<float, 4> parse_gains(const std::string& spec, const std::string& lis
     const auto [stop, error] = std::from_chars(item.data(), end, value);
     if (item.empty() || error != std::errc() || stop != end || !std::isfinite(value) ||
         count == gains.size()) {
-      throw std::invalid_argument("controller \"" + spec +
-                                  "\": expected four finite gains, linear:k1,k2,k3,k4");
+      throw std::invalid_argument("controller \"" + spec + "\": expected " + expected);
     }
     gains[count++] = value;
     start = comma + 1;
   }
   if (count != gains.size()) {
-    throw std::invalid_argument("controller \"" + spec +
-                                "\": expected four finite gains, linear:k1,k2,k3,k4");
+    throw std::invalid_argument("controller \"" + spec + "\": expected " + expected);
   }
   return gains;
 }
+
+constexpr const char* kLinearExpected = "four finite gains, linear:k1,k2,k3,k4";
 
 }  // namespace
 
@@ -79,10 +86,33 @@ std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, con
   if (spec == "zero") return std::make_unique<ZeroController>(env);
   constexpr std::string_view kLinearPrefix = "linear:";
   if (spec.rfind(kLinearPrefix, 0) == 0) {
-    return std::make_unique<LinearController>(env,
-                                              parse_gains(spec, spec.substr(kLinearPrefix.size())));
+    return std::make_unique<LinearController>(
+        env, parse_numbers<4>(spec, spec.substr(kLinearPrefix.size()), kLinearExpected));
   }
   throw std::invalid_argument("unknown controller \"" + spec + "\"; " + kValidSpecs);
+}
+
+std::string resolve_controller_spec(const std::string& spec, const DesignEnvFactory& design_env) {
+  if (spec != "lqr" && spec.rfind("lqr:", 0) != 0) return spec;
+  LqrWeights weights;
+  if (spec != "lqr") {
+    const auto numbers = parse_numbers<5>(
+        spec, spec.substr(4), "five positive deviations, lqr:theta,p,theta_dot,p_dot,command");
+    for (std::size_t k = 0; k < 4; ++k) weights.max_state[k] = numbers[k];
+    weights.max_command = numbers[4];
+    for (const float number : numbers) {
+      if (!(number > 0.0f)) {
+        throw std::invalid_argument("controller \"" + spec + "\": deviations must be positive");
+      }
+    }
+  }
+  if (!design_env) throw std::invalid_argument("controller lqr: no environment to design it on");
+  const std::unique_ptr<Env> env = design_env();
+  const std::array<float, 4> gains = design_lqr_gains(*env, weights);
+  std::ostringstream linear;
+  linear.precision(9);
+  linear << "linear:" << gains[0] << ',' << gains[1] << ',' << gains[2] << ',' << gains[3];
+  return linear.str();
 }
 
 }  // namespace upkie_rl

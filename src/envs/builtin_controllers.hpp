@@ -3,6 +3,7 @@
 /// The built-in controllers: `zero` and `linear:k1,k2,k3,k4`.
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,8 +41,18 @@ class LinearController final : public Controller {
   float high_ = 0.0f;
 };
 
-/// "zero" or "linear:k1,k2,k3,k4".
+/// "zero" or "linear:k1,k2,k3,k4" (see resolve_controller_spec for "lqr").
 /// @throws std::invalid_argument naming the spec and listing the valid ones.
 std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, const Env& env);
+
+/// Makes an environment to design a controller on.
+using DesignEnvFactory = std::function<std::unique_ptr<Env>()>;
+
+/// Turns a spec that needs a design into the linear law it designs: "lqr" or
+/// "lqr:θmax,pmax,θ̇max,ṗmax,umax" (Bryson weights, envs/lqr_design.hpp) becomes
+/// "linear:k1,k2,k3,k4" designed on an environment of `design_env`; other specs pass
+/// unchanged.
+/// @throws std::invalid_argument on malformed weights or a failed design.
+std::string resolve_controller_spec(const std::string& spec, const DesignEnvFactory& design_env);
 
 }  // namespace upkie_rl

@@ -120,6 +120,7 @@ std::vector<Field> fields(TrainingConfig& c) {
                  [&c] { return c.env_id; }});
   integer("env.num_envs", c.num_envs);
   integer("env.threads", c.env_threads);
+  integer("env.curriculum_steps", c.curriculum_steps);
   boolean("normalize.observations", c.normalize.observations);
   boolean("normalize.rewards", c.normalize.rewards);
   real("normalize.clip_observations", c.normalize.clip_observations);
@@ -242,6 +243,7 @@ void TrainingConfig::validate() const {
   require(!env_id.empty(), "env.id", "must not be empty");
   require(num_envs >= 1, "env.num_envs", "must be at least 1");
   require(env_threads >= 0, "env.threads", "must be >= 0");
+  require(curriculum_steps >= 0, "env.curriculum_steps", "must be >= 0");
   require(normalize.clip_observations > 0, "normalize.clip_observations", "must be > 0");
   require(normalize.clip_rewards > 0, "normalize.clip_rewards", "must be > 0");
   require(normalize.gamma > 0 && normalize.gamma <= 1, "normalize.gamma", "must be in (0, 1]");
@@ -302,6 +304,12 @@ void apply_overrides(TrainingConfig& config, const std::vector<std::string>& ove
     }
     set_key(config, table, trim(item.substr(0, equal)), item.substr(equal + 1));
   }
+}
+
+double TrainingConfig::randomization_scale(std::int64_t timesteps) const {
+  if (curriculum_steps <= 0) return 1.0;
+  return std::clamp(static_cast<double>(timesteps) / static_cast<double>(curriculum_steps), 0.0,
+                    1.0);
 }
 
 std::string to_yaml(const TrainingConfig& const_config) {

@@ -58,6 +58,10 @@ struct TrainingConfig {
   std::int64_t num_envs = 10;
   /// Worker threads of the vector environment (0: synchronous stepping).
   std::int64_t env_threads = 2;
+  /// Curriculum: every randomisation bound of the environments (initial state,
+  /// perturbations, noise, lag, pushes) ramps linearly from 0 to its value over this many
+  /// timesteps (0: full from the start). Env::set_randomization_scale.
+  std::int64_t curriculum_steps = 0;
   NormalizationConfig normalize;
   PolicyConfig policy;
   PpoConfig ppo;
@@ -66,6 +70,10 @@ struct TrainingConfig {
   /// Intra-op threads of libtorch. 1 by default: the networks are tiny, so threading costs
   /// more than it saves, and the cores are needed by the environment workers.
   std::int64_t torch_threads = 1;
+
+  /// The curriculum's randomisation scale after `timesteps`: min(1, timesteps /
+  /// curriculum_steps), or 1 without a curriculum.
+  double randomization_scale(std::int64_t timesteps) const;
 
   /// Steps each environment collects per update: n_steps / num_envs (at least 1).
   std::int64_t steps_per_env() const;

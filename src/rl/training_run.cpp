@@ -185,9 +185,11 @@ std::filesystem::path TrainingRun::train(
       every > 0 ? (checkpoints_saved_ + 1) * every : std::numeric_limits<std::int64_t>::max();
   while (next_checkpoint <= start_timesteps) next_checkpoint += every;
   const auto start = Clock::now();
+  env_->set_randomization_scale(config_.randomization_scale(ppo_->num_timesteps()));
   ppo_->reset_environments(segment_seed());
   std::vector<ScalarValue> scalars;
   while (ppo_->num_timesteps() < total) {
+    env_->set_randomization_scale(config_.randomization_scale(ppo_->num_timesteps()));
     const PpoUpdateStatistics update = ppo_->iterate();
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     TrainingProgress progress;

@@ -33,6 +33,9 @@ class EnvBatch {
   void reset(std::size_t begin, std::size_t end, std::optional<std::uint64_t> seed);
   /// Records that every env was reset (step() is refused before), once all ranges are done.
   void mark_reset() { was_reset_ = true; }
+  void set_randomization_scale(double scale) {
+    for (auto& env : envs_) env->set_randomization_scale(scale);
+  }
 
   /// Steps envs [begin, end) with their rows of `actions`; an env whose episode ends keeps
   /// its last observation in final_observations, its raw return and length in

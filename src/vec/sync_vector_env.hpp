@@ -30,6 +30,7 @@ class SyncVectorEnv final : public VectorEnv {
 
   /// Environment i (e.g. for its full observation).
   const Env& env(std::size_t i) const { return batch_.env(i); }
+  void set_randomization_scale(double scale) override { batch_.set_randomization_scale(scale); }
   const Observation* full_observation(std::size_t i) const override {
     return batch_.env(i).full_observation();
   }

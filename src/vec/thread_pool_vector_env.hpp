@@ -37,6 +37,7 @@ class ThreadPoolVectorEnv final : public VectorEnv {
 
   std::size_t num_threads() const { return num_threads_; }
   const Env& env(std::size_t i) const { return batch_.env(i); }
+  void set_randomization_scale(double scale) override { batch_.set_randomization_scale(scale); }
   const Observation* full_observation(std::size_t i) const override {
     return batch_.env(i).full_observation();
   }

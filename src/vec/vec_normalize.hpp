@@ -66,6 +66,7 @@ class VecNormalize final : public VectorEnv {
   const BoxSpace& action_space() const override { return venv_->action_space(); }
   std::span<const float> reset(std::optional<std::uint64_t> seed) override;
   const VectorStep& step(std::span<const float> actions) override;
+  void set_randomization_scale(double scale) override { venv_->set_randomization_scale(scale); }
 
  private:
   std::unique_ptr<VectorEnv> venv_;

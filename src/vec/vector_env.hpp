@@ -55,6 +55,10 @@ class VectorEnv {
   /// whose episode ended are reset as the autoreset mode says (same step by default).
   virtual const VectorStep& step(std::span<const float> actions) = 0;
 
+  /// Env::set_randomization_scale on every environment (between steps, never during one);
+  /// vector envs of environments without randomisation ignore it.
+  virtual void set_randomization_scale(double scale) { static_cast<void>(scale); }
+
   /// The full observation of environment i after the last reset or step (after an
   /// auto-reset, the new episode's), or nullptr when it has none.
   virtual const Observation* full_observation(std::size_t i) const {

@@ -1,0 +1,153 @@
+#include "envs/lqr_design.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "sim/random_draws.hpp"
+
+namespace upkie_rl {
+namespace {
+
+constexpr std::array<const char*, 4> kStateNames = {"theta", "p", "theta_dot", "p_dot"};
+constexpr double kMaxPitch = 0.3;  // [rad] samples beyond it are not "near upright"
+constexpr int kEpisodeSteps = 300;
+constexpr int kHoldSteps = 20;
+
+std::size_t component(const BoxSpace& space, const char* name) {
+  const std::size_t index = space.index_of(name);
+  if (index == space.size()) {
+    throw std::invalid_argument(
+        std::string("LQR design: the environment has no \"") + name +
+        "\" component (it needs theta, p, theta_dot, p_dot and ground_velocity: the pendulum "
+        "or gyropod)");
+  }
+  return index;
+}
+
+}  // namespace
+
+BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int episodes,
+                                               double excitation) {
+  const BoxSpace& observation_space = env.observation_space();
+  std::array<std::size_t, 4> state_index{};
+  for (std::size_t k = 0; k < 4; ++k) state_index[k] = component(observation_space, kStateNames[k]);
+  const std::size_t command_index = component(env.action_space(), "ground_velocity");
+  const float low = env.action_space().low[command_index];
+  const float high = env.action_space().high[command_index];
+
+  std::vector<float> observation(observation_space.size());
+  std::vector<float> action(env.action_space().size());
+  std::vector<Eigen::Matrix<double, 5, 1>> inputs;  // [x; u]
+  std::vector<Eigen::Vector4d> outputs;             // next x
+  std::mt19937_64 generator(seed);
+  const auto state = [&] {
+    Eigen::Vector4d x;
+    for (std::size_t k = 0; k < 4; ++k) x[k] = observation[state_index[k]];
+    return x;
+  };
+  for (int episode = 0; episode < episodes; ++episode) {
+    env.reset(seed + static_cast<std::uint64_t>(episode), observation);
+    double offset = 0.0;
+    for (int step = 0; step < kEpisodeSteps; ++step) {
+      const Eigen::Vector4d x = state();
+      // Piecewise-constant excitation (changes every kHoldSteps): it excites the slow
+      // balance dynamics rather than the legs' fast compliance.
+      if (step % kHoldSteps == 0) offset = uniform_symmetric(generator, excitation);
+      const double command = offset;
+      env.neutral_action(action);
+      action[command_index] = std::clamp(static_cast<float>(command), low, high);
+      const StepResult result = env.step(action, observation);
+      if (result.terminated || std::abs(x[0]) > kMaxPitch) break;
+      Eigen::Matrix<double, 5, 1> input;
+      input << x, static_cast<double>(action[command_index]);
+      inputs.push_back(input);
+      outputs.push_back(state());
+      if (result.truncated) break;
+    }
+  }
+  const auto samples = static_cast<Eigen::Index>(inputs.size());
+  if (samples < 50) {
+    throw std::invalid_argument("LQR design: only " + std::to_string(samples) +
+                                " samples near upright; the dynamics are not determined");
+  }
+  // The position p enters no dynamics (the floor is the same everywhere): each next state
+  // is regressed on [θ, θ̇, ṗ, u] only, p's row as an increment, which keeps correlations
+  // of p with the other states in the data out of the model.
+  constexpr std::array<int, 3> kDynamicStates = {0, 2, 3};
+  Eigen::MatrixXd regressors(samples, 4);
+  Eigen::MatrixXd targets(samples, 4);
+  for (Eigen::Index i = 0; i < samples; ++i) {
+    for (int j = 0; j < 3; ++j) regressors(i, j) = inputs[i][kDynamicStates[j]];
+    regressors(i, 3) = inputs[i][4];
+    targets.row(i) = outputs[i].transpose();
+    targets(i, 1) -= inputs[i][1];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(regressors);
+  if (qr.rank() < 4) {
+    throw std::invalid_argument("LQR design: the excitation does not determine the dynamics");
+  }
+  const Eigen::MatrixXd solution = qr.solve(targets);  // 4 x 4: rows θ, θ̇, ṗ, u
+  BalanceLinearization result;
+  result.A.setZero();
+  for (int j = 0; j < 3; ++j) result.A.col(kDynamicStates[j]) = solution.row(j).transpose();
+  result.A(1, 1) = 1.0;
+  result.B = solution.row(3).transpose();
+  const Eigen::MatrixXd residual = regressors * solution - targets;
+  result.rms_error = (residual.colwise().squaredNorm() / static_cast<double>(samples))
+                         .cwiseSqrt()
+                         .transpose();
+  result.samples = static_cast<int>(samples);
+  return result;
+}
+
+Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                  const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R) {
+  const Eigen::Index n = A.rows();
+  if (A.cols() != n || B.rows() != n || Q.rows() != n || Q.cols() != n || R.rows() != B.cols() ||
+      R.cols() != B.cols()) {
+    throw std::invalid_argument("LQR: inconsistent matrix sizes");
+  }
+  if (!A.allFinite() || !B.allFinite() || !Q.allFinite() || !R.allFinite()) {
+    throw std::invalid_argument("LQR: non-finite matrix entries");
+  }
+  if (R.llt().info() != Eigen::Success) throw std::invalid_argument("LQR: R is not positive");
+  constexpr int kMaxIterations = 100000;
+  constexpr double kTolerance = 1e-11;
+  Eigen::MatrixXd P = Q;
+  Eigen::MatrixXd K;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    K = (R + B.transpose() * P * B).ldlt().solve(B.transpose() * P * A);
+    Eigen::MatrixXd next = Q + A.transpose() * P * (A - B * K);
+    next = 0.5 * (next + next.transpose());
+    if (!next.allFinite()) break;
+    const double change = (next - P).cwiseAbs().maxCoeff();
+    P = std::move(next);
+    if (change <= kTolerance * std::max(1.0, P.cwiseAbs().maxCoeff())) {
+      return (R + B.transpose() * P * B).ldlt().solve(B.transpose() * P * A);
+    }
+  }
+  throw std::invalid_argument(
+      "LQR: the Riccati iteration does not converge (is (A, B) stabilisable?)");
+}
+
+std::array<float, 4> design_lqr_gains(Env& env, const LqrWeights& weights, std::uint64_t seed) {
+  const BalanceLinearization model = identify_balance_dynamics(env, seed);
+  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    if (!(weights.max_state[k] > 0.0)) throw std::invalid_argument("LQR: weights must be > 0");
+    Q(k, k) = 1.0 / (weights.max_state[k] * weights.max_state[k]);
+  }
+  if (!(weights.max_command > 0.0)) throw std::invalid_argument("LQR: weights must be > 0");
+  Eigen::MatrixXd R(1, 1);
+  R(0, 0) = 1.0 / (weights.max_command * weights.max_command);
+  const Eigen::MatrixXd K = discrete_lqr_gain(model.A, model.B, Q, R);
+  std::array<float, 4> gains{};
+  for (int k = 0; k < 4; ++k) gains[k] = static_cast<float>(-K(0, k));
+  return gains;
+}
+
+}  // namespace upkie_rl
