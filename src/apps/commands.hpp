@@ -15,6 +15,9 @@ void add_spine_command(CLI::App& app);
 void add_envs_command(CLI::App& app);
 /// `upkie-rl rollout`: episodes of an environment with a controller (rollout_command.cpp).
 void add_rollout_command(CLI::App& app);
+
+/// `upkie-rl evaluate`: success rates over a grid of perturbations (apps/evaluate_command.cpp).
+void add_evaluate_command(CLI::App& app);
 /// `upkie-rl render`: a video of a recorded episode file (render_command.cpp).
 void add_render_command(CLI::App& app);
 /// `upkie-rl bench`: steps per second of a vector environment (bench_command.cpp).

@@ -36,6 +36,19 @@ bool has_cairo(const std::string& gnuplot) {
   return output.find("pngcairo") != std::string::npos;
 }
 
+void run_gnuplot(const std::string& gnuplot, const std::string& text) {
+  const std::string command = gnuplot + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "w");
+  if (pipe == nullptr) throw std::runtime_error("cannot start " + gnuplot);
+  const std::size_t written = fwrite(text.data(), 1, text.size(), pipe);
+  const int status = pclose(pipe);
+  if (written != text.size() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error("gnuplot failed (exit status " +
+                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+  }
+}
+
+
 }  // namespace
 
 std::string find_gnuplot() {
@@ -76,16 +89,51 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
            << quoted(figure.smoothed_label) << '\n';
     script << "unset output\n";
   }
-  const std::string command = gnuplot + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "w");
-  if (pipe == nullptr) throw std::runtime_error("cannot start " + gnuplot);
-  const std::string text = script.str();
-  const std::size_t written = fwrite(text.data(), 1, text.size(), pipe);
-  const int status = pclose(pipe);
-  if (written != text.size() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error("gnuplot failed (exit status " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+  run_gnuplot(gnuplot, script.str());
+}
+
+void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
+  const std::string gnuplot = find_gnuplot();
+  std::ostringstream script;
+  script << (has_cairo(gnuplot) ? "set terminal pngcairo size 900,600 font 'sans,11'\n"
+                                : "set terminal png truecolor size 900,600\n");
+  script << "set palette defined (0 '#d73027', 50 '#fee08b', 100 '#1a9850')\n"
+            "set cbrange [0:100]\nset cblabel 'success rate [%]'\nunset key\n";
+  for (std::size_t f = 0; f < figures.size(); ++f) {
+    const HeatMapFigure& figure = figures[f];
+    const std::size_t columns = figure.x_values.size();
+    const std::size_t rows = figure.y_values.size();
+    if (figure.values.size() != rows * columns) {
+      throw std::invalid_argument("heat map " + figure.title + ": values do not fill the grid");
+    }
+    const std::string block = "$map" + std::to_string(f);
+    script << block << " << EOD\n";
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < columns; ++c) {
+        script << c << ' ' << r << ' ' << figure.values[r * columns + c] << '\n';
+      }
+    }
+    script << "EOD\n";
+    script << "set output " << quoted(figure.output.string()) << '\n';
+    script << "set title " << quoted(figure.title) << '\n';
+    script << "set xlabel " << quoted(figure.x_label) << '\n';
+    script << "set ylabel " << quoted(figure.y_label) << '\n';
+    script << "set xrange [-0.5:" << columns - 0.5 << "]\nset yrange [-0.5:" << rows - 0.5
+           << "]\n";
+    script << "set xtics (";
+    for (std::size_t c = 0; c < columns; ++c) {
+      script << (c ? ", " : "") << quoted(figure.x_values[c]) << ' ' << c;
+    }
+    script << ")\nset ytics (";
+    for (std::size_t r = 0; r < rows; ++r) {
+      script << (r ? ", " : "") << quoted(figure.y_values[r]) << ' ' << r;
+    }
+    script << ")\n";
+    script << "plot " << block << " using 1:2:3 with image, " << block
+           << " using 1:2:(sprintf('%.0f', $3)) with labels font ',10'\n";
+    script << "unset output\n";
   }
+  run_gnuplot(gnuplot, script.str());
 }
 
 }  // namespace upkie_rl::apps

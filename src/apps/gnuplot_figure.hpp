@@ -21,6 +21,18 @@ struct TrendFigure {
   std::string smoothed_label;    ///< e.g. "rolling mean (50)".
 };
 
+/// A heat map of values in [0, 100] (percentages) over a grid of at most two axes, each
+/// cell labelled with its value.
+struct HeatMapFigure {
+  std::filesystem::path output;  ///< PNG file to write.
+  std::string title;
+  std::string x_label;
+  std::vector<std::string> x_values;  ///< Column labels.
+  std::string y_label;                ///< Empty for a single row.
+  std::vector<std::string> y_values;  ///< Row labels (one empty label for a single row).
+  std::vector<double> values;         ///< Row-major, y_values.size() x x_values.size().
+};
+
 /// Full path of the gnuplot executable on PATH; throws std::runtime_error saying how to
 /// install it when there is none.
 std::string find_gnuplot();
@@ -28,5 +40,9 @@ std::string find_gnuplot();
 /// Draws the figures in one gnuplot session. Throws std::runtime_error if gnuplot is
 /// missing or fails.
 void draw_trend_figures(const std::vector<TrendFigure>& figures);
+
+/// Draws the heat maps in one gnuplot session (red 0 % to green 100 %). Throws
+/// std::runtime_error if gnuplot is missing or fails.
+void draw_heat_maps(const std::vector<HeatMapFigure>& figures);
 
 }  // namespace upkie_rl::apps

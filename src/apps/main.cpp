@@ -17,6 +17,7 @@ int run(int argc, char** argv) {
   app.fallthrough(false);
   upkie_rl::apps::add_envs_command(app);
   upkie_rl::apps::add_rollout_command(app);
+  upkie_rl::apps::add_evaluate_command(app);
   upkie_rl::apps::add_render_command(app);
   upkie_rl::apps::add_bench_command(app);
   upkie_rl::apps::add_spine_command(app);

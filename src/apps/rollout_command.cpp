@@ -140,8 +140,8 @@ void add_rollout_command(CLI::App& app) {
   command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
   command
       ->add_option("--controller", options->controller,
-                   "zero (neutral action) or linear:k1,k2,k3,k4 (ground velocity = "
-                   "k.[theta, p, theta_dot, p_dot])")
+                   "zero (neutral action), linear:k1,k2,k3,k4 (ground velocity = "
+                   "k.[theta, p, theta_dot, p_dot]) or lqr (designed on this environment)")
       ->capture_default_str();
   command
       ->add_option("--model", options->model,
