@@ -1,0 +1,238 @@
+/// Perturbation options of the environments: off they are the unperturbed environment bit
+/// for bit, seeded they repeat, and each changes what it should (pushes push, noise stays
+/// within its bounds and off the reward, delay delays, lag filters).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "envs/action_lag.hpp"
+#include "envs/registry.hpp"
+
+namespace upkie_rl {
+namespace {
+
+/// What an episode of the PD law gives: observations, rewards and base positions.
+struct Trace {
+  std::vector<std::vector<float>> observations;
+  std::vector<double> rewards;
+  std::vector<Eigen::Vector3d> base_positions;
+  bool operator==(const Trace& other) const {
+    return observations == other.observations && rewards == other.rewards &&
+           base_positions == other.base_positions;
+  }
+};
+
+/// Runs `steps` steps of `env` from reset(seed), the action given by `act`.
+Trace run(Env& env, std::uint64_t seed, int steps,
+          const std::function<float(const std::vector<float>&, int)>& act) {
+  Trace trace;
+  std::vector<float> observation(env.observation_space().size());
+  std::vector<float> action(env.action_space().size(), 0.0f);
+  env.reset(seed, observation);
+  trace.observations.push_back(observation);
+  for (int step = 0; step < steps; ++step) {
+    action[0] = act(observation, step);
+    const StepResult result = env.step(action, observation);
+    trace.observations.push_back(observation);
+    trace.rewards.push_back(result.reward);
+    trace.base_positions.push_back(env.full_observation()->sim_base.position);
+    if (result.terminated || result.truncated) break;
+  }
+  return trace;
+}
+
+float pd(const std::vector<float>& o, int) { return 10.0f * o[0] + o[1] + 0.1f * o[3]; }
+
+Trace pd_trace(const std::string& id, const EnvOptions& options, std::uint64_t seed = 3,
+               int steps = 300) {
+  auto env = make_env(id, options);
+  return run(*env, seed, steps, pd);
+}
+
+const EnvOptions kEverythingOff = {
+    {"mass_scale", "1"},          {"inertia_variation", "0"},     {"joint_friction", "0"},
+    {"torque_control_noise", "0"}, {"torque_measurement_noise", "0"},
+    {"imu_accelerometer_bias", "0"}, {"imu_gyroscope_noise", "0"}, {"floor_friction", "1"},
+    {"floor_friction_variation", "0"}, {"push_force", "0"},      {"observation_noise", "0"},
+    {"action_lag_max", "0"},      {"action_delay", "0"}};
+
+const EnvOptions kEverythingOn = {
+    {"inertia_variation", "0.2"},     {"joint_friction", "0.01"},
+    {"torque_control_noise", "0.05"}, {"torque_measurement_noise", "0.05"},
+    {"imu_accelerometer_bias", "0.1"}, {"imu_gyroscope_bias", "0.01"},
+    {"imu_gyroscope_noise", "0.01"},  {"floor_friction_variation", "0.3"},
+    {"push_force", "20"},             {"observation_noise", "0.01"},
+    {"action_lag_max", "0.03"},       {"action_delay", "1"},
+    {"init_rand_pitch", "0.1"}};
+
+class EnginePerturbations : public ::testing::TestWithParam<const char*> {
+ protected:
+  std::string id(const char* kind = "Pendulum") const {
+    return std::string("Upkie-") + GetParam() + "-" + kind;
+  }
+};
+
+TEST_P(EnginePerturbations, OffIsTheUnperturbedEnvironmentBitForBit) {
+  EXPECT_TRUE(pd_trace(id(), {}) == pd_trace(id(), kEverythingOff));
+}
+
+TEST_P(EnginePerturbations, ScaleZeroIsTheUnperturbedEnvironmentBitForBit) {
+  auto env = make_env(id(), kEverythingOn);
+  env->set_randomization_scale(0.0);
+  EXPECT_TRUE(run(*env, 3, 300, pd) == pd_trace(id(), {}));
+  env->set_randomization_scale(1.0);
+  EXPECT_FALSE(run(*env, 3, 300, pd) == pd_trace(id(), {}));
+}
+
+TEST_P(EnginePerturbations, SameSeedSamePerturbationsOtherSeedOthers) {
+  const Trace first = pd_trace(id(), kEverythingOn, 5);
+  EXPECT_TRUE(first == pd_trace(id(), kEverythingOn, 5));
+  EXPECT_FALSE(first == pd_trace(id(), kEverythingOn, 6));
+  // A reset without a seed continues the generators: the next episode differs.
+  auto env = make_env(id(), kEverythingOn);
+  const Trace seeded = run(*env, 5, 300, pd);
+  std::vector<float> observation(4);
+  env->reset(std::nullopt, observation);
+  EXPECT_NE(observation, seeded.observations.front());
+}
+
+TEST_P(EnginePerturbations, PushesMoveTheRobotInTheirDirection) {
+  // One push of 30 N for 0.1 s starting between 0.25 and 0.35 s; compare the base at
+  // 0.5 s with the unpushed episode (the PD law reacts, but not within 0.15 s).
+  const auto displacement = [&](const char* direction) {
+    EnvOptions options = {{"push_force", "30"},    {"push_force_min", "30"},
+                          {"push_start", "0.25"},  {"push_interval", "0.2"},
+                          {"push_direction", direction}};
+    const Trace pushed = pd_trace(id(), options, 3, 100);
+    const Trace nominal = pd_trace(id(), {}, 3, 100);
+    return Eigen::Vector3d(pushed.base_positions.back() - nominal.base_positions.back());
+  };
+  const Eigen::Vector3d forward = displacement("forward");
+  const Eigen::Vector3d backward = displacement("backward");
+  const Eigen::Vector3d lateral = displacement("lateral");
+  EXPECT_GT(forward.x(), 0.01);
+  EXPECT_LT(std::abs(forward.y()), 0.2 * forward.x());
+  EXPECT_LT(backward.x(), -0.01);
+  EXPECT_GT(std::abs(lateral.y()), 0.01);
+  EXPECT_LT(std::abs(lateral.x()), 0.5 * std::abs(lateral.y()));
+}
+
+TEST_P(EnginePerturbations, ObservationNoiseStaysInBoundsAndOffTheReward) {
+  const Trace nominal = pd_trace(id(), {}, 3, 1);
+  auto env = make_env(id(), {{"observation_noise", "0.01"}});
+  std::vector<float> observation(4);
+  env->reset(3, observation);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_LE(std::abs(observation[i] - nominal.observations[0][i]), 0.01f + 1e-6f);
+  }
+  EXPECT_NE(observation, nominal.observations[0]);
+  // The same actions as the nominal episode: the rewards come from the true state.
+  std::vector<float> action = {pd(nominal.observations[0], 0)};
+  const StepResult result = env->step(action, observation);
+  EXPECT_EQ(result.reward, nominal.rewards[0]);
+}
+
+TEST_P(EnginePerturbations, ActionDelayAppliesEachActionStepsLater) {
+  // A fixed action sequence; with a delay of 3 the env sees 0, 0, 0, a0, a1...
+  const auto sequence = [](const std::vector<float>&, int step) {
+    return 0.3f * std::sin(0.05f * static_cast<float>(step));
+  };
+  auto delayed = make_env(id(), {{"action_delay", "3"}});
+  const Trace actual = run(*delayed, 1, 60, sequence);
+  auto plain = make_env(id(), {});
+  const Trace expected = run(*plain, 1, 60, [&](const std::vector<float>& o, int step) {
+    return step < 3 ? 0.0f : sequence(o, step - 3);
+  });
+  EXPECT_TRUE(actual == expected);
+}
+
+TEST_P(EnginePerturbations, ActionLagIsTheFirstOrderFilter) {
+  const auto sequence = [](const std::vector<float>&, int step) {
+    return step < 20 ? 0.5f : -0.2f;
+  };
+  auto lagged = make_env(id(), {{"action_lag_min", "0.02"}, {"action_lag_max", "0.02"}});
+  const Trace actual = run(*lagged, 1, 60, sequence);
+  auto plain = make_env(id(), {});
+  const float alpha = static_cast<float>(plain->timestep() / 0.02);  // 0.25
+  float filtered = 0.0f;
+  const Trace expected = run(*plain, 1, 60, [&](const std::vector<float>& o, int step) {
+    filtered = filtered + alpha * (sequence(o, step) - filtered);
+    return filtered;
+  });
+  EXPECT_TRUE(actual == expected);
+}
+
+TEST_P(EnginePerturbations, InconsistentSettingsAreRefusedWithTheirNames) {
+  const auto message = [&](const EnvOptions& options) {
+    try {
+      make_env(id(), options);
+    } catch (const std::invalid_argument& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message({{"push_force", "10"}, {"push_force_min", "20"}}).find("push_force_min"),
+            std::string::npos);
+  EXPECT_NE(message({{"push_force", "10"}, {"push_duration", "2"}}).find("push_interval"),
+            std::string::npos);
+  EXPECT_NE(message({{"action_lag_min", "0.2"}, {"action_lag_max", "0.1"}}).find("action_lag"),
+            std::string::npos);
+  EXPECT_NE(message({{"inertia_variation", "1.5"}}).find("outside [0, 0.99]"), std::string::npos);
+  EXPECT_NE(message({{"push_direction", "up"}}).find("not one of"), std::string::npos);
+}
+
+TEST_P(EnginePerturbations, EveryKindTakesThem) {
+  for (const char* kind : {"Servos", "Gyropod", "ServosTask"}) {
+    auto env = make_env(id(kind), kEverythingOn);
+    std::vector<float> observation(env->observation_space().size());
+    std::vector<float> action(env->action_space().size());
+    env->reset(0, observation);
+    env->neutral_action(action);
+    for (int step = 0; step < 50; ++step) env->step(action, observation);
+    for (float value : observation) EXPECT_TRUE(std::isfinite(value)) << kind;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Engines, EnginePerturbations, ::testing::Values("Bullet", "MuJoCo"));
+
+TEST(Perturbations, OnlyPhysicsBackendsOfferPhysicalOnes) {
+  EXPECT_THROW(make_env("Upkie-Mock-Pendulum", {{"push_force", "10"}}), std::invalid_argument);
+  // Observation noise and action lag are wrappers: every backend has them.
+  EXPECT_NO_THROW(make_env("Upkie-Mock-Pendulum", {{"observation_noise", "0.1"}}));
+}
+
+TEST(Perturbations, TaskOptionsDropRandomisationAndOptionsTheTargetLacks) {
+  const EnvOptions trained = {{"frequency", "200"},       {"observe_pitch", "true"},
+                              {"init_rand_pitch", "0.1"}, {"push_force", "20"},
+                              {"observation_noise", "0.01"}, {"fall_pitch", "0.8"}};
+  const EnvOptions kept =
+      task_options("Upkie-MuJoCo-ServosTask", trained, "Upkie-Bullet-ServosTask");
+  const EnvOptions expected = {
+      {"frequency", "200"}, {"observe_pitch", "true"}, {"fall_pitch", "0.8"}};
+  EXPECT_EQ(kept, expected);
+  // A pendulum has no observe_pitch: it is left out, not an error.
+  const EnvOptions pendulum = task_options("Upkie-MuJoCo-ServosTask", trained, "Upkie-Mock-Pendulum");
+  const EnvOptions pendulum_expected = {{"frequency", "200"}, {"fall_pitch", "0.8"}};
+  EXPECT_EQ(pendulum, pendulum_expected);
+}
+
+TEST(ActionLag, RejectsNonFiniteActionsAtOnceNamingThem) {
+  ActionLagSettings settings;
+  settings.delay_steps = 5;
+  ActionLag env(make_env("Upkie-Mock-Pendulum"), settings);
+  std::vector<float> observation(4);
+  env.reset(0, observation);
+  std::vector<float> action = {std::nanf("")};
+  try {
+    env.step(action, observation);
+    FAIL() << "a NaN action passed";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("ground_velocity"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace upkie_rl
