@@ -114,3 +114,33 @@ TEST(TrainingConfig, ValidateNamesTheInconsistentKey) {
 
 }  // namespace
 }  // namespace upkie_rl
+
+namespace upkie_rl {
+namespace {
+
+TEST(TrainingConfig, CurriculumRampsTheRandomisationScale) {
+  TrainingConfig config = parse_training_config("env:\n  curriculum_steps: 1000\n");
+  EXPECT_EQ(config.curriculum_steps, 1000);
+  EXPECT_EQ(config.randomization_scale(0), 0.0);
+  EXPECT_EQ(config.randomization_scale(250), 0.25);
+  EXPECT_EQ(config.randomization_scale(1000), 1.0);
+  EXPECT_EQ(config.randomization_scale(5000), 1.0);
+  config.curriculum_steps = 0;
+  EXPECT_EQ(config.randomization_scale(0), 1.0);  // no curriculum: full from the start
+  EXPECT_NE(to_yaml(parse_training_config("env:\n  curriculum_steps: 7\n")).find("curriculum_steps: 7"),
+            std::string::npos);
+  config.curriculum_steps = -1;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+}
+
+TEST(TrainingConfig, RobustAndServosBalanceFilesAreValid) {
+  for (const char* name : {"pendulum_robust.yaml", "servos_balance.yaml"}) {
+    const TrainingConfig config =
+        load_training_config(std::string(UPKIE_RL_SOURCE_DIR) + "/configs/" + name);
+    EXPECT_NO_THROW(config.validate()) << name;
+    EXPECT_FALSE(config.env_options.empty()) << name;
+  }
+}
+
+}  // namespace
+}  // namespace upkie_rl
