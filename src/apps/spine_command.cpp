@@ -99,7 +99,13 @@ void run_spine(const SpineOptions& options) {
     InterruptHandlers handlers;
     SpineServer server(
         simulation, config, [&simulation] { simulation.step_braked(); },
-        [&simulation](const ServoGains& gains) { simulation.set_servo_gains(gains); });
+        [&simulation, starts = std::uint64_t{0}](const SpineStartSettings& settings) mutable {
+          simulation.set_servo_gains(settings.servo_gains);
+          PhysicsVariation variation = simulation.variation();
+          variation.imu = settings.imu_uncertainty;
+          variation.noise_seed = starts++;  // each episode its own, reproducible, noise
+          simulation.set_variation(variation);
+        });
     if (real_time) {
       spdlog::info("spine {}: {}, real time, {} Hz, one {} ms physics step per cycle",
                    options.shm_name, options.backend, options.spine_frequency,

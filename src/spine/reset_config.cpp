@@ -34,11 +34,12 @@ class ConfigPacker {
   msgpack::packer<msgpack::sbuffer> packer_;
 };
 
-/// Reads an array of `size` finite numbers at config key `path`.
-void read_array(const Dictionary& reset, std::string_view key, double* out, std::size_t size) {
-  if (!reset.has(key)) return;
-  const std::string path = "bullet.reset." + std::string(key);
-  const Dictionary& value = reset.at(key);
+/// Reads an array of `size` finite numbers at key `key` of the map at `prefix`.
+void read_array(const Dictionary& map, std::string_view key, double* out, std::size_t size,
+                std::string_view prefix = "bullet.reset.") {
+  if (!map.has(key)) return;
+  const std::string path = std::string(prefix) + std::string(key);
+  const Dictionary& value = map.at(key);
   if (value.is_map() || value.kind() == Dictionary::Kind::kBool ||
       value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat ||
       value.kind() == Dictionary::Kind::kString || value.as_array().size() != size) {
@@ -148,6 +149,29 @@ ServoGains servo_gains_from_config(const Dictionary& config, const ServoGains& d
     *gain = value.as_number();
   }
   return gains;
+}
+
+ImuUncertainty imu_uncertainty_from_config(const Dictionary& config) {
+  ImuUncertainty uncertainty;
+  if (!config.has("bullet") || !config.at("bullet").has("imu_uncertainty")) return uncertainty;
+  constexpr std::string_view kPrefix = "bullet.imu_uncertainty.";
+  const Dictionary& imu = config.at("bullet").at("imu_uncertainty");
+  if (!imu.is_map()) throw SpineError("spine configuration 'bullet.imu_uncertainty' is not a map");
+  read_array(imu, "accelerometer_bias", uncertainty.accelerometer_bias.data(), 3, kPrefix);
+  read_array(imu, "gyroscope_bias", uncertainty.gyroscope_bias.data(), 3, kPrefix);
+  for (auto [key, deviation] : {std::pair{"accelerometer_noise", &uncertainty.accelerometer_noise},
+                                std::pair{"gyroscope_noise", &uncertainty.gyroscope_noise}}) {
+    if (!imu.has(key)) continue;
+    const Dictionary& value = imu.at(key);
+    const bool is_number =
+        value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat;
+    if (!is_number || !std::isfinite(value.as_number()) || value.as_number() < 0.0) {
+      throw SpineError("spine configuration '" + std::string(kPrefix) + key +
+                       "' must be a finite non-negative number");
+    }
+    *deviation = value.as_number();
+  }
+  return uncertainty;
 }
 
 }  // namespace upkie_rl

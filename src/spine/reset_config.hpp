@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <msgpack.hpp>
 
+#include "sim/imu_uncertainty.hpp"
 #include "sim/reset_state.hpp"
 #include "sim/servo_law.hpp"
 #include "spine/dictionary.hpp"
@@ -41,5 +42,18 @@ ResetState reset_state_from_config(const Dictionary& config);
 /// every Start).
 /// @throws SpineError naming the key that is not a finite non-negative number.
 ServoGains servo_gains_from_config(const Dictionary& config, const ServoGains& defaults);
+
+/// The IMU uncertainty in a spine configuration: bullet.imu_uncertainty.{accelerometer_bias
+/// [3], accelerometer_noise, gyroscope_bias [3], gyroscope_noise} (the public Bullet
+/// spine's), each absent key zero.
+/// @throws SpineError naming the key with a wrong type or length, a non-finite value or a
+///         negative deviation.
+ImuUncertainty imu_uncertainty_from_config(const Dictionary& config);
+
+/// What a simulation spine takes from each Start configuration.
+struct SpineStartSettings {
+  ServoGains servo_gains;
+  ImuUncertainty imu_uncertainty;
+};
 
 }  // namespace upkie_rl

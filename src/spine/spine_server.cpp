@@ -24,11 +24,11 @@ constexpr auto kIdleSleep = std::chrono::microseconds(50);
 }  // namespace
 
 SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config,
-                         BrakeStep brake_step, GainsSetter set_servo_gains)
+                         BrakeStep brake_step, SettingsSetter set_settings)
     : simulation_(simulation),
       config_(config),
       brake_step_(std::move(brake_step)),
-      set_servo_gains_(std::move(set_servo_gains)),
+      set_settings_(std::move(set_settings)),
       memory_(SharedMemory::create(config.shm_name, config.shm_size)),
       machine_(config.nb_stop_cycles),
       unpacker_(memory_.max_payload_size()),
@@ -106,7 +106,9 @@ void SpineServer::reset_from_payload() {
   configuration_.clear();
   configuration_.update(unpacker_.unpack(memory_.payload()));
   const ResetState state = reset_state_from_config(configuration_);
-  const ServoGains gains = servo_gains_from_config(configuration_, config_.default_servo_gains);
+  const SpineStartSettings settings{
+      servo_gains_from_config(configuration_, config_.default_servo_gains),
+      imu_uncertainty_from_config(configuration_)};
 
   // The action is reset to the defaults, which also fixes every field's type to float.
   action_dictionary_.clear();
@@ -114,7 +116,7 @@ void SpineServer::reset_from_payload() {
   write_servo_action_msgpack(action_, buffer_);
   action_dictionary_.update(unpacker_.unpack({buffer_.data(), buffer_.size()}));
 
-  if (set_servo_gains_) set_servo_gains_(gains);
+  if (set_settings_) set_settings_(settings);
   simulation_.reset(state);
   simulation_ready_ = true;
 }

@@ -14,6 +14,7 @@
 #include "sim/simulation.hpp"
 #include "spine/dictionary.hpp"
 #include "spine/payload_unpacker.hpp"
+#include "spine/reset_config.hpp"
 #include "spine/shared_memory.hpp"
 #include "spine/spine_state_machine.hpp"
 
@@ -54,21 +55,22 @@ class SpineServer {
   /// Steps the simulation once with every joint braked (e.g. BulletSimulation's
   /// step_braked(), which brakes beyond the servo effort clamp).
   using BrakeStep = std::function<void()>;
-  /// Gives the simulation the servo gains of a Start configuration (e.g. BulletSimulation's
-  /// set_servo_gains()).
-  using GainsSetter = std::function<void(const ServoGains&)>;
+  /// Gives the simulation what a Start configuration sets besides the reset state: servo
+  /// gains and IMU uncertainty (PhysicsSimulation::set_servo_gains and set_variation).
+  using SettingsSetter = std::function<void(const SpineStartSettings&)>;
 
   /// @param simulation Backend served; must outlive the server.
   /// @param brake_step How stopped joints are stepped in real-time mode; when empty, the
   ///        simulation steps with a stop command per joint (position NaN, velocity 0,
   ///        kd_scale brake_kd_scale, maximum_torque brake_maximum_torque), which the
   ///        simulation's servo law clamps to the joint effort.
-  /// @param set_servo_gains Called at each Start with bullet.torque_control's kp and kd
-  ///        (or SpineServerConfig::default_servo_gains); when empty, the gains of the
-  ///        simulation stay as they are and those of the configuration are ignored.
+  /// @param set_settings Called at each Start, before the reset, with bullet.torque_control's
+  ///        kp and kd (or SpineServerConfig::default_servo_gains) and
+  ///        bullet.imu_uncertainty (zero when absent); when empty, the configuration's are
+  ///        ignored.
   /// @throws SpineError when the shared memory cannot be created.
   SpineServer(Simulation& simulation, const SpineServerConfig& config, BrakeStep brake_step = {},
-              GainsSetter set_servo_gains = {});
+              SettingsSetter set_settings = {});
 
   /// Runs one cycle (no waiting).
   void cycle();
@@ -107,7 +109,7 @@ class SpineServer {
   Simulation& simulation_;
   SpineServerConfig config_;
   BrakeStep brake_step_;
-  GainsSetter set_servo_gains_;
+  SettingsSetter set_settings_;
   SharedMemory memory_;
   SpineStateMachine machine_;
   PayloadUnpacker unpacker_;

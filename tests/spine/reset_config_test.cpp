@@ -144,3 +144,45 @@ TEST(ResetConfig, BadServoGainsAreNamed) {
 
 }  // namespace
 }  // namespace upkie_rl
+
+namespace upkie_rl {
+namespace {
+
+TEST(ImuUncertaintyFromConfig, ReadsThePublicSpineKeysAndRefusesBadOnes) {
+  EXPECT_TRUE(imu_uncertainty_from_config(Dictionary{}).is_zero());
+  testing::MessageBuilder message;
+  message.map(1).key("bullet").map(1).key("imu_uncertainty").map(4);
+  message.key("accelerometer_bias").array(3).real(0.1).real(-0.2).real(0.3);
+  message.key("accelerometer_noise").real(0.05);
+  message.key("gyroscope_bias").array(3).real(0.01).real(0.02).real(-0.03);
+  message.key("gyroscope_noise").real(0.001);
+  Dictionary config;
+  config.update(message.object().get());
+  const ImuUncertainty imu = imu_uncertainty_from_config(config);
+  EXPECT_TRUE(imu.accelerometer_bias.isApprox(Eigen::Vector3d(0.1, -0.2, 0.3)));
+  EXPECT_TRUE(imu.gyroscope_bias.isApprox(Eigen::Vector3d(0.01, 0.02, -0.03)));
+  EXPECT_DOUBLE_EQ(imu.accelerometer_noise, 0.05);
+  EXPECT_DOUBLE_EQ(imu.gyroscope_noise, 0.001);
+
+  testing::MessageBuilder negative;
+  negative.map(1).key("bullet").map(1).key("imu_uncertainty").map(1).key("gyroscope_noise");
+  negative.real(-1.0);
+  Dictionary bad;
+  bad.update(negative.object().get());
+  try {
+    imu_uncertainty_from_config(bad);
+    FAIL() << "a negative deviation passed";
+  } catch (const SpineError& error) {
+    EXPECT_NE(std::string(error.what()).find("bullet.imu_uncertainty.gyroscope_noise"),
+              std::string::npos);
+  }
+  testing::MessageBuilder short_bias;
+  short_bias.map(1).key("bullet").map(1).key("imu_uncertainty").map(1).key("gyroscope_bias");
+  short_bias.array(2).real(0.0).real(0.0);
+  Dictionary bad_bias;
+  bad_bias.update(short_bias.object().get());
+  EXPECT_THROW(imu_uncertainty_from_config(bad_bias), SpineError);
+}
+
+}  // namespace
+}  // namespace upkie_rl

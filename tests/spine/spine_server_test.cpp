@@ -205,14 +205,18 @@ TEST(SpineServer, BrakeStepReplacesStopCommands) {
   EXPECT_EQ(server.state(), SpineState::kOver);
 }
 
-TEST(SpineServer, EachStartGivesTheSimulationItsServoGains) {
+TEST(SpineServer, EachStartGivesTheSimulationItsServoGainsAndImuUncertainty) {
   FakeSimulation simulation;
   SpineServerConfig config;
   config.shm_name = testing::unique_shm_name("gains");
   config.default_servo_gains = ServoGains{20.0, 1.0};
   std::vector<ServoGains> received;
+  std::vector<ImuUncertainty> imu_received;
   SpineServer server(simulation, config, {},
-                     [&received](const ServoGains& gains) { received.push_back(gains); });
+                     [&received, &imu_received](const SpineStartSettings& settings) {
+                       received.push_back(settings.servo_gains);
+                       imu_received.push_back(settings.imu_uncertainty);
+                     });
   SharedMemory agent = SharedMemory::open(config.shm_name);
   const auto start_with = [&](const std::string& payload) {
     agent.write_payload({payload.data(), payload.size()});
@@ -234,6 +238,13 @@ TEST(SpineServer, EachStartGivesTheSimulationItsServoGains) {
   EXPECT_DOUBLE_EQ(received[0].kd, 0.5);
   EXPECT_DOUBLE_EQ(received[1].kp, 20.0);
   EXPECT_DOUBLE_EQ(received[1].kd, 1.0);
+  EXPECT_TRUE(imu_received[1].is_zero());
+  MessageBuilder noisy;
+  noisy.map(1).key("bullet").map(1).key("imu_uncertainty").map(1).key("gyroscope_noise");
+  noisy.real(0.02);
+  start_with(noisy.bytes());
+  ASSERT_EQ(imu_received.size(), 3u);
+  EXPECT_DOUBLE_EQ(imu_received[2].gyroscope_noise, 0.02);
 
   // A negative gain is bad input: Shutdown, the simulation untouched.
   MessageBuilder negative;
@@ -244,7 +255,7 @@ TEST(SpineServer, EachStartGivesTheSimulationItsServoGains) {
   for (int i = 0; i < 7 && server.state() != SpineState::kShutdown; ++i) server.cycle();
   EXPECT_EQ(server.state(), SpineState::kShutdown);
   EXPECT_NE(server.error().find("torque_control.kp"), std::string::npos) << server.error();
-  EXPECT_EQ(received.size(), 2u);
+  EXPECT_EQ(received.size(), 3u);
 }
 
 TEST_F(SpineServerTest, StartWhileIdleIsIgnoredAndCleared) {
