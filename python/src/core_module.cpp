@@ -32,11 +32,13 @@ void bind_registry(py::module_& module) {
           option["min"] = info.min;
           option["max"] = info.max;
           option["choices"] = info.choices;
+          option["randomization"] = info.randomization;
           options.append(std::move(option));
         }
         return options;
       },
-      py::arg("env_id"), "The options an id accepts: name, type, help, default, bounds, choices.");
+      py::arg("env_id"), "The options an id accepts: name, type, help, default, bounds, choices, and whether "
+      "it is a randomisation (episode conditions) rather than a task option.");
 }
 
 }  // namespace upkie_rl::python

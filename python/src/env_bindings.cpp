@@ -54,6 +54,11 @@ class PyEnv {
                           result.truncated);
   }
 
+  void set_randomization_scale(double scale) {
+    const std::lock_guard lock(mutex_);
+    env_->set_randomization_scale(scale);
+  }
+
   py::object spine_observation() const {
     const std::lock_guard lock(mutex_);
     const Observation* full = env_->full_observation();
@@ -123,6 +128,9 @@ void bind_env(py::module_& module) {
            "The full observation dictionary of the last reset or step (upkie's "
            "info['spine_observation']), or None.")
       .def("neutral_action", &PyEnv::neutral_action)
+      .def("set_randomization_scale", &PyEnv::set_randomization_scale, py::arg("scale"),
+           "Multiplies every randomisation bound (initial state, perturbations, noise, lag, "
+           "pushes) by scale in [0, 1] from the next reset on (a curriculum).")
       .def("render", &PyEnv::render, py::arg("width") = 640, py::arg("height") = 480,
            "The robot drawn offscreen from the last state's ground truth: a (height, width, "
            "3) uint8 array.")

@@ -108,6 +108,11 @@ class UpkieEnv(gym.Env):
             return None
         return self._core.render(*self._render_size)
 
+    def set_randomization_scale(self, scale: float) -> None:
+        """Multiplies every randomisation bound (initial state, perturbations, noise, lag,
+        pushes) by ``scale`` in [0, 1] from the next reset on: a curriculum."""
+        self._core.set_randomization_scale(float(scale))
+
     def get_spine_observation(self) -> Optional[dict]:
         """The full observation dictionary of the last reset or step."""
         return self._core.spine_observation()

@@ -88,8 +88,9 @@ StepResult ActionLag::step(std::span<const float> action, std::span<float> obser
 }
 
 void ActionLag::set_randomization_scale(double scale) {
-  scale_ = scale;
+  check_randomization_scale(scale);
   env_->set_randomization_scale(scale);
+  scale_ = scale;
 }
 
 }  // namespace upkie_rl

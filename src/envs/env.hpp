@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <stdexcept>
+#include <string>
 
 #include "envs/box_space.hpp"
 #include "sim/observation.hpp"
@@ -19,6 +21,15 @@ struct StepResult {
   bool terminated = false;  ///< The task ended (fall, limits): no bootstrap.
   bool truncated = false;   ///< Time limit: the value of the last observation bootstraps.
 };
+
+/// Checks a randomisation scale (Env::set_randomization_scale).
+/// @throws std::invalid_argument unless it is in [0, 1].
+inline void check_randomization_scale(double scale) {
+  if (!(scale >= 0.0 && scale <= 1.0)) {
+    throw std::invalid_argument("randomization scale must be in [0, 1], got " +
+                                std::to_string(scale));
+  }
+}
 
 /// An environment stepped with a flat float action and giving a flat float observation.
 ///

@@ -38,8 +38,9 @@ StepResult ObservationNoise::step(std::span<const float> action, std::span<float
 }
 
 void ObservationNoise::set_randomization_scale(double scale) {
-  scale_ = scale;
+  check_randomization_scale(scale);
   env_->set_randomization_scale(scale);
+  scale_ = scale;
 }
 
 }  // namespace upkie_rl

@@ -86,10 +86,7 @@ const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
 }
 
 void ServosEnv::set_randomization_scale(double scale) {
-  if (!(scale >= 0.0 && scale <= 1.0)) {
-    throw std::invalid_argument("randomization scale must be in [0, 1], got " +
-                                std::to_string(scale));
-  }
+  check_randomization_scale(scale);
   randomization_scale_ = scale;
 }
 
