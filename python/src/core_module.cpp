@@ -37,7 +37,8 @@ void bind_registry(py::module_& module) {
         }
         return options;
       },
-      py::arg("env_id"), "The options an id accepts: name, type, help, default, bounds, choices, and whether "
+      py::arg("env_id"),
+      "The options an id accepts: name, type, help, default, bounds, choices, and whether "
       "it is a randomisation (episode conditions) rather than a task option.");
 }
 

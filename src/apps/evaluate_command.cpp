@@ -45,9 +45,9 @@ struct EvaluateOptions {
 /// One controller under evaluation.
 struct Contender {
   std::string label;
-  std::string model;  // path, or empty for a built-in controller
-  std::string spec;   // built-in controller, resolved (lqr designed)
-  EnvOptions options; // the environment's options for it, before the cell's
+  std::string model;   // path, or empty for a built-in controller
+  std::string spec;    // built-in controller, resolved (lqr designed)
+  EnvOptions options;  // the environment's options for it, before the cell's
 };
 
 struct CellResult {
@@ -84,7 +84,8 @@ std::vector<Contender> make_contenders(const EvaluateOptions& options, const Env
   }
   for (std::size_t i = 0; i < contenders.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
-      if (contenders[i].label == contenders[j].label) contenders[i].label += "_" + std::to_string(i);
+      if (contenders[i].label == contenders[j].label)
+        contenders[i].label += "_" + std::to_string(i);
     }
   }
   return contenders;
@@ -97,9 +98,9 @@ CellResult evaluate_cell(const EvaluateOptions& options, const Contender& conten
   EnvOptions env_options = contender.options;
   env_options.insert(env_options.end(), cell.begin(), cell.end());
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
-  std::unique_ptr<Controller> controller =
-      contender.model.empty() ? make_builtin_controller(contender.spec, *env)
-                              : make_policy_controller(contender.model, *env);
+  std::unique_ptr<Controller> controller = contender.model.empty()
+                                               ? make_builtin_controller(contender.spec, *env)
+                                               : make_policy_controller(contender.model, *env);
   std::vector<float> observation(env->observation_space().size());
   std::vector<float> action(env->action_space().size());
   CellResult result;
@@ -127,9 +128,9 @@ CellResult evaluate_cell(const EvaluateOptions& options, const Contender& conten
 }
 
 /// Evaluates every (contender, cell) pair on `threads` threads; results[c][k].
-std::vector<std::vector<CellResult>> evaluate_all(
-    const EvaluateOptions& options, const std::vector<Contender>& contenders,
-    const std::vector<EnvOptions>& cells) {
+std::vector<std::vector<CellResult>> evaluate_all(const EvaluateOptions& options,
+                                                  const std::vector<Contender>& contenders,
+                                                  const std::vector<EnvOptions>& cells) {
   std::vector<std::vector<CellResult>> results(contenders.size(),
                                                std::vector<CellResult>(cells.size()));
   const std::size_t tasks = contenders.size() * cells.size();
@@ -149,9 +150,8 @@ std::vector<std::vector<CellResult>> evaluate_all(
       }
     }
   };
-  const unsigned threads = options.threads > 0
-                               ? static_cast<unsigned>(options.threads)
-                               : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
+                                               : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> workers;
   for (unsigned t = 1; t < std::min<std::size_t>(threads, tasks); ++t) workers.emplace_back(work);
   work();
@@ -177,7 +177,8 @@ void print_table(std::ostream& out, const Contender& contender, const std::vecto
       axes.empty() ? "" : (axes.size() < 2 ? axes[0].name : axes[0].name + " \\ " + axes[1].name);
   out << std::setw(14) << std::left << corner << std::right;
   for (std::size_t c = 0; c < columns; ++c) {
-    out << std::setw(kWidth) << (axes.size() < 2 ? std::string("") : format_value(axes[1].values[c]));
+    out << std::setw(kWidth)
+        << (axes.size() < 2 ? std::string("") : format_value(axes[1].values[c]));
   }
   out << '\n';
   int total = 0;
@@ -193,12 +194,13 @@ void print_table(std::ostream& out, const Contender& contender, const std::vecto
     }
     out << '\n';
   }
-  out << "overall " << percent(total, episodes * static_cast<int>(results.size())) << " ("
-      << total << "/" << episodes * results.size() << " episodes), mean return " << std::fixed
+  out << "overall " << percent(total, episodes * static_cast<int>(results.size())) << " (" << total
+      << "/" << episodes * results.size() << " episodes), mean return " << std::fixed
       << std::setprecision(1) << mean_return << std::defaultfloat << "\n\n";
 }
 
-nlohmann::json summary_json(const EvaluateOptions& options, const std::vector<Contender>& contenders,
+nlohmann::json summary_json(const EvaluateOptions& options,
+                            const std::vector<Contender>& contenders,
                             const std::vector<GridAxis>& axes,
                             const std::vector<std::vector<std::size_t>>& cells,
                             const std::vector<std::vector<CellResult>>& results) {
@@ -207,7 +209,8 @@ nlohmann::json summary_json(const EvaluateOptions& options, const std::vector<Co
                             {"seed", options.seed},
                             {"max_steps", options.max_steps}};
   summary["axes"] = nlohmann::json::array();
-  for (const GridAxis& axis : axes) summary["axes"].push_back({{"name", axis.name}, {"values", axis.values}});
+  for (const GridAxis& axis : axes)
+    summary["axes"].push_back({{"name", axis.name}, {"values", axis.values}});
   summary["controllers"] = nlohmann::json::array();
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     nlohmann::json entry = {{"label", contenders[c].label}};
@@ -220,14 +223,16 @@ nlohmann::json summary_json(const EvaluateOptions& options, const std::vector<Co
     int successes = 0;
     for (std::size_t k = 0; k < cells.size(); ++k) {
       nlohmann::json values = nlohmann::json::object();
-      for (std::size_t a = 0; a < axes.size(); ++a) values[axes[a].name] = axes[a].values[cells[k][a]];
+      for (std::size_t a = 0; a < axes.size(); ++a)
+        values[axes[a].name] = axes[a].values[cells[k][a]];
       const CellResult& cell = results[c][k];
       successes += cell.successes;
-      entry["cells"].push_back({{"values", values},
-                                {"successes", cell.successes},
-                                {"success_rate", static_cast<double>(cell.successes) / options.episodes},
-                                {"mean_return", cell.mean_return},
-                                {"mean_length", cell.mean_length}});
+      entry["cells"].push_back(
+          {{"values", values},
+           {"successes", cell.successes},
+           {"success_rate", static_cast<double>(cell.successes) / options.episodes},
+           {"mean_return", cell.mean_return},
+           {"mean_length", cell.mean_length}});
     }
     entry["successes"] = successes;
     entry["success_rate"] =
@@ -272,7 +277,8 @@ void write_outputs(const std::filesystem::path& directory, const std::string& ta
     } else {
       figure.y_values.push_back("");
     }
-    for (const CellResult& cell : results[c]) figure.values.push_back(100.0 * cell.successes / episodes);
+    for (const CellResult& cell : results[c])
+      figure.values.push_back(100.0 * cell.successes / episodes);
     figures.push_back(std::move(figure));
   }
   draw_heat_maps(figures);
@@ -304,8 +310,8 @@ void run_evaluate(const EvaluateOptions& options) {
   std::cout << table.str();
   const nlohmann::json summary = summary_json(options, contenders, axes, cells, results);
   if (!options.output.empty()) {
-    write_outputs(options.output, table.str(), summary, contenders, axes, results,
-                  options.episodes, options.env_id);
+    write_outputs(options.output, table.str(), summary, contenders, axes, results, options.episodes,
+                  options.env_id);
   }
   if (options.json) std::cout << summary.dump() << std::endl;
 }

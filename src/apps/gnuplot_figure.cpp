@@ -48,7 +48,6 @@ void run_gnuplot(const std::string& gnuplot, const std::string& text) {
   }
 }
 
-
 }  // namespace
 
 std::string find_gnuplot() {
@@ -118,8 +117,7 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
     script << "set title " << quoted(figure.title) << '\n';
     script << "set xlabel " << quoted(figure.x_label) << '\n';
     script << "set ylabel " << quoted(figure.y_label) << '\n';
-    script << "set xrange [-0.5:" << columns - 0.5 << "]\nset yrange [-0.5:" << rows - 0.5
-           << "]\n";
+    script << "set xrange [-0.5:" << columns - 0.5 << "]\nset yrange [-0.5:" << rows - 0.5 << "]\n";
     script << "set xtics (";
     for (std::size_t c = 0; c < columns; ++c) {
       script << (c ? ", " : "") << quoted(figure.x_values[c]) << ' ' << c;

@@ -8,8 +8,8 @@
 
 #include "envs/builtin_controllers.hpp"
 #include "envs/controller.hpp"
-#include "envs/env_options.hpp"
 #include "envs/env.hpp"
+#include "envs/env_options.hpp"
 
 namespace upkie_rl::apps {
 

@@ -26,8 +26,8 @@ struct InitRandomization {
 
   /// These ranges multiplied by `scale` (a curriculum's ramp).
   InitRandomization scaled(double scale) const {
-    return {scale * roll,    scale * pitch,   scale * x,   scale * z,  scale * omega_x,
-            scale * omega_y, scale * v_x,     scale * v_y, scale * v_z};
+    return {scale * roll,    scale * pitch, scale * x,   scale * z,  scale * omega_x,
+            scale * omega_y, scale * v_x,   scale * v_y, scale * v_z};
   }
 
   /// Draws an initial state. Always consumes the same number of draws, so the sequence of

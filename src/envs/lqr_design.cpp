@@ -97,9 +97,8 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
   result.A(1, 1) = 1.0;
   result.B = solution.row(3).transpose();
   const Eigen::MatrixXd residual = regressors * solution - targets;
-  result.rms_error = (residual.colwise().squaredNorm() / static_cast<double>(samples))
-                         .cwiseSqrt()
-                         .transpose();
+  result.rms_error =
+      (residual.colwise().squaredNorm() / static_cast<double>(samples)).cwiseSqrt().transpose();
   result.samples = static_cast<int>(samples);
   return result;
 }

@@ -83,8 +83,7 @@ void PerturbationSettings::add_options(OptionTable& table) {
 void PerturbationSettings::validate() const {
   if (push.enabled() && push.force_min > push.force) {
     throw std::invalid_argument("push_force_min (" + std::to_string(push.force_min) +
-                                " N) is above push_force (" + std::to_string(push.force) +
-                                " N)");
+                                " N) is above push_force (" + std::to_string(push.force) + " N)");
   }
   if (push.enabled() && push.duration > push.interval) {
     throw std::invalid_argument("push_duration (" + std::to_string(push.duration) +

@@ -37,9 +37,9 @@ struct PushSettings {
 /// reset from the environment's seeded generator; "randomisation bounds" (everything but
 /// the fixed factors mass_scale and floor_friction) are multiplied by the curriculum scale.
 struct PerturbationSettings {
-  double mass_scale = 1.0;         ///< Fixed factor on every body's mass and inertia.
-  double inertia_variation = 0.0;  ///< ε: each body's mass and inertia × (1 + U(-ε, ε)).
-  double joint_friction = 0.0;     ///< Each joint's kinetic friction in U(0, it) [N.m].
+  double mass_scale = 1.0;                ///< Fixed factor on every body's mass and inertia.
+  double inertia_variation = 0.0;         ///< ε: each body's mass and inertia × (1 + U(-ε, ε)).
+  double joint_friction = 0.0;            ///< Each joint's kinetic friction in U(0, it) [N.m].
   double torque_control_noise = 0.0;      ///< Std of the noise on applied torques [N.m].
   double torque_measurement_noise = 0.0;  ///< Std of the noise on observed torques [N.m].
   double imu_accelerometer_bias = 0.0;    ///< Each bias component in U(-it, it) [m/s^2].

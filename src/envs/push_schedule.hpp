@@ -28,11 +28,11 @@ class PushSchedule {
   PushSettings settings_;
   double scale_ = 1.0;
   std::mt19937_64 generator_{0};
-  int window_ = -1;                   ///< Window of the push drawn last.
-  double push_start_ = 0.0;           ///< [s]
-  double magnitude_ = 0.0;            ///< [N]
-  double angle_ = 0.0;                ///< Direction relative to the heading [rad].
-  bool started_ = false;              ///< Whether the drawn push has begun.
+  int window_ = -1;                                  ///< Window of the push drawn last.
+  double push_start_ = 0.0;                          ///< [s]
+  double magnitude_ = 0.0;                           ///< [N]
+  double angle_ = 0.0;                               ///< Direction relative to the heading [rad].
+  bool started_ = false;                             ///< Whether the drawn push has begun.
   Eigen::Vector3d force_ = Eigen::Vector3d::Zero();  ///< Of the push under way.
 };
 

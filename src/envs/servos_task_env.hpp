@@ -37,15 +37,17 @@ struct ServosTaskConfig {
 };
 
 /// Action u in [-1, 1]^6, one per joint in the standard order. Wheels: velocity =
-/// u·max_wheel_velocity (the velocity limit by default), position NaN, gains (wheel_kp_scale, wheel_kd_scale). Legs: position
-/// = leg_action_scale·u mapped linearly onto [lower, upper], velocity 0, gains (leg_kp_scale, leg_kd_scale).
-/// Feedforward torque 0 and maximum torque = effort for all.
+/// u·max_wheel_velocity (the velocity limit by default), position NaN, gains (wheel_kp_scale,
+/// wheel_kd_scale). Legs: position = leg_action_scale·u mapped linearly onto [lower, upper],
+/// velocity 0, gains (leg_kp_scale, leg_kd_scale). Feedforward torque 0 and maximum torque = effort
+/// for all.
 ///
 /// Observation: (position [rad], velocity [rad/s]) of each joint, 12 components, then
 /// `base.pitch` and `base.pitch_rate` with observe_pitch.
 ///
 /// Reward (seed eq. 22) on θ, θ̇, ṗ from the full observation and the action magnitude
-/// |a| (ServosTaskConfig::ActionMagnitude); terminations as the pendulum. The 300-step truncation is the TimeLimit the registry adds.
+/// |a| (ServosTaskConfig::ActionMagnitude); terminations as the pendulum. The 300-step truncation
+/// is the TimeLimit the registry adds.
 class ServosTaskEnv final : public ServosWrapperEnv {
  public:
   ServosTaskEnv(std::unique_ptr<ServosEnv> servos, const ServosTaskConfig& config = {});

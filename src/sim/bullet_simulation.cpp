@@ -144,9 +144,10 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
   const RigidBody& root = bodies.front();
   const int num_links = static_cast<int>(bodies.size()) - 1;
   const double root_scale = mass_scale(tree, 0, variation);
-  bullet.multibody = std::make_unique<btMultiBody>(
-      num_links, root_scale * root.mass, to_bullet(Eigen::Vector3d(root_scale * root.principal_inertia)),
-      /*fixedBase=*/false, /*canSleep=*/false);
+  bullet.multibody =
+      std::make_unique<btMultiBody>(num_links, root_scale * root.mass,
+                                    to_bullet(Eigen::Vector3d(root_scale * root.principal_inertia)),
+                                    /*fixedBase=*/false, /*canSleep=*/false);
   btMultiBody& multibody = *bullet.multibody;
   bullet.base_com_in_base = root.principal_frame;
 
@@ -173,9 +174,8 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
                            parent_com_to_pivot, pivot_to_com, true);
     } else {
       const Eigen::Vector3d axis_in_com = com.linear().transpose() * body.joint_axis;
-      multibody.setupRevolute(b - 1, mass, inertia, parent_link,
-                              rot_parent_to_this, to_bullet(axis_in_com), parent_com_to_pivot,
-                              pivot_to_com, true);
+      multibody.setupRevolute(b - 1, mass, inertia, parent_link, rot_parent_to_this,
+                              to_bullet(axis_in_com), parent_com_to_pivot, pivot_to_com, true);
     }
   }
   multibody.finalizeMultiDof();
@@ -295,9 +295,9 @@ void BulletSimulation::step_physics(const ServoAction& action, bool braked) {
   btMultiBody& multibody = *world_->multibody;
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     const int link = world_->servo_link[servo];
-    multibody.addJointTorque(link, joint_torque(servo, action[servo], braked,
-                                                multibody.getJointPos(link),
-                                                multibody.getJointVel(link)));
+    multibody.addJointTorque(link,
+                             joint_torque(servo, action[servo], braked, multibody.getJointPos(link),
+                                          multibody.getJointVel(link)));
   }
   // The multibody's base is its centre of mass: the force acts there.
   if (!base_force().isZero(0.0)) multibody.addBaseForce(to_bullet(base_force()));

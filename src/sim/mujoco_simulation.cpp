@@ -50,8 +50,7 @@ void MujocoSimulation::apply_model_variation() {
     return body == index.root_body ? -1 : nominal->body_parentid[body];
   };
   for (int body = index.root_body; body < nominal->nbody; ++body) {
-    const double scale =
-        variation.mass_scale[mass_scale_index(body, index.servo_body, parent_of)];
+    const double scale = variation.mass_scale[mass_scale_index(body, index.servo_body, parent_of)];
     varied->body_mass[body] = scale * nominal->body_mass[body];
     for (int i = 0; i < 3; ++i) {
       varied->body_inertia[3 * body + i] = scale * nominal->body_inertia[3 * body + i];

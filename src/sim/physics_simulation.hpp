@@ -70,8 +70,8 @@ class PhysicsSimulation : public Simulation {
   /// Torque on joint `servo` in this physics step: the servo law of `command` (or the brake)
   /// at the measured state plus the episode's torque-control noise, which is what the
   /// servo applies and reports (recorded in applied_torques_), plus the joint's friction.
-  double joint_torque(std::size_t servo, const ServoCommand& command, bool braked,
-                      double position, double velocity);
+  double joint_torque(std::size_t servo, const ServoCommand& command, bool braked, double position,
+                      double velocity);
 
   /// One physics step with the servo law of `action` (or the brake), through joint_torque,
   /// and base_force() on the base.

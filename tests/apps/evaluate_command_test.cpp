@@ -76,8 +76,8 @@ TEST(EvaluateCommand, BadGridsAndMissingControllersAreNamed) {
 }
 
 TEST(EvaluateCommand, LqrIsDesignedOnceAndEvaluated) {
-  const auto result = run_cli(
-      "evaluate --env Upkie-MuJoCo-Pendulum --controller lqr --grid push=0 --episodes 2");
+  const auto result =
+      run_cli("evaluate --env Upkie-MuJoCo-Pendulum --controller lqr --grid push=0 --episodes 2");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("lqr: linear:"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("overall 100% (2/2 episodes)"), std::string::npos) << result.output;

@@ -43,8 +43,9 @@ TEST(DiscreteLqr, UnstabilisablePairIsRefused) {
   EXPECT_THROW(
       discrete_lqr_gain(A, B, Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Ones(1, 1)),
       std::invalid_argument);
-  EXPECT_THROW(discrete_lqr_gain(A, B, Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Ones(1, 1)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      discrete_lqr_gain(A, B, Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Ones(1, 1)),
+      std::invalid_argument);
 }
 
 class LqrOnEngine : public ::testing::TestWithParam<const char*> {};
@@ -61,8 +62,7 @@ TEST_P(LqrOnEngine, IdentifiedModelIsAnInvertedPendulum) {
 
 TEST_P(LqrOnEngine, DesignedLawBalancesTenSeconds) {
   const std::string id = std::string("Upkie-") + GetParam() + "-Pendulum";
-  const std::string spec =
-      resolve_controller_spec("lqr", [&id] { return make_env(id); });
+  const std::string spec = resolve_controller_spec("lqr", [&id] { return make_env(id); });
   ASSERT_EQ(spec.rfind("linear:", 0), 0u) << spec;
   auto env = make_env(id, {{"max_episode_steps", "2000"}, {"init_rand_pitch", "0.1"}});
   auto controller = make_builtin_controller(spec, *env);

@@ -52,21 +52,33 @@ Trace pd_trace(const std::string& id, const EnvOptions& options, std::uint64_t s
   return run(*env, seed, steps, pd);
 }
 
-const EnvOptions kEverythingOff = {
-    {"mass_scale", "1"},          {"inertia_variation", "0"},     {"joint_friction", "0"},
-    {"torque_control_noise", "0"}, {"torque_measurement_noise", "0"},
-    {"imu_accelerometer_bias", "0"}, {"imu_gyroscope_noise", "0"}, {"floor_friction", "1"},
-    {"floor_friction_variation", "0"}, {"push_force", "0"},      {"observation_noise", "0"},
-    {"action_lag_max", "0"},      {"action_delay", "0"}};
+const EnvOptions kEverythingOff = {{"mass_scale", "1"},
+                                   {"inertia_variation", "0"},
+                                   {"joint_friction", "0"},
+                                   {"torque_control_noise", "0"},
+                                   {"torque_measurement_noise", "0"},
+                                   {"imu_accelerometer_bias", "0"},
+                                   {"imu_gyroscope_noise", "0"},
+                                   {"floor_friction", "1"},
+                                   {"floor_friction_variation", "0"},
+                                   {"push_force", "0"},
+                                   {"observation_noise", "0"},
+                                   {"action_lag_max", "0"},
+                                   {"action_delay", "0"}};
 
-const EnvOptions kEverythingOn = {
-    {"inertia_variation", "0.2"},     {"joint_friction", "0.01"},
-    {"torque_control_noise", "0.05"}, {"torque_measurement_noise", "0.05"},
-    {"imu_accelerometer_bias", "0.1"}, {"imu_gyroscope_bias", "0.01"},
-    {"imu_gyroscope_noise", "0.01"},  {"floor_friction_variation", "0.3"},
-    {"push_force", "20"},             {"observation_noise", "0.01"},
-    {"action_lag_max", "0.03"},       {"action_delay", "1"},
-    {"init_rand_pitch", "0.1"}};
+const EnvOptions kEverythingOn = {{"inertia_variation", "0.2"},
+                                  {"joint_friction", "0.01"},
+                                  {"torque_control_noise", "0.05"},
+                                  {"torque_measurement_noise", "0.05"},
+                                  {"imu_accelerometer_bias", "0.1"},
+                                  {"imu_gyroscope_bias", "0.01"},
+                                  {"imu_gyroscope_noise", "0.01"},
+                                  {"floor_friction_variation", "0.3"},
+                                  {"push_force", "20"},
+                                  {"observation_noise", "0.01"},
+                                  {"action_lag_max", "0.03"},
+                                  {"action_delay", "1"},
+                                  {"init_rand_pitch", "0.1"}};
 
 class EnginePerturbations : public ::testing::TestWithParam<const char*> {
  protected:
@@ -103,8 +115,10 @@ TEST_P(EnginePerturbations, PushesMoveTheRobotInTheirDirection) {
   // One push of 30 N for 0.1 s starting between 0.25 and 0.35 s; compare the base at
   // 0.5 s with the unpushed episode (the PD law reacts, but not within 0.15 s).
   const auto displacement = [&](const char* direction) {
-    EnvOptions options = {{"push_force", "30"},    {"push_force_min", "30"},
-                          {"push_start", "0.25"},  {"push_interval", "0.2"},
+    EnvOptions options = {{"push_force", "30"},
+                          {"push_force_min", "30"},
+                          {"push_start", "0.25"},
+                          {"push_interval", "0.2"},
                           {"push_direction", direction}};
     const Trace pushed = pd_trace(id(), options, 3, 100);
     const Trace nominal = pd_trace(id(), {}, 3, 100);
@@ -205,8 +219,8 @@ TEST(Perturbations, OnlyPhysicsBackendsOfferPhysicalOnes) {
 }
 
 TEST(Perturbations, TaskOptionsDropRandomisationAndOptionsTheTargetLacks) {
-  const EnvOptions trained = {{"frequency", "200"},       {"observe_pitch", "true"},
-                              {"init_rand_pitch", "0.1"}, {"push_force", "20"},
+  const EnvOptions trained = {{"frequency", "200"},          {"observe_pitch", "true"},
+                              {"init_rand_pitch", "0.1"},    {"push_force", "20"},
                               {"observation_noise", "0.01"}, {"fall_pitch", "0.8"}};
   const EnvOptions kept =
       task_options("Upkie-MuJoCo-ServosTask", trained, "Upkie-Bullet-ServosTask");
@@ -214,7 +228,8 @@ TEST(Perturbations, TaskOptionsDropRandomisationAndOptionsTheTargetLacks) {
       {"frequency", "200"}, {"observe_pitch", "true"}, {"fall_pitch", "0.8"}};
   EXPECT_EQ(kept, expected);
   // A pendulum has no observe_pitch: it is left out, not an error.
-  const EnvOptions pendulum = task_options("Upkie-MuJoCo-ServosTask", trained, "Upkie-Mock-Pendulum");
+  const EnvOptions pendulum =
+      task_options("Upkie-MuJoCo-ServosTask", trained, "Upkie-Mock-Pendulum");
   const EnvOptions pendulum_expected = {{"frequency", "200"}, {"fall_pitch", "0.8"}};
   EXPECT_EQ(pendulum, pendulum_expected);
 }

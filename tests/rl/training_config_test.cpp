@@ -127,8 +127,9 @@ TEST(TrainingConfig, CurriculumRampsTheRandomisationScale) {
   EXPECT_EQ(config.randomization_scale(5000), 1.0);
   config.curriculum_steps = 0;
   EXPECT_EQ(config.randomization_scale(0), 1.0);  // no curriculum: full from the start
-  EXPECT_NE(to_yaml(parse_training_config("env:\n  curriculum_steps: 7\n")).find("curriculum_steps: 7"),
-            std::string::npos);
+  EXPECT_NE(
+      to_yaml(parse_training_config("env:\n  curriculum_steps: 7\n")).find("curriculum_steps: 7"),
+      std::string::npos);
   config.curriculum_steps = -1;
   EXPECT_THROW(config.validate(), std::invalid_argument);
 }
