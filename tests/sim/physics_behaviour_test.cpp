@@ -7,8 +7,7 @@
 #include <functional>
 #include <limits>
 
-#include "sim/bullet_simulation.hpp"
-#include "sim/mujoco_simulation.hpp"
+#include "sim/physics_backends.hpp"
 #include "sim/servo_actions.hpp"
 
 namespace upkie_rl {
@@ -29,17 +28,8 @@ struct Backend {
   double joint_limit_overshoot;
 };
 
-std::unique_ptr<PhysicsSimulation> make_bullet(const PhysicsConfig& physics) {
-  BulletConfig config;
-  static_cast<PhysicsConfig&>(config) = physics;
-  return std::make_unique<BulletSimulation>(model(), config);
-}
-
-std::unique_ptr<PhysicsSimulation> make_mujoco(const PhysicsConfig& physics) {
-  MujocoConfig config;
-  static_cast<PhysicsConfig&>(config) = physics;
-  return std::make_unique<MujocoSimulation>(model(), config);
-}
+using testing::make_bullet;
+using testing::make_mujoco;
 
 using testing::limp_action;
 using testing::pendulum_action;

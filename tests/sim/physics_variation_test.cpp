@@ -9,8 +9,7 @@
 #include <functional>
 #include <vector>
 
-#include "sim/bullet_simulation.hpp"
-#include "sim/mujoco_simulation.hpp"
+#include "sim/physics_backends.hpp"
 #include "sim/servo_actions.hpp"
 
 namespace upkie_rl {
@@ -28,17 +27,8 @@ struct Backend {
   std::function<std::unique_ptr<PhysicsSimulation>(const PhysicsConfig&)> make;
 };
 
-std::unique_ptr<PhysicsSimulation> make_bullet(const PhysicsConfig& physics) {
-  BulletConfig config;
-  static_cast<PhysicsConfig&>(config) = physics;
-  return std::make_unique<BulletSimulation>(model(), config);
-}
-
-std::unique_ptr<PhysicsSimulation> make_mujoco(const PhysicsConfig& physics) {
-  MujocoConfig config;
-  static_cast<PhysicsConfig&>(config) = physics;
-  return std::make_unique<MujocoSimulation>(model(), config);
-}
+using testing::make_bullet;
+using testing::make_mujoco;
 
 /// Observations of `steps` agent steps of the pendulum action at `ground_velocity`.
 std::vector<Observation> run(PhysicsSimulation& simulation, int steps,
