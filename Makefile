@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco sanitize sanitize-thread fuzz format tidy clean
+.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz format tidy clean
 
 all: build
 
@@ -60,6 +60,15 @@ train: build
 train-mujoco:
 	$(MAKE) train TRAIN_ENV=Upkie-MuJoCo-Pendulum TRAIN_SET="--set env.id=Upkie-MuJoCo-Pendulum" \
 	  RUN_DIR=runs/pendulum-mujoco-$(shell date +%Y%m%d-%H%M%S)
+
+# The robust pendulum (docs/robustness.md), then its success rates beside PD and LQR.
+train-robust:
+	$(MAKE) train TRAIN_CONFIG=configs/pendulum_robust.yaml TRAIN_ENV=Upkie-MuJoCo-Pendulum \
+	  RUN_DIR=runs/pendulum-robust-$(shell date +%Y%m%d-%H%M%S)
+	@run=$$(ls -td runs/pendulum-robust-* | head -n 1); model=$$(ls -t $$run/model_*.ckpt | head -n 1); \
+	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-MuJoCo-Pendulum --controller pd=linear:10,1,0,0.1 \
+	    --controller lqr --model robust=$$model --grid push=0:40:5,mass=0.7:1.3:0.1 \
+	    --episodes 10 --output $$run/robustness
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done
