@@ -270,15 +270,17 @@ void write_outputs(const std::filesystem::path& directory, const std::string& ta
     if (x_axis) {
       for (double value : x_axis->values) figure.x_values.push_back(format_value(value));
     } else {
-      figure.x_values.push_back("nominal");
+      figure.x_values.emplace_back("nominal");
     }
     if (y_axis) {
       for (double value : y_axis->values) figure.y_values.push_back(format_value(value));
     } else {
-      figure.y_values.push_back("");
+      figure.y_values.emplace_back();
     }
-    for (const CellResult& cell : results[c])
+    figure.values.reserve(results[c].size());
+    for (const CellResult& cell : results[c]) {
       figure.values.push_back(100.0 * cell.successes / episodes);
+    }
     figures.push_back(std::move(figure));
   }
   draw_heat_maps(figures);
@@ -293,6 +295,7 @@ void run_evaluate(const EvaluateOptions& options) {
   const std::vector<Contender> contenders = make_contenders(options, base);
   const std::vector<std::vector<std::size_t>> cells = grid_cells(axes);
   std::vector<EnvOptions> cell_env_options;
+  cell_env_options.reserve(cells.size());
   for (const auto& cell : cells) cell_env_options.push_back(cell_options(axes, cell));
   // Every cell's options are checked before any episode runs.
   for (const Contender& contender : contenders) {

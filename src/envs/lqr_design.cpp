@@ -103,30 +103,37 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
   return result;
 }
 
-Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                                  const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R) {
-  const Eigen::Index n = A.rows();
-  if (A.cols() != n || B.rows() != n || Q.rows() != n || Q.cols() != n || R.rows() != B.cols() ||
-      R.cols() != B.cols()) {
+Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& dynamics, const Eigen::MatrixXd& input,
+                                  const Eigen::MatrixXd& state_cost,
+                                  const Eigen::MatrixXd& input_cost) {
+  // The textbook names: x' = A x + B u, cost xᵀQx + uᵀRu, cost-to-go P, gain K.
+  const Eigen::MatrixXd& a = dynamics;
+  const Eigen::MatrixXd& b = input;
+  const Eigen::MatrixXd& q = state_cost;
+  const Eigen::MatrixXd& r = input_cost;
+  const Eigen::Index n = a.rows();
+  if (a.cols() != n || b.rows() != n || q.rows() != n || q.cols() != n || r.rows() != b.cols() ||
+      r.cols() != b.cols()) {
     throw std::invalid_argument("LQR: inconsistent matrix sizes");
   }
-  if (!A.allFinite() || !B.allFinite() || !Q.allFinite() || !R.allFinite()) {
+  if (!a.allFinite() || !b.allFinite() || !q.allFinite() || !r.allFinite()) {
     throw std::invalid_argument("LQR: non-finite matrix entries");
   }
-  if (R.llt().info() != Eigen::Success) throw std::invalid_argument("LQR: R is not positive");
+  if (r.llt().info() != Eigen::Success)
+    throw std::invalid_argument("LQR: R (input_cost) is not positive definite");
   constexpr int kMaxIterations = 100000;
   constexpr double kTolerance = 1e-11;
-  Eigen::MatrixXd P = Q;
-  Eigen::MatrixXd K;
+  Eigen::MatrixXd cost_to_go = q;
+  Eigen::MatrixXd gain;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-    K = (R + B.transpose() * P * B).ldlt().solve(B.transpose() * P * A);
-    Eigen::MatrixXd next = Q + A.transpose() * P * (A - B * K);
+    gain = (r + b.transpose() * cost_to_go * b).ldlt().solve(b.transpose() * cost_to_go * a);
+    Eigen::MatrixXd next = q + a.transpose() * cost_to_go * (a - b * gain);
     next = 0.5 * (next + next.transpose());
     if (!next.allFinite()) break;
-    const double change = (next - P).cwiseAbs().maxCoeff();
-    P = std::move(next);
-    if (change <= kTolerance * std::max(1.0, P.cwiseAbs().maxCoeff())) {
-      return (R + B.transpose() * P * B).ldlt().solve(B.transpose() * P * A);
+    const double change = (next - cost_to_go).cwiseAbs().maxCoeff();
+    cost_to_go = std::move(next);
+    if (change <= kTolerance * std::max(1.0, cost_to_go.cwiseAbs().maxCoeff())) {
+      return (r + b.transpose() * cost_to_go * b).ldlt().solve(b.transpose() * cost_to_go * a);
     }
   }
   throw std::invalid_argument(
@@ -135,17 +142,17 @@ Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& A, const Eigen::MatrixX
 
 std::array<float, 4> design_lqr_gains(Env& env, const LqrWeights& weights, std::uint64_t seed) {
   const BalanceLinearization model = identify_balance_dynamics(env, seed);
-  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+  Eigen::Matrix4d state_cost = Eigen::Matrix4d::Zero();
   for (int k = 0; k < 4; ++k) {
     if (!(weights.max_state[k] > 0.0)) throw std::invalid_argument("LQR: weights must be > 0");
-    Q(k, k) = 1.0 / (weights.max_state[k] * weights.max_state[k]);
+    state_cost(k, k) = 1.0 / (weights.max_state[k] * weights.max_state[k]);
   }
   if (!(weights.max_command > 0.0)) throw std::invalid_argument("LQR: weights must be > 0");
-  Eigen::MatrixXd R(1, 1);
-  R(0, 0) = 1.0 / (weights.max_command * weights.max_command);
-  const Eigen::MatrixXd K = discrete_lqr_gain(model.A, model.B, Q, R);
+  Eigen::MatrixXd input_cost(1, 1);
+  input_cost(0, 0) = 1.0 / (weights.max_command * weights.max_command);
+  const Eigen::MatrixXd gain = discrete_lqr_gain(model.A, model.B, state_cost, input_cost);
   std::array<float, 4> gains{};
-  for (int k = 0; k < 4; ++k) gains[k] = static_cast<float>(-K(0, k));
+  for (int k = 0; k < 4; ++k) gains[k] = static_cast<float>(-gain(0, k));
   return gains;
 }
 

@@ -35,11 +35,13 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
                                                double excitation = 0.5);
 
 /// The gain K of u = -K x minimising Σ xᵀQx + uᵀRu for x_{k+1} = A x + B u (discrete
-/// algebraic Riccati equation solved by fixed-point iteration).
+/// algebraic Riccati equation solved by fixed-point iteration), with A = dynamics,
+/// B = input, Q = state_cost, R = input_cost.
 /// @throws std::invalid_argument when the iteration does not converge (an uncontrollable
 ///         or unstabilisable pair) or the inputs are not finite and symmetric positive.
-Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                                  const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R);
+Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& dynamics, const Eigen::MatrixXd& input,
+                                  const Eigen::MatrixXd& state_cost,
+                                  const Eigen::MatrixXd& input_cost);
 
 /// Weights of the balance LQR, as Bryson's rule: the largest acceptable deviation of each
 /// state and of the command. Defaults: 0.1 rad, 1 m, 1 rad/s, 0.5 m/s, 1 m/s.
