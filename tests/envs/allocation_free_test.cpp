@@ -29,6 +29,36 @@ TEST(AllocationFree, EnvironmentStepsAllocateNothing) {
   }
 }
 
+TEST(AllocationFree, PerturbedStepsAllocateNothingEither) {
+  // Every perturbation on, pushes during the steps measured, resets excluded (a varied
+  // MuJoCo model is copied once, at the first reset).
+  const EnvOptions perturbed = {{"inertia_variation", "0.2"},
+                                {"joint_friction", "0.01"},
+                                {"torque_control_noise", "0.05"},
+                                {"torque_measurement_noise", "0.05"},
+                                {"imu_gyroscope_noise", "0.01"},
+                                {"imu_accelerometer_bias", "0.1"},
+                                {"floor_friction_variation", "0.2"},
+                                {"push_force", "10"},
+                                {"push_start", "0"},
+                                {"push_interval", "0.2"},
+                                {"observation_noise", "0.01"},
+                                {"action_lag_max", "0.03"},
+                                {"action_delay", "2"}};
+  for (const char* id :
+       {"Upkie-MuJoCo-Servos", "Upkie-MuJoCo-Pendulum", "Upkie-MuJoCo-ServosTask"}) {
+    auto env = make_env(id, perturbed);
+    std::vector<float> observation(env->observation_space().size());
+    std::vector<float> action(env->action_space().size());
+    env->neutral_action(action);
+    env->reset(0, observation);
+    env->step(action, observation);  // warm-up
+    const std::size_t before = testing::all_threads_allocations.load();
+    for (int step = 0; step < 100; ++step) env->step(action, observation);
+    EXPECT_EQ(testing::all_threads_allocations.load() - before, 0u) << id;
+  }
+}
+
 TEST(AllocationFree, CounterCounts) {
   const std::size_t before = testing::all_threads_allocations.load();
   auto* leak_check = new std::vector<int>(10);
