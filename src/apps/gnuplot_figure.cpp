@@ -96,6 +96,8 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
   std::ostringstream script;
   script << (has_cairo(gnuplot) ? "set terminal pngcairo size 900,600 font 'sans,11'\n"
                                 : "set terminal png truecolor size 900,600\n");
+  // Labels are file and controller names: underscores are not subscripts.
+  script << "set termoption noenhanced\n";
   script << "set palette defined (0 '#d73027', 50 '#fee08b', 100 '#1a9850')\n"
             "set cbrange [0:100]\nset cblabel 'success rate [%]'\nunset key\n";
   for (std::size_t f = 0; f < figures.size(); ++f) {
