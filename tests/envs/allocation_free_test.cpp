@@ -13,19 +13,24 @@
 namespace upkie_rl {
 namespace {
 
+/// Allocations during 100 steps of the neutral action, after a reset and a warm-up step.
+std::size_t allocations_in_100_steps(Env& env) {
+  std::vector<float> observation(env.observation_space().size());
+  std::vector<float> action(env.action_space().size());
+  env.neutral_action(action);
+  env.reset(0, observation);
+  env.step(action, observation);  // warm-up
+  const std::size_t before = testing::all_threads_allocations.load();
+  for (int step = 0; step < 100; ++step) env.step(action, observation);
+  return testing::all_threads_allocations.load() - before;
+}
+
 TEST(AllocationFree, EnvironmentStepsAllocateNothing) {
   for (const char* id : {"Upkie-Mock-Servos", "Upkie-Mock-Pendulum", "Upkie-Mock-Gyropod",
                          "Upkie-Mock-ServosTask", "Upkie-MuJoCo-Servos", "Upkie-MuJoCo-Pendulum",
                          "Upkie-MuJoCo-Gyropod", "Upkie-MuJoCo-ServosTask"}) {
     auto env = make_env(id);
-    std::vector<float> observation(env->observation_space().size());
-    std::vector<float> action(env->action_space().size());
-    env->neutral_action(action);
-    env->reset(0, observation);
-    env->step(action, observation);  // warm-up
-    const std::size_t before = testing::all_threads_allocations.load();
-    for (int step = 0; step < 100; ++step) env->step(action, observation);
-    EXPECT_EQ(testing::all_threads_allocations.load() - before, 0u) << id;
+    EXPECT_EQ(allocations_in_100_steps(*env), 0u) << id;
   }
 }
 
@@ -48,14 +53,7 @@ TEST(AllocationFree, PerturbedStepsAllocateNothingEither) {
   for (const char* id :
        {"Upkie-MuJoCo-Servos", "Upkie-MuJoCo-Pendulum", "Upkie-MuJoCo-ServosTask"}) {
     auto env = make_env(id, perturbed);
-    std::vector<float> observation(env->observation_space().size());
-    std::vector<float> action(env->action_space().size());
-    env->neutral_action(action);
-    env->reset(0, observation);
-    env->step(action, observation);  // warm-up
-    const std::size_t before = testing::all_threads_allocations.load();
-    for (int step = 0; step < 100; ++step) env->step(action, observation);
-    EXPECT_EQ(testing::all_threads_allocations.load() - before, 0u) << id;
+    EXPECT_EQ(allocations_in_100_steps(*env), 0u) << id;
   }
 }
 
