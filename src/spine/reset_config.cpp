@@ -55,6 +55,21 @@ void read_array(const Dictionary& map, std::string_view key, double* out, std::s
   }
 }
 
+/// Reads the finite non-negative number at key `key` of the map at `prefix` into `out`
+/// (unchanged when the key is absent).
+void read_non_negative(const Dictionary& map, std::string_view key, double& out,
+                       std::string_view prefix) {
+  if (!map.has(key)) return;
+  const Dictionary& value = map.at(key);
+  const bool is_number =
+      value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat;
+  if (!is_number || !std::isfinite(value.as_number()) || value.as_number() < 0.0) {
+    throw SpineError("spine configuration '" + std::string(prefix) + std::string(key) +
+                     "' must be a finite non-negative number");
+  }
+  out = value.as_number();
+}
+
 }  // namespace
 
 void write_start_config_msgpack(const ResetState& state, const SpineStartParameters& parameters,
@@ -137,17 +152,8 @@ ServoGains servo_gains_from_config(const Dictionary& config, const ServoGains& d
   if (!torque_control.is_map()) {
     throw SpineError("spine configuration 'bullet.torque_control' is not a map");
   }
-  for (auto [key, gain] : {std::pair{"kp", &gains.kp}, std::pair{"kd", &gains.kd}}) {
-    if (!torque_control.has(key)) continue;
-    const Dictionary& value = torque_control.at(key);
-    const bool is_number =
-        value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat;
-    if (!is_number || !is_valid_servo_gain(value.as_number())) {
-      throw SpineError("spine configuration 'bullet.torque_control." + std::string(key) +
-                       "' must be a finite non-negative number");
-    }
-    *gain = value.as_number();
-  }
+  read_non_negative(torque_control, "kp", gains.kp, "bullet.torque_control.");
+  read_non_negative(torque_control, "kd", gains.kd, "bullet.torque_control.");
   return gains;
 }
 
@@ -159,18 +165,8 @@ ImuUncertainty imu_uncertainty_from_config(const Dictionary& config) {
   if (!imu.is_map()) throw SpineError("spine configuration 'bullet.imu_uncertainty' is not a map");
   read_array(imu, "accelerometer_bias", uncertainty.accelerometer_bias.data(), 3, kPrefix);
   read_array(imu, "gyroscope_bias", uncertainty.gyroscope_bias.data(), 3, kPrefix);
-  for (auto [key, deviation] : {std::pair{"accelerometer_noise", &uncertainty.accelerometer_noise},
-                                std::pair{"gyroscope_noise", &uncertainty.gyroscope_noise}}) {
-    if (!imu.has(key)) continue;
-    const Dictionary& value = imu.at(key);
-    const bool is_number =
-        value.kind() == Dictionary::Kind::kInt || value.kind() == Dictionary::Kind::kFloat;
-    if (!is_number || !std::isfinite(value.as_number()) || value.as_number() < 0.0) {
-      throw SpineError("spine configuration '" + std::string(kPrefix) + key +
-                       "' must be a finite non-negative number");
-    }
-    *deviation = value.as_number();
-  }
+  read_non_negative(imu, "accelerometer_noise", uncertainty.accelerometer_noise, kPrefix);
+  read_non_negative(imu, "gyroscope_noise", uncertainty.gyroscope_noise, kPrefix);
   return uncertainty;
 }
 
