@@ -94,10 +94,8 @@ std::vector<Contender> make_contenders(const EvaluateOptions& options, const Env
 /// Runs the episodes of one cell: success = the episode was not terminated (it reached the
 /// time limit or max_steps).
 CellResult evaluate_cell(const EvaluateOptions& options, const Contender& contender,
-                         const EnvOptions& cell) {
-  EnvOptions env_options = contender.options;
-  env_options.insert(env_options.end(), cell.begin(), cell.end());
-  std::unique_ptr<Env> env = make_env(options.env_id, env_options);
+                         const EnvFactory& make_cell_env) {
+  std::unique_ptr<Env> env = make_cell_env();
   std::unique_ptr<Controller> controller = contender.model.empty()
                                                ? make_builtin_controller(contender.spec, *env)
                                                : make_policy_controller(contender.model, *env);
@@ -127,22 +125,24 @@ CellResult evaluate_cell(const EvaluateOptions& options, const Contender& conten
   return result;
 }
 
-/// Evaluates every (contender, cell) pair on `threads` threads; results[c][k].
-std::vector<std::vector<CellResult>> evaluate_all(const EvaluateOptions& options,
-                                                  const std::vector<Contender>& contenders,
-                                                  const std::vector<EnvOptions>& cells) {
+/// Evaluates every (contender, cell) pair on `threads` threads, cell k of contender c in the
+/// environments of factories[c][k]; results[c][k].
+std::vector<std::vector<CellResult>> evaluate_all(
+    const EvaluateOptions& options, const std::vector<Contender>& contenders,
+    const std::vector<std::vector<EnvFactory>>& factories) {
+  const std::size_t num_cells = factories.front().size();
   std::vector<std::vector<CellResult>> results(contenders.size(),
-                                               std::vector<CellResult>(cells.size()));
-  const std::size_t tasks = contenders.size() * cells.size();
+                                               std::vector<CellResult>(num_cells));
+  const std::size_t tasks = contenders.size() * num_cells;
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
   const auto work = [&] {
     for (std::size_t task = next++; task < tasks; task = next++) {
-      const std::size_t c = task / cells.size();
-      const std::size_t k = task % cells.size();
+      const std::size_t c = task / num_cells;
+      const std::size_t k = task % num_cells;
       try {
-        results[c][k] = evaluate_cell(options, contenders[c], cells[k]);
+        results[c][k] = evaluate_cell(options, contenders[c], factories[c][k]);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failure_mutex);
         if (!failure) failure = std::current_exception();
@@ -294,18 +294,18 @@ void run_evaluate(const EvaluateOptions& options) {
   if (!options.output.empty()) find_gnuplot();  // refuse at once, not after the work
   const std::vector<Contender> contenders = make_contenders(options, base);
   const std::vector<std::vector<std::size_t>> cells = grid_cells(axes);
-  std::vector<EnvOptions> cell_env_options;
-  cell_env_options.reserve(cells.size());
-  for (const auto& cell : cells) cell_env_options.push_back(cell_options(axes, cell));
-  // Every cell's options are checked before any episode runs.
-  for (const Contender& contender : contenders) {
-    for (const EnvOptions& cell : cell_env_options) {
-      EnvOptions all = contender.options;
-      all.insert(all.end(), cell.begin(), cell.end());
-      make_env_factory(options.env_id, all);
+  // Every cell's options are checked, by making its factory, before any episode runs.
+  std::vector<std::vector<EnvFactory>> factories(contenders.size());
+  for (std::size_t c = 0; c < contenders.size(); ++c) {
+    factories[c].reserve(cells.size());
+    for (const auto& cell : cells) {
+      EnvOptions all = contenders[c].options;
+      const EnvOptions cell_env_options = cell_options(axes, cell);
+      all.insert(all.end(), cell_env_options.begin(), cell_env_options.end());
+      factories[c].push_back(make_env_factory(options.env_id, all));
     }
   }
-  const auto results = evaluate_all(options, contenders, cell_env_options);
+  const auto results = evaluate_all(options, contenders, factories);
   std::ostringstream table;
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     print_table(table, contenders[c], axes, results[c], options.episodes);

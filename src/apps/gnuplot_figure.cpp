@@ -36,6 +36,13 @@ bool has_cairo(const std::string& gnuplot) {
   return output.find("pngcairo") != std::string::npos;
 }
 
+/// The PNG terminal of a figure of width x height pixels: pngcairo, or png without cairo.
+std::string terminal_line(const std::string& gnuplot, int width, int height) {
+  const std::string size = " size " + std::to_string(width) + "," + std::to_string(height);
+  return has_cairo(gnuplot) ? "set terminal pngcairo" + size + " font 'sans,11'\n"
+                            : "set terminal png truecolor" + size + "\n";
+}
+
 void run_gnuplot(const std::string& gnuplot, const std::string& text) {
   const std::string command = gnuplot + " 2>&1";
   FILE* pipe = popen(command.c_str(), "w");
@@ -66,8 +73,7 @@ std::string find_gnuplot() {
 void draw_trend_figures(const std::vector<TrendFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
   std::ostringstream script;
-  script << (has_cairo(gnuplot) ? "set terminal pngcairo size 900,540 font 'sans,11'\n"
-                                : "set terminal png truecolor size 900,540\n");
+  script << terminal_line(gnuplot, 900, 540);
   script << "set grid\nset key top right\nset datafile missing 'NaN'\nset format x '%.1s%c'\n";
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const TrendFigure& figure = figures[f];
@@ -94,8 +100,7 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
 void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
   std::ostringstream script;
-  script << (has_cairo(gnuplot) ? "set terminal pngcairo size 900,600 font 'sans,11'\n"
-                                : "set terminal png truecolor size 900,600\n");
+  script << terminal_line(gnuplot, 900, 600);
   // Labels are file and controller names: underscores are not subscripts.
   script << "set termoption noenhanced\n";
   script << "set palette defined (0 '#d73027', 50 '#fee08b', 100 '#1a9850')\n"
