@@ -13,7 +13,15 @@ DEBIAN_PACKAGES=(
   python3-dev pybind11-dev  # the upkie_rl Python extension module
   # offscreen rendering without display or GPU (EGL, Mesa's llvmpipe), videos (H.264, GIF)
   libegl-dev libegl-mesa0 libgl1-mesa-dri ffmpeg
+  # the browser viewer's tests: Debian's Chromium, driven by playwright-core (npm)
+  chromium
 )
+# Node.js and npm bundle the viewer page (web/viewer). Debian's packages only when the
+# machine has no node: a NodeSource or nvm node brings its own npm, which Debian's would
+# conflict with.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  DEBIAN_PACKAGES+=(nodejs npm)
+fi
 # Python packages as "module:requirement". They go to Debian's interpreter, whose
 # python3-torch SB3 needs (PyPI's torch is a multi-GB CUDA build). SB3 2.4.x is the last
 # release that accepts torch 1.13; it pins gymnasium < 1.1 and numpy < 2 (Debian's torch is
@@ -80,4 +88,15 @@ fi
 if [ "${#missing_no_deps[@]}" -gt 0 ]; then
   echo "install-deps: installing Python packages without dependencies: ${missing_no_deps[*]}"
   "$PYTHON" -m pip install "${pip_flags[@]}" --no-deps "${missing_no_deps[@]}"
+fi
+
+# The viewer's npm packages, exactly as package-lock.json says (CMake runs the same `npm ci`
+# when the lock file changes).
+viewer_dir="$(cd "$(dirname "$0")/.." && pwd)/web/viewer"
+if [ ! -f "$viewer_dir/node_modules/.package-lock.json" ] ||
+   [ "$viewer_dir/package-lock.json" -nt "$viewer_dir/node_modules/.package-lock.json" ]; then
+  echo "install-deps: installing the viewer's npm packages (npm ci)"
+  (cd "$viewer_dir" && npm ci --no-audit --no-fund --loglevel=error)
+else
+  echo "install-deps: viewer npm packages present"
 fi

@@ -18,6 +18,9 @@ void add_rollout_command(CLI::App& app);
 
 /// `upkie-rl evaluate`: success rates over a grid of perturbations (apps/evaluate_command.cpp).
 void add_evaluate_command(CLI::App& app);
+/// `upkie-rl view`: the 3-D viewer in the browser, replays and self-contained HTML
+/// (view_command.cpp).
+void add_view_command(CLI::App& app);
 /// `upkie-rl render`: a video of a recorded episode file (render_command.cpp).
 void add_render_command(CLI::App& app);
 /// `upkie-rl bench`: steps per second of a vector environment (bench_command.cpp).

@@ -7,6 +7,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "sim/base_observer.hpp"
+
 namespace upkie_rl::apps {
 
 EpisodeRecorder::EpisodeRecorder(const std::filesystem::path& path)
@@ -22,6 +24,7 @@ void EpisodeRecorder::write_header(const Env& env) {
   out_ << ",reward,terminated,truncated";
   for (const char* column : kGroundTruthColumns) out_ << ',' << column;
   for (const auto& joint : kServoNames) out_ << ',' << joint;
+  for (const char* column : kMeasuredColumns) out_ << ',' << column;
   out_ << '\n';
   if (!out_) throw std::runtime_error("cannot write the record file " + path_.string());
   observation_.resize(env.observation_space().size());
@@ -39,6 +42,10 @@ void EpisodeRecorder::before_step(const Env& env, std::span<const float> observa
     for (std::size_t i = 0; i < kNumServos; ++i) ground_truth_[7 + i] = full->servo[i].position;
   } else {
     ground_truth_.fill(std::numeric_limits<double>::quiet_NaN());
+  }
+  if (full) {
+    ground_truth_[7 + kNumServos] = full->base_orientation.pitch;
+    ground_truth_[8 + kNumServos] = full->wheel_odometry.position;
   }
 }
 
@@ -87,7 +94,7 @@ double parse_number(const std::string& text, const std::filesystem::path& path, 
 
 }  // namespace
 
-std::vector<RecordedStep> read_recorded_steps(const std::filesystem::path& path) {
+RecordFile read_record_file(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read the record file " + path.string());
   std::string line;
@@ -95,56 +102,83 @@ std::vector<RecordedStep> read_recorded_steps(const std::filesystem::path& path)
   const std::vector<std::string> header = split_fields(line);
   std::unordered_map<std::string, std::size_t> column_of;
   for (std::size_t i = 0; i < header.size(); ++i) column_of[header[i]] = i;
-  std::vector<std::string> needed = {"episode", "t", "reward"};
+  std::vector<std::string> needed = {"episode", "step", "t", "reward"};
   needed.insert(needed.end(), kGroundTruthColumns.begin(), kGroundTruthColumns.end());
   for (const auto& joint : kServoNames) needed.emplace_back(joint);
+  const std::size_t num_required = needed.size();
+  const bool has_measured = column_of.count(kMeasuredColumns[0]) && column_of.count(kMeasuredColumns[1]);
+  if (has_measured) needed.insert(needed.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
+  RecordFile file;
+  const std::string action_prefix = "action.";
+  for (const std::string& column : header) {
+    if (column.rfind(action_prefix, 0) == 0) {
+      file.action_names.push_back(column.substr(action_prefix.size()));
+      needed.push_back(column);
+    }
+  }
   std::vector<std::size_t> index;
-  for (const std::string& name : needed) {
-    const auto found = column_of.find(name);
+  for (std::size_t i = 0; i < needed.size(); ++i) {
+    const auto found = column_of.find(needed[i]);
     if (found == column_of.end()) {
-      throw std::runtime_error(path.string() + ": no column \"" + name +
+      throw std::runtime_error(path.string() + ": no column \"" + needed[i] +
                                "\" in its header; is it a file of `upkie-rl rollout --record`?");
     }
     index.push_back(found->second);
   }
 
-  std::vector<RecordedStep> steps;
   long line_number = 1;
-  std::array<double, 3 + 7 + kNumServos> values{};
+  std::vector<double> values(needed.size());
   while (std::getline(in, line)) {
     ++line_number;
     if (line.empty()) continue;
+    const std::string at = path.string() + ":" + std::to_string(line_number) + ": ";
     const std::vector<std::string> fields = split_fields(line);
     if (fields.size() != header.size()) {
-      throw std::runtime_error(path.string() + ":" + std::to_string(line_number) + ": " +
-                               std::to_string(fields.size()) + " fields, the header has " +
+      throw std::runtime_error(at + std::to_string(fields.size()) + " fields, the header has " +
                                std::to_string(header.size()) + " (truncated file?)");
     }
     for (std::size_t i = 0; i < needed.size(); ++i) {
       values[i] = parse_number(fields[index[i]], path, line_number, needed[i]);
     }
-    if (std::isnan(values[3])) {
-      throw std::runtime_error(path.string() + ":" + std::to_string(line_number) +
-                               ": no ground truth (a spine run has no simulator pose to draw)");
+    if (std::isnan(values[4])) {
+      throw std::runtime_error(at + "no ground truth (a spine run has no simulator pose to draw)");
     }
     RecordedStep step;
+    if (!(values[0] >= 0.0 && values[0] < 1e9 && values[1] >= 0.0 && values[1] < 1e9) ||
+        values[0] != std::floor(values[0]) || values[1] != std::floor(values[1])) {
+      throw std::runtime_error(at + "episode and step must be whole numbers >= 0");
+    }
     step.episode = static_cast<int>(values[0]);
-    step.time = values[1];
-    step.reward = values[2];
-    step.pose.base_position = Eigen::Vector3d(values[3], values[4], values[5]);
-    step.pose.base_orientation = Eigen::Quaterniond(values[6], values[7], values[8], values[9]);
+    step.step = static_cast<int>(values[1]);
+    step.time = values[2];
+    step.reward = values[3];
+    step.pose.base_position = Eigen::Vector3d(values[4], values[5], values[6]);
+    step.pose.base_orientation = Eigen::Quaterniond(values[7], values[8], values[9], values[10]);
     for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-      step.pose.joint_angles[servo] = values[10 + servo];
+      step.pose.joint_angles[servo] = values[11 + servo];
     }
-    if (!step.pose.base_position.allFinite() || !step.pose.base_orientation.coeffs().allFinite() ||
+    if (!std::isfinite(step.time) || !step.pose.base_position.allFinite() ||
+        !step.pose.base_orientation.coeffs().allFinite() ||
         step.pose.base_orientation.norm() < 1e-9) {
-      throw std::runtime_error(path.string() + ":" + std::to_string(line_number) +
-                               ": the base pose is not finite");
+      throw std::runtime_error(at + "the time or the base pose is not finite");
     }
-    steps.push_back(step);
+    if (!file.steps.empty() && file.steps.back().episode == step.episode &&
+        step.time < file.steps.back().time) {
+      throw std::runtime_error(at + "time goes back within episode " + std::to_string(step.episode));
+    }
+    std::size_t next = num_required;
+    if (has_measured) {
+      step.pitch = values[next++];
+      step.ground_position = values[next++];
+    } else {
+      step.pitch = base_pitch(step.pose.base_orientation.normalized());
+      step.ground_position = step.pose.base_position.x();
+    }
+    step.action.assign(values.begin() + static_cast<std::ptrdiff_t>(next), values.end());
+    file.steps.push_back(std::move(step));
   }
-  if (steps.empty()) throw std::runtime_error(path.string() + " has a header but no rows");
-  return steps;
+  if (file.steps.empty()) throw std::runtime_error(path.string() + " has a header but no rows");
+  return file;
 }
 
 }  // namespace upkie_rl::apps

@@ -19,6 +19,7 @@ int run(int argc, char** argv) {
   upkie_rl::apps::add_rollout_command(app);
   upkie_rl::apps::add_evaluate_command(app);
   upkie_rl::apps::add_render_command(app);
+  upkie_rl::apps::add_view_command(app);
   upkie_rl::apps::add_bench_command(app);
   upkie_rl::apps::add_spine_command(app);
   upkie_rl::apps::add_train_command(app);

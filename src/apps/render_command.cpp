@@ -21,7 +21,7 @@ struct RenderOptions {
 void run_render(const RenderOptions& options) {
   if (options.video.path.empty()) throw std::invalid_argument("--video is required");
   VideoWriter::check_path(options.video.path);
-  const std::vector<RecordedStep> steps = read_recorded_steps(options.record_path);
+  const std::vector<RecordedStep> steps = read_record_file(options.record_path).steps;
   VideoRecorder video(RobotModel::default_model(), options.video);
   int episode = -1;
   double episode_return = 0.0;

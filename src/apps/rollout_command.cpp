@@ -12,6 +12,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/episode_recorder.hpp"
+#include "apps/live_view.hpp"
 #include "apps/policy_controller.hpp"
 #include "apps/video_recorder.hpp"
 #include "envs/builtin_controllers.hpp"
@@ -34,6 +35,7 @@ struct RolloutOptions {
   bool json = false;
   bool info = false;
   VideoOptions video;
+  LiveViewOptions view;
 };
 
 /// Offers the env's state to the video; the env must have a simulator's ground truth.
@@ -62,13 +64,26 @@ void run_rollout(const RolloutOptions& options) {
       std::cout << "environment options: " << format_env_options(env_options) << std::endl;
     }
   }
-  std::optional<EpisodeRecorder> recorder;  // Opened first: a bad path is refused at once.
-  if (!options.record_path.empty()) recorder.emplace(options.record_path);
-  std::optional<VideoRecorder> video;  // Checked first too: a bad path is refused at once.
-  if (!options.video.path.empty()) video.emplace(RobotModel::default_model(), options.video);
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
   std::unique_ptr<Controller> controller = make_rollout_controller(options, env_options, *env);
+  std::optional<LiveView> view;
+  if (options.view.enabled) {
+    if (env->full_observation() == nullptr) {
+      throw std::runtime_error("--view needs an environment with full observations");
+    }
+    view.emplace(options.view,
+                 options.env_id + ": " + (options.model.empty() ? options.controller : options.model),
+                 env->timestep(), env->action_space().names);
+  }
+  // Outputs last, once everything else is known to work: a failure above (a busy port, a
+  // bad controller) leaves an existing record file as it was. Bad paths are still refused
+  // before the first episode.
+  std::optional<EpisodeRecorder> recorder;
+  if (!options.record_path.empty()) recorder.emplace(options.record_path);
+  std::optional<VideoRecorder> video;
+  if (!options.video.path.empty()) video.emplace(RobotModel::default_model(), options.video);
   if (recorder) recorder->write_header(*env);
+  if (view) view->wait_for_browsers();
 
   std::vector<float> observation(env->observation_space().size());
   std::vector<float> action(env->action_space().size());
@@ -84,8 +99,10 @@ void run_rollout(const RolloutOptions& options) {
     }
     int length = 0;
     const char* ending = "max-steps";
+    if (view) view->start_episode(episode);
     while (length < options.max_steps) {
       controller->act(observation, action);
+      if (view) view->publish(*env->full_observation(), length, total, action);
       if (recorder) recorder->before_step(*env, observation);
       const StepResult result = env->step(action, observation);
       if (recorder) recorder->after_step(episode, length, action, result);
@@ -107,6 +124,7 @@ void run_rollout(const RolloutOptions& options) {
     }
   }
   if (recorder) recorder->close();
+  if (view) view->end("the rollout is over (" + std::to_string(options.episodes) + " episodes)");
   if (video) {
     video->close();
     std::cout << "video " << options.video.path.string() << ": " << video->frames() << " frames at "
@@ -162,6 +180,7 @@ void add_rollout_command(CLI::App& app) {
                       "Environment option key=value (repeatable)");
   command->add_option("--record", options->record_path, "Write one CSV row per step to this file");
   add_video_options(*command, options->video);
+  add_live_view_options(*command, options->view, true);
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
   command->add_flag("--info", options->info,
                     "Print each episode's last info (the full observation dictionary)");

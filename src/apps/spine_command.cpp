@@ -5,13 +5,13 @@
 
 #include <spdlog/spdlog.h>
 
-#include <atomic>
-#include <csignal>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "apps/commands.hpp"
+#include "apps/interrupt_handlers.hpp"
+#include "apps/live_view.hpp"
 #include "model/robot_model.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "sim/mujoco_simulation.hpp"
@@ -20,42 +20,39 @@
 namespace upkie_rl::apps {
 namespace {
 
-/// Set by SIGINT/SIGTERM. A signal handler can only reach a static; this one is written
-/// by the handler and read by the spine loop, nothing else.
-std::atomic<bool> interrupt_requested{false};
-
-extern "C" void request_interrupt(int) { interrupt_requested.store(true); }
-
-/// Installs the SIGINT/SIGTERM handlers for the lifetime of the object, then restores the
-/// previous ones.
-class InterruptHandlers {
- public:
-  InterruptHandlers() {
-    interrupt_requested.store(false);
-    struct sigaction action {};
-    action.sa_handler = &request_interrupt;
-    sigemptyset(&action.sa_mask);
-    ::sigaction(SIGINT, &action, &previous_int_);
-    ::sigaction(SIGTERM, &action, &previous_term_);
-  }
-  ~InterruptHandlers() {
-    ::sigaction(SIGINT, &previous_int_, nullptr);
-    ::sigaction(SIGTERM, &previous_term_, nullptr);
-  }
-  InterruptHandlers(const InterruptHandlers&) = delete;
-  InterruptHandlers& operator=(const InterruptHandlers&) = delete;
-
- private:
-  struct sigaction previous_int_ {};
-  struct sigaction previous_term_ {};
-};
-
 struct SpineOptions {
   std::string shm_name = "/upkie";
   double spine_frequency = 1000.0;
   int nb_substeps = 0;
   std::string backend = "bullet";
+  LiveViewOptions view;
 };
+
+/// Streams every simulation step of the spine to a LiveView: each Start begins an episode,
+/// and the "actions" plotted are the six servo velocity targets.
+std::unique_ptr<LiveView> view_spine(const SpineOptions& options, SpineServer& server,
+                                     double timestep) {
+  std::vector<std::string> action_names;
+  for (const auto& joint : kServoNames) action_names.push_back(std::string(joint) + ".velocity");
+  auto view = std::make_unique<LiveView>(
+      options.view, "spine " + options.shm_name + " (" + options.backend + ")", timestep,
+      action_names);
+  server.set_simulation_observer(
+      [viewer = view.get(), episode = -1, step = 0, velocities = std::array<float, kNumServos>{}](
+          const Observation& observation, const ServoAction& action, bool reset) mutable {
+        if (reset) {
+          viewer->start_episode(++episode);
+          step = 0;
+        } else {
+          ++step;
+        }
+        for (std::size_t i = 0; i < kNumServos; ++i) {
+          velocities[i] = static_cast<float>(action[i].velocity);
+        }
+        viewer->publish(observation, step, 0.0, velocities);
+      });
+  return view;
+}
 
 /// The physics backend the spine serves.
 std::unique_ptr<PhysicsSimulation> make_physics(const std::string& backend,
@@ -106,6 +103,11 @@ void run_spine(const SpineOptions& options) {
           variation.noise_seed = starts++;  // each episode its own, reproducible, noise
           simulation.set_variation(variation);
         });
+    std::unique_ptr<LiveView> view;
+    if (options.view.enabled) {
+      view = view_spine(options, server, physics.physics_timestep * physics.nb_substeps);
+      view->wait_for_browsers();
+    }
     if (real_time) {
       spdlog::info("spine {}: {}, real time, {} Hz, one {} ms physics step per cycle",
                    options.shm_name, options.backend, options.spine_frequency,
@@ -117,6 +119,7 @@ void run_spine(const SpineOptions& options) {
     }
     server.run(interrupt_requested);
     error = server.error();
+    if (view) view->end(error.empty() ? "the spine is over" : "the spine shut down: " + error);
     spdlog::info("spine {}: over after {} cycles, {} simulation steps", options.shm_name,
                  server.nb_cycles(), server.nb_simulation_steps());
   }  // the shared memory is unlinked here
@@ -146,6 +149,8 @@ void add_spine_command(CLI::App& app) {
   command->add_option("--backend", options->backend, "Physics engine")
       ->capture_default_str()
       ->check(CLI::IsMember({"bullet", "mujoco"}));
+  options->view.speed = 0.0;  // the spine keeps its own pace
+  add_live_view_options(*command, options->view, false);
   command->callback([options] { run_spine(*options); });
 }
 

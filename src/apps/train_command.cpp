@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/live_view.hpp"
 #include "apps/progress_bar.hpp"
+#include "envs/registry.hpp"
 #include "rl/training_config.hpp"
 #include "rl/training_run.hpp"
 
@@ -27,7 +29,38 @@ struct TrainOptions {
   CLI::Option* seed_option = nullptr;  // set when --seed was given
   std::string resume;
   bool quiet = false;
+  LiveViewOptions view;
+  int view_env = 0;
 };
+
+/// Streams environment `index` of the run to a LiveView, as fast as the run goes: frames the
+/// browsers cannot take are dropped, the training never waits.
+std::unique_ptr<LiveView> view_training(const TrainOptions& options, TrainingRun& run) {
+  const TrainingConfig& config = run.config();
+  const double timestep = make_env(config.env_id, config.env_options)->timestep();
+  auto view = std::make_unique<LiveView>(
+      options.view,
+      "training " + config.env_id + ": environment " + std::to_string(options.view_env) + " of " +
+          std::to_string(config.num_envs),
+      timestep, run.ppo().env().action_space().names);
+  LiveView* viewer = view.get();
+  run.observe_env(static_cast<std::size_t>(options.view_env),
+                  [viewer, episode = 0, step = 0, episode_return = 0.0](
+                      const Observation& observation, std::span<const float> action, double reward,
+                      bool episode_ended) mutable {
+                    if (episode_ended) {
+                      viewer->start_episode(++episode);
+                      step = 0;
+                      episode_return = 0.0;
+                    } else {
+                      ++step;
+                      episode_return += reward;
+                    }
+                    viewer->publish(observation, step, episode_return, action);
+                  });
+  viewer->wait_for_browsers();
+  return view;
+}
 
 std::filesystem::path default_run_dir(const std::string& config_path) {
   const std::time_t now = std::time(nullptr);
@@ -71,6 +104,8 @@ void run_train(const TrainOptions& options) {
             << with_thousands(config.ppo.total_timesteps) << " steps, run directory "
             << run->run_dir().string() << std::endl;
 
+  std::unique_ptr<LiveView> view;
+  if (options.view.enabled) view = view_training(options, *run);
   ProgressBar bar(config.ppo.total_timesteps);
   TrainingProgress last;
   const std::filesystem::path model = run->train([&](const TrainingProgress& progress) {
@@ -79,6 +114,7 @@ void run_train(const TrainOptions& options) {
       bar.update(progress.timesteps, progress.steps_per_second, progress.mean_return);
   });
   if (!options.quiet) bar.finish();
+  if (view) view->end("the training is over");
 
   const PpoTimings& timings = run->ppo().timings();
   const double accounted = timings.env_seconds + timings.inference_seconds + timings.update_seconds;
@@ -114,6 +150,11 @@ void add_train_command(CLI::App& app) {
   command->add_option("--resume", options->resume, "Continue a run from one of its checkpoints")
       ->check(CLI::ExistingFile);
   command->add_flag("--quiet", options->quiet, "No progress bar");
+  options->view.speed = 0.0;  // the training never waits for the viewer
+  add_live_view_options(*command, options->view, false);
+  command->add_option("--view-env", options->view_env, "Environment of the run --view shows")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   command->callback([options] { run_train(*options); });
 }
 

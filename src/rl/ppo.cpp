@@ -120,6 +120,7 @@ void Ppo::collect_rollout() {
     start = Clock::now();
     const VectorStep& step = env_.step(clipped_actions_);
     timings_.env_seconds += seconds_since(start);
+    if (step_observer_) step_observer_(step, clipped_actions_);
 
     start = Clock::now();
     float* rewards = buffer_.rewards(t);

@@ -3,9 +3,11 @@
 /// Proximal Policy Optimisation with SB3 semantics on a VectorEnv: rollout collection with
 /// truncation bootstrapping, GAE, and clipped updates of an ActorCritic with FlatAdam.
 
+#include <functional>
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,11 @@ class Ppo {
   /// computes advantages and returns. Requires reset_environments() first.
   void collect_rollout();
 
+  /// Called after every vector step of collect_rollout() with the step and the (clipped)
+  /// actions that made it; for viewers. Empty by default.
+  using StepObserver = std::function<void(const VectorStep& step, std::span<const float> actions)>;
+  void set_step_observer(StepObserver observer) { step_observer_ = std::move(observer); }
+
   /// Sets the learning rate from the progress so far and runs n_epochs over the rollout.
   PpoUpdateStatistics update();
 
@@ -99,6 +106,7 @@ class Ppo {
   PpoTimings timings_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_;
+  StepObserver step_observer_;
   bool started_ = false;
   std::int64_t num_timesteps_ = 0;
   std::int64_t iterations_ = 0;

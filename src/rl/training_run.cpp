@@ -112,6 +112,23 @@ void TrainingRun::make_learner() {
   ppo_ = std::make_unique<Ppo>(*env_, config_);
 }
 
+void TrainingRun::observe_env(std::size_t index, EnvObserver observer) {
+  if (index >= env_->num_envs()) {
+    throw std::invalid_argument("environment " + std::to_string(index) + " is not one of the " +
+                                std::to_string(env_->num_envs()) + " of the run");
+  }
+  const std::size_t action_size = env_->action_space().size();
+  ppo_->set_step_observer([this, index, action_size, observer = std::move(observer)](
+                              const VectorStep& step, std::span<const float> actions) {
+    const Observation* observation = env_->full_observation(index);
+    if (observation == nullptr) return;
+    const double reward =
+        normalize_ ? normalize_->raw_rewards()[index] : static_cast<double>(step.rewards[index]);
+    observer(*observation, actions.subspan(index * action_size, action_size), reward,
+             step.terminated[index] != 0 || step.truncated[index] != 0);
+  });
+}
+
 std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& checkpoint_path,
                                                  std::optional<std::filesystem::path> run_dir) {
   const Checkpoint checkpoint = load_checkpoint(checkpoint_path);

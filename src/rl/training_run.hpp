@@ -58,6 +58,16 @@ class TrainingRun {
   /// saves the final model. Returns the path of the final model checkpoint.
   std::filesystem::path train(const std::function<void(const TrainingProgress&)>& on_progress = {});
 
+  /// Calls `observer` after every vector step of train() with environment `index`'s full
+  /// observation (after an auto-reset, the new episode's first), the action it took, its raw
+  /// reward and whether its episode ended at that step; for viewers. The environment must
+  /// have full observations (simulated or spine ones).
+  /// @throws std::invalid_argument when `index` is not an environment of the run.
+  using EnvObserver = std::function<void(const Observation& observation,
+                                         std::span<const float> action, double reward,
+                                         bool episode_ended)>;
+  void observe_env(std::size_t index, EnvObserver observer);
+
   const TrainingConfig& config() const { return config_; }
   const std::filesystem::path& run_dir() const { return run_dir_; }
   const Ppo& ppo() const { return *ppo_; }

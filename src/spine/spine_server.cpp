@@ -91,6 +91,7 @@ void SpineServer::process_state() {
         if (brake_step_) {
           brake_step_();
           nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
+          if (observer_) observer_(simulation_.observation(), stop_action_, false);
         } else {
           advance(stop_action_);
         }
@@ -119,6 +120,7 @@ void SpineServer::reset_from_payload() {
   if (set_settings_) set_settings_(settings);
   simulation_.reset(state);
   simulation_ready_ = true;
+  if (observer_) observer_(simulation_.observation(), action_, true);
 }
 
 void SpineServer::step_from_payload() {
@@ -129,6 +131,7 @@ void SpineServer::step_from_payload() {
 void SpineServer::advance(const ServoAction& action) {
   simulation_.step(action);
   nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
+  if (observer_) observer_(simulation_.observation(), action, false);
 }
 
 void SpineServer::write_observation() {

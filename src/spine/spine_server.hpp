@@ -72,6 +72,13 @@ class SpineServer {
   SpineServer(Simulation& simulation, const SpineServerConfig& config, BrakeStep brake_step = {},
               SettingsSetter set_settings = {});
 
+  /// Called on the cycling thread after each reset and each simulation step with the
+  /// simulation's observation, the action applied (the defaults after a reset) and whether
+  /// it was a reset; for viewers. Must not throw.
+  using SimulationObserver =
+      std::function<void(const Observation& observation, const ServoAction& action, bool reset)>;
+  void set_simulation_observer(SimulationObserver observer) { observer_ = std::move(observer); }
+
   /// Runs one cycle (no waiting).
   void cycle();
 
@@ -110,6 +117,7 @@ class SpineServer {
   SpineServerConfig config_;
   BrakeStep brake_step_;
   SettingsSetter set_settings_;
+  SimulationObserver observer_;
   SharedMemory memory_;
   SpineStateMachine machine_;
   PayloadUnpacker unpacker_;

@@ -65,6 +65,9 @@ class VecNormalize final : public VectorEnv {
   const BoxSpace& observation_space() const override { return venv_->observation_space(); }
   const BoxSpace& action_space() const override { return venv_->action_space(); }
   std::span<const float> reset(std::optional<std::uint64_t> seed) override;
+  const Observation* full_observation(std::size_t i) const override {
+    return venv_->full_observation(i);
+  }
   const VectorStep& step(std::span<const float> actions) override;
   void set_randomization_scale(double scale) override { venv_->set_randomization_scale(scale); }
 

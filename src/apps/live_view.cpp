@@ -1,0 +1,88 @@
+#include "apps/live_view.hpp"
+
+#include <iostream>
+#include <thread>
+
+#include "model/robot_model.hpp"
+#include "view/view_frame.hpp"
+#include "view/view_session.hpp"
+
+namespace upkie_rl::apps {
+
+void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pacing) {
+  command.add_flag("--view", options.enabled,
+                   "Serve a live 3-D view in the browser (the URL is printed)");
+  command.add_option("--view-host", options.host, "Address the viewer listens on")
+      ->capture_default_str();
+  command.add_option("--view-port", options.port, "Port of the viewer; 0 picks a free one")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  command
+      .add_option("--view-wait", options.wait_clients,
+                  "Wait for this many browsers before the first step")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  if (pacing) {
+    command
+        .add_option("--view-speed", options.speed,
+                    "Simulated seconds per second while viewing; 0: as fast as possible")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+  }
+}
+
+LiveView::LiveView(const LiveViewOptions& options, const std::string& title, double timestep,
+                   const std::vector<std::string>& action_names)
+    : options_(options),
+      frames_(std::make_shared<FrameBroadcaster>(view_frame_size(action_names.size()))),
+      frame_(view_frame_size(action_names.size())) {
+  ViewSession session;
+  session.mode = ViewSession::Mode::kLive;
+  session.title = title;
+  session.timestep = timestep;
+  session.action_names = action_names;
+  ViewServerConfig config;
+  config.host = options.host;
+  config.port = options.port;
+  server_ = std::make_unique<ViewServer>(config, view_session_json(session, RobotModel::default_urdf_path().string()),
+                                         frames_);
+  std::cout << "viewer: " << server_->url() << std::endl;
+}
+
+LiveView::~LiveView() = default;
+
+void LiveView::wait_for_browsers() {
+  if (options_.wait_clients <= 0) return;
+  const auto count = static_cast<std::size_t>(options_.wait_clients);
+  std::cout << "viewer: waiting for " << count << " browser(s) at " << server_->url()
+            << std::endl;
+  while (!server_->wait_for_clients(count, std::chrono::seconds(3600))) {
+  }
+}
+
+void LiveView::start_episode(int episode) {
+  episode_ = episode;
+  first_frame_ = true;
+}
+
+void LiveView::publish(const Observation& observation, int step, double episode_return,
+                       std::span<const float> action) {
+  write_view_frame(observation, {episode_, step, episode_return}, action, frame_);
+  frames_->publish(frame_);
+  if (!(options_.speed > 0.0)) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (first_frame_) {
+    first_frame_ = false;
+    episode_start_ = now;
+    episode_start_time_ = observation.time;
+    return;
+  }
+  const auto due = episode_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                        std::chrono::duration<double>(
+                                            (observation.time - episode_start_time_) / options_.speed));
+  if (due > now) std::this_thread::sleep_until(due);
+}
+
+void LiveView::end(const std::string& reason) { server_->end(reason); }
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,75 @@
+#pragma once
+/// @file
+/// LiveView: the `--view` option of rollout, train and spine. It serves the viewer page and
+/// streams one robot's steps to the browsers connected to it, paced at the simulation's
+/// rate (or a multiple of it) when asked.
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sim/observation.hpp"
+#include "view/frame_broadcaster.hpp"
+#include "view/view_server.hpp"
+
+namespace upkie_rl::apps {
+
+/// Options of `--view`.
+struct LiveViewOptions {
+  bool enabled = false;
+  std::string host = "127.0.0.1";
+  int port = 7000;
+  /// Simulated seconds per wall-clock second; 0 runs as fast as the run goes (frames the
+  /// browsers cannot take are dropped).
+  double speed = 1.0;
+  /// Wait for this many browsers before the first step.
+  int wait_clients = 0;
+};
+
+/// Adds --view, --view-host, --view-port, --view-wait and (when `pacing`) --view-speed.
+void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pacing);
+
+/// A live viewer of one robot.
+class LiveView {
+ public:
+  /// Serves the page and prints its URL.
+  /// @param title Shown in the page.
+  /// @param timestep Simulated time between steps [s].
+  /// @param action_names Of the action space (the first kMaxViewActions are plotted).
+  /// @throws ViewError when the server cannot listen.
+  LiveView(const LiveViewOptions& options, const std::string& title, double timestep,
+           const std::vector<std::string>& action_names);
+  ~LiveView();
+
+  /// Waits for options.wait_clients browsers (returns at once without), printing why.
+  void wait_for_browsers();
+
+  /// Starts pacing a new episode.
+  void start_episode(int episode);
+
+  /// Publishes the frame of `observation` after `step` steps of the current episode, then
+  /// waits until the wall clock catches up with the simulation (when paced). `action` is the
+  /// one that led here (the neutral action at step 0). Allocates nothing.
+  void publish(const Observation& observation, int step, double episode_return,
+               std::span<const float> action);
+
+  /// Tells the browsers that the run is over and why.
+  void end(const std::string& reason);
+
+  const ViewServer& server() const { return *server_; }
+
+ private:
+  LiveViewOptions options_;
+  std::shared_ptr<FrameBroadcaster> frames_;
+  std::unique_ptr<ViewServer> server_;
+  std::vector<double> frame_;
+  int episode_ = 0;
+  std::chrono::steady_clock::time_point episode_start_;
+  double episode_start_time_ = 0.0;  ///< Simulated time of the episode's first frame.
+  bool first_frame_ = true;
+};
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,17 @@
+#pragma once
+/// @file
+/// The error of the view layer.
+
+#include <stdexcept>
+
+namespace upkie_rl {
+
+/// Raised when the viewer cannot start or its input is unusable: a busy or forbidden port,
+/// an address that is not an IPv4/IPv6 literal, a viewer page that was not built, a frame
+/// of the wrong size. The message names the cause.
+class ViewError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,397 @@
+#include "view/view_server.hpp"
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <cmath>
+#include <condition_variable>
+#include <list>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+#include <vector>
+
+#include "view/view_error.hpp"
+#include "view/view_session.hpp"
+#include "view/viewer_page.hpp"
+
+namespace upkie_rl {
+
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+using tcp = net::ip::tcp;
+using SteadyClock = std::chrono::steady_clock;
+
+void ViewServerConfig::validate() const {
+  if (port < 0 || port > 65535) {
+    throw ViewError("viewer port " + std::to_string(port) + " is not in [0, 65535]");
+  }
+  if (!(send_period > 0.0 && send_period <= 1.0)) {
+    throw ViewError("viewer send_period must be in (0, 1] s");
+  }
+  if (max_frames_per_message == 0) throw ViewError("viewer max_frames_per_message must be > 0");
+  if (!(write_timeout > 0.0)) throw ViewError("viewer write_timeout must be positive");
+  if (max_clients == 0) throw ViewError("viewer max_clients must be > 0");
+}
+
+namespace {
+
+/// Largest HTTP request or WebSocket message taken from a browser: the page sends nothing
+/// but its requests.
+constexpr std::size_t kMaxRequestBytes = 16 * 1024;
+constexpr auto kHttpTimeout = std::chrono::seconds(30);
+
+}  // namespace
+
+/// One browser's WebSocket: frames are written by the server's timer, one message at a
+/// time; a read loop notices when the browser goes away.
+struct ViewClient : std::enable_shared_from_this<ViewClient> {
+  explicit ViewClient(tcp::socket&& socket) : stream(std::move(socket)) {}
+
+  websocket::stream<beast::tcp_stream> stream;
+  beast::flat_buffer incoming;
+  std::vector<double> outgoing;  ///< Frames of the message being written (reused).
+  std::string text;              ///< The end message being written.
+  std::uint64_t last_frame = 0;  ///< Number of the last frame sent.
+  bool open = false;             ///< Handshake done, not yet closed.
+  bool writing = false;
+  bool end_sent = false;
+  bool awaits_end = false;  ///< Connected when end() was called, and not yet told.
+  SteadyClock::time_point write_started;
+};
+
+struct ViewServer::Impl {
+  Impl(const ViewServerConfig& config_in, std::string session_json_in,
+       std::shared_ptr<const FrameBroadcaster> frames_in)
+      : config(config_in),
+        session_json(std::move(session_json_in)),
+        page(served_viewer_page()),
+        frames(std::move(frames_in)),
+        acceptor(io),
+        timer(io) {}
+
+  ViewServerConfig config;
+  std::string session_json;
+  std::string page;
+  std::shared_ptr<const FrameBroadcaster> frames;
+  net::io_context io;
+  tcp::acceptor acceptor;
+  net::steady_timer timer;
+  std::thread thread;
+  std::string url;
+  int port = 0;
+
+  // Owned by the io thread.
+  std::list<std::shared_ptr<ViewClient>> clients;
+  std::string end_reason;
+  bool ended = false;
+
+  // Read from any thread.
+  std::atomic<std::size_t> num_clients{0};
+  std::atomic<std::uint64_t> clients_connected{0}, messages_sent{0}, frames_sent{0},
+      frames_skipped{0}, http_requests{0};
+  mutable std::mutex wait_mutex;
+  mutable std::condition_variable changed;
+  // Under wait_mutex: set when end() is carried out, with the number of browsers that were
+  // connected then and have neither had the end message nor gone away.
+  bool end_posted = false;
+  std::size_t awaiting_end = 0;
+
+  void listen();
+  void accept();
+  void read_request(std::shared_ptr<beast::tcp_stream> stream,
+                    std::shared_ptr<beast::flat_buffer> buffer);
+  void answer(std::shared_ptr<beast::tcp_stream> stream, std::shared_ptr<beast::flat_buffer> buffer,
+              const http::request<http::string_body>& request);
+  void upgrade(std::shared_ptr<beast::tcp_stream> stream,
+               http::request<http::string_body> request);
+  void read_messages(const std::shared_ptr<ViewClient>& client);
+  void drop(const std::shared_ptr<ViewClient>& client);
+  void tick();
+  void send(const std::shared_ptr<ViewClient>& client);
+  void notify();
+  /// Counts `client` out of those end() waits for.
+  void end_delivered(ViewClient& client);
+};
+
+void ViewServer::Impl::listen() {
+  beast::error_code error;
+  const net::ip::address address = net::ip::make_address(config.host, error);
+  if (error) throw ViewError("viewer host \"" + config.host + "\" is not an IP address");
+  const tcp::endpoint endpoint(address, static_cast<unsigned short>(config.port));
+  const std::string where = config.host + ":" + std::to_string(config.port);
+  acceptor.open(endpoint.protocol(), error);
+  if (!error) acceptor.set_option(net::socket_base::reuse_address(true), error);
+  if (!error) acceptor.bind(endpoint, error);
+  if (error == net::error::address_in_use) {
+    throw ViewError("the viewer cannot listen on " + where +
+                    ": the port is in use (another viewer?); choose another port, or 0 for any "
+                    "free one");
+  }
+  if (!error) acceptor.listen(net::socket_base::max_listen_connections, error);
+  if (error) throw ViewError("the viewer cannot listen on " + where + ": " + error.message());
+  port = acceptor.local_endpoint().port();
+  const std::string host = address.is_v6() ? "[" + config.host + "]" : config.host;
+  url = "http://" + host + ":" + std::to_string(port) + "/";
+}
+
+void ViewServer::Impl::accept() {
+  acceptor.async_accept([this](beast::error_code error, tcp::socket socket) {
+    if (error == net::error::operation_aborted) return;
+    if (!error) {
+      auto stream = std::make_shared<beast::tcp_stream>(std::move(socket));
+      read_request(stream, std::make_shared<beast::flat_buffer>());
+    }
+    accept();
+  });
+}
+
+void ViewServer::Impl::read_request(std::shared_ptr<beast::tcp_stream> stream,
+                                    std::shared_ptr<beast::flat_buffer> buffer) {
+  auto parser = std::make_shared<http::request_parser<http::string_body>>();
+  parser->header_limit(kMaxRequestBytes);
+  parser->body_limit(kMaxRequestBytes);
+  stream->expires_after(kHttpTimeout);
+  http::async_read(*stream, *buffer, *parser,
+                   [this, stream, buffer, parser](beast::error_code error, std::size_t) {
+                     if (error) return;  // closed, timed out or malformed: drop the connection
+                     ++http_requests;
+                     http::request<http::string_body> request = parser->release();
+                     if (websocket::is_upgrade(request)) {
+                       upgrade(stream, std::move(request));
+                     } else {
+                       answer(stream, buffer, request);
+                     }
+                   });
+}
+
+void ViewServer::Impl::answer(std::shared_ptr<beast::tcp_stream> stream,
+                              std::shared_ptr<beast::flat_buffer> buffer,
+                              const http::request<http::string_body>& request) {
+  auto response = std::make_shared<http::response<http::string_body>>();
+  response->version(request.version());
+  response->keep_alive(request.keep_alive());
+  response->set(http::field::server, "upkie-rl");
+  response->set(http::field::cache_control, "no-store");
+  const std::string_view target(request.target().data(), request.target().size());
+  const std::string_view path = target.substr(0, target.find('?'));
+  if (request.method() != http::verb::get && request.method() != http::verb::head) {
+    response->result(http::status::method_not_allowed);
+    response->set(http::field::content_type, "text/plain");
+    response->body() = "only GET and HEAD\n";
+  } else if (path == "/" || path == "/index.html") {
+    response->set(http::field::content_type, "text/html; charset=utf-8");
+    response->body() = page;
+  } else if (path == "/viewer.js") {
+    response->set(http::field::content_type, "text/javascript; charset=utf-8");
+    response->body() = std::string(viewer_script());
+  } else if (path == "/session.json") {
+    response->set(http::field::content_type, "application/json");
+    response->body() = session_json;
+  } else {
+    response->result(http::status::not_found);
+    response->set(http::field::content_type, "text/plain");
+    response->body() = "not found\n";
+  }
+  response->prepare_payload();
+  if (request.method() == http::verb::head) response->body().clear();
+  stream->expires_after(kHttpTimeout);
+  http::async_write(*stream, *response,
+                    [this, stream, buffer, response](beast::error_code error, std::size_t) {
+                      if (error || !response->keep_alive()) {
+                        beast::error_code ignored;
+                        stream->socket().shutdown(tcp::socket::shutdown_send, ignored);
+                        return;
+                      }
+                      read_request(stream, buffer);
+                    });
+}
+
+void ViewServer::Impl::upgrade(std::shared_ptr<beast::tcp_stream> stream,
+                               http::request<http::string_body> request) {
+  const std::string_view target(request.target().data(), request.target().size());
+  const bool frames_path = target.substr(0, target.find('?')) == kViewFramesPath;
+  if (!frames || !frames_path || clients.size() >= config.max_clients) {
+    // Not a frame stream here, or too many browsers: a plain HTTP refusal.
+    auto response = std::make_shared<http::response<http::string_body>>(
+        frames && frames_path ? http::status::service_unavailable : http::status::not_found,
+        request.version());
+    response->set(http::field::content_type, "text/plain");
+    response->body() = frames && frames_path ? "too many viewers\n" : "no frame stream here\n";
+    response->prepare_payload();
+    http::async_write(*stream, *response,
+                      [stream, response](beast::error_code, std::size_t) {
+                        beast::error_code ignored;
+                        stream->socket().shutdown(tcp::socket::shutdown_send, ignored);
+                      });
+    return;
+  }
+  stream->expires_never();  // the websocket stream keeps its own timeouts
+  auto client = std::make_shared<ViewClient>(stream->release_socket());
+  client->stream.set_option(
+      websocket::stream_base::timeout::suggested(beast::role_type::server));
+  client->stream.read_message_max(kMaxRequestBytes);
+  client->stream.binary(true);
+  // Start with what the ring still holds, so that the plots fill at once.
+  const std::uint64_t newest = frames->newest();
+  client->last_frame = newest > frames->capacity() ? newest - frames->capacity() : 0;
+  client->stream.async_accept(request, [this, client](beast::error_code error) {
+    if (error) return;
+    client->open = true;
+    clients.push_back(client);
+    ++clients_connected;
+    num_clients.store(clients.size());
+    notify();
+    read_messages(client);
+    send(client);
+  });
+}
+
+void ViewServer::Impl::read_messages(const std::shared_ptr<ViewClient>& client) {
+  client->stream.async_read(client->incoming, [this, client](beast::error_code error, std::size_t) {
+    if (error) {
+      drop(client);
+      return;
+    }
+    client->incoming.clear();  // the page sends nothing the server needs
+    read_messages(client);
+  });
+}
+
+void ViewServer::Impl::drop(const std::shared_ptr<ViewClient>& client) {
+  if (!client->open) return;
+  client->open = false;
+  beast::error_code ignored;
+  beast::get_lowest_layer(client->stream).socket().close(ignored);
+  clients.remove(client);
+  num_clients.store(clients.size());
+  if (client->awaits_end) end_delivered(*client);
+  notify();
+}
+
+void ViewServer::Impl::tick() {
+  const auto now = SteadyClock::now();
+  const auto timeout = std::chrono::duration<double>(config.write_timeout);
+  // Copy: send() and drop() may change the list.
+  const std::vector<std::shared_ptr<ViewClient>> current(clients.begin(), clients.end());
+  for (const std::shared_ptr<ViewClient>& client : current) {
+    if (client->writing) {
+      if (now - client->write_started > timeout) drop(client);
+      continue;
+    }
+    send(client);
+  }
+  timer.expires_after(std::chrono::duration_cast<SteadyClock::duration>(
+      std::chrono::duration<double>(config.send_period)));
+  timer.async_wait([this](beast::error_code error) {
+    if (!error) tick();
+  });
+}
+
+void ViewServer::Impl::send(const std::shared_ptr<ViewClient>& client) {
+  if (!client->open || client->writing) return;
+  client->outgoing.clear();
+  const FrameBroadcaster::Collected collected =
+      frames->collect(client->last_frame, config.max_frames_per_message, client->outgoing);
+  client->last_frame = collected.newest;
+  frames_skipped += collected.skipped;
+  const auto on_written = [this, client](beast::error_code error, std::size_t) {
+    client->writing = false;
+    if (error) {
+      drop(client);
+      return;
+    }
+    if (client->end_sent && client->awaits_end) end_delivered(*client);
+  };
+  if (!client->outgoing.empty()) {
+    const std::size_t count = client->outgoing.size() / frames->frame_size();
+    ++messages_sent;
+    frames_sent += count;
+    client->stream.binary(true);
+    client->writing = true;
+    client->write_started = SteadyClock::now();
+    client->stream.async_write(
+        net::buffer(client->outgoing.data(), client->outgoing.size() * sizeof(double)),
+        on_written);
+  } else if (ended && !client->end_sent) {
+    client->end_sent = true;
+    client->text = nlohmann::json{{"type", "end"}, {"reason", end_reason}}.dump();
+    client->stream.binary(false);
+    client->writing = true;
+    client->write_started = SteadyClock::now();
+    client->stream.async_write(net::buffer(client->text), on_written);
+  }
+}
+
+void ViewServer::Impl::end_delivered(ViewClient& client) {
+  client.awaits_end = false;
+  const std::lock_guard lock(wait_mutex);
+  if (awaiting_end > 0) --awaiting_end;
+  changed.notify_all();
+}
+
+void ViewServer::Impl::notify() {
+  const std::lock_guard lock(wait_mutex);
+  changed.notify_all();
+}
+
+ViewServer::ViewServer(const ViewServerConfig& config, std::string session_json,
+                       std::shared_ptr<const FrameBroadcaster> frames)
+    : impl_(std::make_unique<Impl>(config, std::move(session_json), std::move(frames))) {
+  config.validate();
+  impl_->listen();
+  impl_->accept();
+  if (impl_->frames) impl_->tick();
+  impl_->thread = std::thread([this] { impl_->io.run(); });
+}
+
+ViewServer::~ViewServer() {
+  impl_->io.stop();
+  if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+int ViewServer::port() const { return impl_->port; }
+
+std::string ViewServer::url() const { return impl_->url; }
+
+std::size_t ViewServer::num_clients() const { return impl_->num_clients.load(); }
+
+ViewServerStatistics ViewServer::statistics() const {
+  return {impl_->clients_connected.load(), impl_->messages_sent.load(), impl_->frames_sent.load(),
+          impl_->frames_skipped.load(), impl_->http_requests.load()};
+}
+
+bool ViewServer::wait_for_clients(std::size_t count, std::chrono::milliseconds timeout,
+                                  const std::atomic<bool>* interrupt) const {
+  const auto deadline = SteadyClock::now() + timeout;
+  std::unique_lock lock(impl_->wait_mutex);
+  while (impl_->num_clients.load() < count) {
+    if ((interrupt && interrupt->load()) || SteadyClock::now() >= deadline) return false;
+    // Short waits: the interrupt flag is set by a signal handler, which cannot notify.
+    impl_->changed.wait_for(lock, std::chrono::milliseconds(50));
+  }
+  return true;
+}
+
+void ViewServer::end(const std::string& reason, std::chrono::milliseconds timeout) {
+  if (!impl_->frames) return;
+  net::post(impl_->io, [impl = impl_.get(), reason] {
+    impl->end_reason = reason;
+    impl->ended = true;
+    for (const std::shared_ptr<ViewClient>& client : impl->clients) client->awaits_end = true;
+    const std::lock_guard lock(impl->wait_mutex);
+    impl->end_posted = true;
+    impl->awaiting_end = impl->clients.size();
+    impl->changed.notify_all();
+  });
+  // The end message follows the last frames at the next ticks.
+  std::unique_lock lock(impl_->wait_mutex);
+  impl_->changed.wait_for(lock, timeout,
+                          [this] { return impl_->end_posted && impl_->awaiting_end == 0; });
+}
+
+}  // namespace upkie_rl
