@@ -58,7 +58,7 @@ TEST(RolloutCommand, RecordsOneCsvRowPerStep) {
   EXPECT_EQ(header,
             "episode,step,t,theta,p,theta_dot,p_dot,action.ground_velocity,reward,terminated,"
             "truncated,base_x,base_y,base_z,base_qw,base_qx,base_qy,base_qz,left_hip,left_knee,"
-            "left_wheel,right_hip,right_knee,right_wheel");
+            "left_wheel,right_hip,right_knee,right_wheel,pitch,ground_position");
   int rows = 0;
   std::string line, last;
   while (std::getline(file, line)) {

@@ -1,0 +1,79 @@
+// Live frames from the server's WebSocket: binary messages of whole little-endian float64
+// frame rows (oldest first), text messages of JSON events. Reconnects every 2 s when closed.
+import { guard, reportError } from './errors.js';
+
+const RETRY_MS = 2000;
+
+export function createLiveSource(session, layout, { onFrames, onStatusChange }) {
+  const url = (window.location.protocol === 'https:' ? 'wss://' : 'ws://')
+    + window.location.host + session.websocket;
+  const state = {
+    connected: false,
+    framesReceived: 0,
+    framesPerSecond: 0,
+    endReason: null,
+    latest: null,  // {data, offset} of the newest frame row
+  };
+  let countAtLastTick = 0;
+
+  function status() {
+    if (state.endReason !== null) {
+      return [`ended: ${state.endReason}${state.connected ? '' : ' (disconnected)'}`, 'idle'];
+    }
+    if (!state.connected) return ['disconnected', 'bad'];
+    return [`live: ${state.framesPerSecond} frames/s`, 'ok'];
+  }
+
+  function onBinary(buffer) {
+    const rowBytes = layout.size * Float64Array.BYTES_PER_ELEMENT;
+    if (buffer.byteLength === 0 || buffer.byteLength % rowBytes !== 0) {
+      throw new Error(`frame message of ${buffer.byteLength} bytes is not whole rows of ${rowBytes}`);
+    }
+    const data = new Float64Array(buffer);
+    const count = data.length / layout.size;
+    state.framesReceived += count;
+    state.latest = { data, offset: (count - 1) * layout.size };
+    onFrames(data, count, state);
+  }
+
+  function onText(text) {
+    const message = JSON.parse(text);
+    if (message.type === 'end') {
+      state.endReason = String(message.reason ?? 'run ended');
+      onStatusChange(status(), state);
+    }
+  }
+
+  function connect() {
+    const socket = new WebSocket(url);
+    socket.binaryType = 'arraybuffer';
+    socket.onopen = guard('websocket open', () => {
+      state.connected = true;
+      state.endReason = null;  // a new connection streams a new run
+      onStatusChange(status(), state);
+    });
+    socket.onmessage = guard('websocket message', (event) => {
+      if (typeof event.data === 'string') onText(event.data);
+      else onBinary(event.data);
+    });
+    socket.onclose = guard('websocket close', () => {
+      state.connected = false;
+      onStatusChange(status(), state);
+      setTimeout(guard('websocket reconnect', connect), RETRY_MS);
+    });
+  }
+
+  setInterval(guard('frame rate', () => {
+    state.framesPerSecond = state.framesReceived - countAtLastTick;
+    countAtLastTick = state.framesReceived;
+    if (state.connected) onStatusChange(status(), state);
+  }), 1000);
+
+  try {
+    connect();
+  } catch (err) {
+    reportError(err, 'websocket');
+  }
+  onStatusChange(status(), state);
+  return state;
+}

@@ -1,0 +1,135 @@
+// Time plots (uPlot) of pitch, ground position and actions. Live: a sliding window over the
+// current episode. Replay: the whole episode with a marker at the time drawn.
+import uPlot from 'uplot';
+
+const LIVE_WINDOW = 10.0;  // seconds of the current episode kept in live plots
+const ACTION_COLORS = ['#e8590c', '#7048e8', '#d6336c', '#1098ad', '#5c940d', '#495057'];
+
+function chartSpecs(layout) {
+  const specs = [
+    { title: 'Pitch [rad]', series: [{ label: 'pitch', index: layout.index.pitch, stroke: '#1c7ed6' }] },
+    {
+      title: 'Ground position [m]',
+      series: [{ label: 'position', index: layout.index.ground_position, stroke: '#0ca678' }],
+    },
+  ];
+  if (layout.actions.length > 0) {
+    specs.push({
+      title: 'Actions',
+      series: layout.actions.map(([name, index], i) => ({
+        label: name, index, stroke: ACTION_COLORS[i % ACTION_COLORS.length],
+      })),
+    });
+  }
+  return specs;
+}
+
+const axis = (label) => ({
+  label,
+  labelSize: 18,
+  labelFont: '11px system-ui, sans-serif',
+  font: '11px system-ui, sans-serif',
+  stroke: '#495057',
+  grid: { stroke: '#e9ecef', width: 1 },
+  ticks: { stroke: '#ced4da', width: 1, size: 4 },
+});
+
+export function createPlots(panel, layout) {
+  const timeIndex = layout.index.time;
+  const specs = chartSpecs(layout);
+  const charts = specs.map((spec, chartIndex) => {
+    const wrapper = document.createElement('div');
+    wrapper.className = 'plot';
+    panel.append(wrapper);
+    const plot = new uPlot({
+      title: spec.title,
+      width: 300,
+      height: 150,
+      scales: { x: { time: false } },
+      cursor: { drag: { x: false, y: false } },
+      // Titles name single curves; only several actions need a legend.
+      legend: { show: spec.series.length > 1, live: false },
+      series: [
+        { label: 'time' },
+        ...spec.series.map(({ label, stroke }) => ({ label, stroke, width: 1.5 })),
+      ],
+      // The charts share their time axis: the last one names it.
+      axes: [axis(chartIndex === specs.length - 1 ? 'time [s]' : null), { ...axis(null), size: 52 }],
+    }, [[], ...spec.series.map(() => [])], wrapper);
+    const marker = document.createElement('div');
+    marker.className = 'plot-marker';
+    marker.hidden = true;
+    plot.over.append(marker);
+    return { spec, wrapper, plot, marker, columns: [[], ...spec.series.map(() => [])] };
+  });
+
+  // Fit each chart to its share of the panel: what uPlot draws outside its canvas (title,
+  // legend) does not depend on the canvas height.
+  function fit() {
+    for (const { wrapper, plot } of charts) {
+      const extra = plot.root.offsetHeight - plot.height;
+      const width = wrapper.clientWidth;
+      const height = Math.max(60, wrapper.clientHeight - extra);
+      if (width > 0 && (width !== plot.width || height !== plot.height)) {
+        plot.setSize({ width, height });
+      }
+    }
+  }
+  new ResizeObserver(fit).observe(panel);
+
+  let dirty = false;
+  let lastEpisode = null;
+  let lastStep = null;
+
+  /** Live: appends one frame row, starting over at a new episode. */
+  function append(data, offset) {
+    const episode = data[offset + layout.index.episode];
+    const step = data[offset + layout.index.step];
+    if (episode !== lastEpisode || step < lastStep) {
+      for (const chart of charts) chart.columns.forEach((column) => { column.length = 0; });
+    }
+    lastEpisode = episode;
+    lastStep = step;
+    for (const { spec, columns } of charts) {
+      columns[0].push(data[offset + timeIndex]);
+      spec.series.forEach(({ index }, i) => columns[i + 1].push(data[offset + index]));
+    }
+    dirty = true;
+  }
+
+  /** Live: redraws once per animation frame what append() brought, the last 10 s only. */
+  function flush() {
+    if (!dirty) return;
+    dirty = false;
+    for (const { plot, columns } of charts) {
+      const times = columns[0];
+      const first = times.findIndex((t) => t >= times[times.length - 1] - LIVE_WINDOW);
+      if (first > 0) columns.forEach((column) => column.splice(0, first));
+      plot.setData(columns);
+    }
+  }
+
+  /** Replay: shows the `count` frame rows of `data` (a whole episode). */
+  function showEpisode(data, count) {
+    for (const { spec, plot } of charts) {
+      const columns = [new Float64Array(count), ...spec.series.map(() => new Float64Array(count))];
+      for (let row = 0; row < count; row++) {
+        const offset = row * layout.size;
+        columns[0][row] = data[offset + timeIndex];
+        spec.series.forEach(({ index }, i) => { columns[i + 1][row] = data[offset + index]; });
+      }
+      plot.setData(columns);
+    }
+  }
+
+  /** Replay: the vertical marker at time `t`. */
+  function mark(t) {
+    for (const { plot, marker } of charts) {
+      const left = plot.valToPos(t, 'x');
+      marker.hidden = !Number.isFinite(left);
+      marker.style.transform = `translateX(${left}px)`;
+    }
+  }
+
+  return { append, flush, showEpisode, mark, fit };
+}
