@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/frame_client.hpp"
 #include "view/view_error.hpp"
 #include "view/viewer_page.hpp"
 
@@ -57,64 +58,6 @@ std::pair<int, std::string> request(int port, const std::string& target,
   return {static_cast<int>(parser.get().result_int()), parser.get().body()};
 }
 
-/// A WebSocket client of /frames with reads that give up after a timeout.
-class FrameClient {
- public:
-  explicit FrameClient(int port, int receive_buffer = 0) : ws_(io_) {
-    tcp::socket& socket = beast::get_lowest_layer(ws_).socket();
-    socket.open(tcp::v4());
-    if (receive_buffer > 0) socket.set_option(net::socket_base::receive_buffer_size(receive_buffer));
-    socket.connect(
-        tcp::endpoint(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)));
-    ws_.handshake("127.0.0.1", "/frames");
-  }
-
-  /// The next message, or nothing after `timeout`.
-  std::optional<std::string> read(std::chrono::milliseconds timeout = 5000ms) {
-    buffer_.clear();
-    bool done = false;
-    beast::error_code error;
-    ws_.async_read(buffer_, [&](beast::error_code e, std::size_t) {
-      error = e;
-      done = true;
-    });
-    io_.restart();
-    io_.run_for(timeout);
-    if (!done) {
-      beast::get_lowest_layer(ws_).cancel();
-      io_.restart();
-      io_.run();
-      return std::nullopt;
-    }
-    if (error) return std::nullopt;
-    binary_ = ws_.got_binary();
-    return beast::buffers_to_string(buffer_.data());
-  }
-
-  /// Reads until `count` frames have come (or a read times out); returns them.
-  std::vector<double> read_frames(std::size_t count) {
-    std::vector<double> frames;
-    while (frames.size() < count * kFrameSize) {
-      const std::optional<std::string> message = read();
-      if (!message) break;
-      if (!binary_) continue;
-      const std::size_t old = frames.size();
-      frames.resize(old + message->size() / sizeof(double));
-      std::memcpy(frames.data() + old, message->data(), message->size());
-    }
-    return frames;
-  }
-
-  bool binary() const { return binary_; }
-  void close_abruptly() { beast::get_lowest_layer(ws_).socket().close(); }
-
- private:
-  net::io_context io_;
-  websocket::stream<beast::tcp_stream> ws_;
-  beast::flat_buffer buffer_;
-  bool binary_ = false;
-};
-
 bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds timeout = 15000ms) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
@@ -145,10 +88,10 @@ TEST(ViewServer, ServesThePageItsScriptAndTheSession) {
 TEST(ViewServer, StreamsPublishedFramesInOrder) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize);
   const ViewServer server(any_port(), kSession, frames);
-  FrameClient client(server.port());
+  testing::FrameClient client(server.port());
   ASSERT_TRUE(server.wait_for_clients(1, 5000ms));
   for (int i = 0; i < 50; ++i) frames->publish(frame_of(i));
-  const std::vector<double> received = client.read_frames(50);
+  const std::vector<double> received = client.read_frames(kFrameSize, 50);
   ASSERT_EQ(received.size(), 50 * kFrameSize);
   for (int i = 0; i < 50; ++i) {
     EXPECT_EQ(received[i * kFrameSize], double(i));
@@ -162,8 +105,8 @@ TEST(ViewServer, ABrowserThatConnectsLateGetsWhatTheRingHolds) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize, 16);
   for (int i = 0; i < 40; ++i) frames->publish(frame_of(i));
   const ViewServer server(any_port(), kSession, frames);
-  FrameClient client(server.port());
-  const std::vector<double> received = client.read_frames(16);
+  testing::FrameClient client(server.port());
+  const std::vector<double> received = client.read_frames(kFrameSize, 16);
   ASSERT_EQ(received.size(), 16 * kFrameSize);
   EXPECT_EQ(received[0], 24.0);
   EXPECT_EQ(received[15 * kFrameSize], 39.0);
@@ -172,13 +115,13 @@ TEST(ViewServer, ABrowserThatConnectsLateGetsWhatTheRingHolds) {
 TEST(ViewServer, TenBrowsersGetEveryFrame) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize);
   const ViewServer server(any_port(), kSession, frames);
-  std::vector<std::unique_ptr<FrameClient>> clients;
-  for (int i = 0; i < 10; ++i) clients.push_back(std::make_unique<FrameClient>(server.port()));
+  std::vector<std::unique_ptr<testing::FrameClient>> clients;
+  for (int i = 0; i < 10; ++i) clients.push_back(std::make_unique<testing::FrameClient>(server.port()));
   ASSERT_TRUE(server.wait_for_clients(10, 5000ms));
   EXPECT_EQ(server.num_clients(), 10u);
   for (int i = 0; i < 100; ++i) frames->publish(frame_of(i));
   for (auto& client : clients) {
-    const std::vector<double> received = client->read_frames(100);
+    const std::vector<double> received = client->read_frames(kFrameSize, 100);
     ASSERT_EQ(received.size(), 100 * kFrameSize);
     EXPECT_EQ(received[99 * kFrameSize], 99.0);
   }
@@ -187,7 +130,7 @@ TEST(ViewServer, TenBrowsersGetEveryFrame) {
 TEST(ViewServer, TheEndMessageFollowsTheLastFrames) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize);
   ViewServer server(any_port(), kSession, frames);
-  FrameClient client(server.port());
+  testing::FrameClient client(server.port());
   ASSERT_TRUE(server.wait_for_clients(1, 5000ms));
   frames->publish(frame_of(7));
   server.end("the rollout is over");
@@ -207,8 +150,8 @@ TEST(ViewServer, AStalledBrowserNeitherBlocksThePublisherNorTheOthers) {
   ViewServerConfig config = any_port();
   config.write_timeout = 0.5;
   const ViewServer server(config, kSession, frames);
-  FrameClient stalled(server.port(), 4096);  // never reads
-  FrameClient reader(server.port());
+  testing::FrameClient stalled(server.port(), 4096);  // never reads
+  testing::FrameClient reader(server.port());
   ASSERT_TRUE(server.wait_for_clients(2, 5000ms));
   std::vector<double> frame(kFrameSize * 64, 1.0);
   std::uint64_t published = 0;
@@ -239,12 +182,12 @@ TEST(ViewServer, AStalledBrowserNeitherBlocksThePublisherNorTheOthers) {
 TEST(ViewServer, ABurstBeyondTheRingSkipsTheOldestFramesAndKeepsTheNewest) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize, 16);
   const ViewServer server(any_port(), kSession, frames);
-  FrameClient client(server.port());
+  testing::FrameClient client(server.port());
   ASSERT_TRUE(server.wait_for_clients(1, 5000ms));
   for (int i = 0; i < 1000; ++i) frames->publish(frame_of(i));
   std::vector<double> received;
   while (received.empty() || received[received.size() - kFrameSize] != 999.0) {
-    const std::vector<double> more = client.read_frames(1);
+    const std::vector<double> more = client.read_frames(kFrameSize, 1);
     ASSERT_FALSE(more.empty());
     received.insert(received.end(), more.begin(), more.end());
   }
@@ -260,7 +203,7 @@ TEST(ViewServer, ForgetsABrowserThatGoesAway) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize);
   const ViewServer server(any_port(), kSession, frames);
   {
-    FrameClient client(server.port());
+    testing::FrameClient client(server.port());
     ASSERT_TRUE(server.wait_for_clients(1, 5000ms));
     client.close_abruptly();
   }
@@ -276,15 +219,15 @@ TEST(ViewServer, RefusesBrowsersBeyondItsLimit) {
   ViewServerConfig config = any_port();
   config.max_clients = 1;
   const ViewServer server(config, kSession, frames);
-  FrameClient first(server.port());
+  testing::FrameClient first(server.port());
   ASSERT_TRUE(server.wait_for_clients(1, 5000ms));
-  EXPECT_THROW(FrameClient second(server.port()), beast::system_error);
+  EXPECT_THROW(testing::FrameClient second(server.port()), beast::system_error);
   EXPECT_EQ(server.num_clients(), 1u);
 }
 
 TEST(ViewServer, AReplayServerHasNoFrameStream) {
   const ViewServer server(any_port(), kSession, nullptr);
-  EXPECT_THROW(FrameClient client(server.port()), beast::system_error);
+  EXPECT_THROW(testing::FrameClient client(server.port()), beast::system_error);
 }
 
 TEST(ViewServer, NamesABusyPort) {

@@ -1,5 +1,6 @@
 // Live frames from the server's WebSocket: binary messages of whole little-endian float64
-// frame rows (oldest first), text messages of JSON events. Reconnects every 2 s when closed.
+// frame rows (oldest first), text messages of JSON events. Reconnects every 2 s when closed
+// before the run said it ended.
 import { guard, reportError } from './errors.js';
 
 const RETRY_MS = 2000;
@@ -59,7 +60,8 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange }) 
     socket.onclose = guard('websocket close', () => {
       state.connected = false;
       onStatusChange(status(), state);
-      setTimeout(guard('websocket reconnect', connect), RETRY_MS);
+      // After an end message the process is gone: retrying would only log failures.
+      if (state.endReason === null) setTimeout(guard('websocket reconnect', connect), RETRY_MS);
     });
   }
 

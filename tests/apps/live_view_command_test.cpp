@@ -1,0 +1,150 @@
+/// `upkie-rl train --view` and `upkie-rl spine --view`: frames of the real binary reach a
+/// WebSocket client. (`rollout --view` is tested in a browser: web/viewer/tests.)
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apps/cli_runner.hpp"
+#include "common/frame_client.hpp"
+#include "common/temp_files.hpp"
+#include "view/view_frame.hpp"
+
+extern char** environ;
+
+namespace upkie_rl {
+namespace {
+
+using testing::read_bytes;
+using testing::temp_path;
+
+/// `upkie-rl <args>` in the background, its output in a file.
+class BackgroundCli {
+ public:
+  explicit BackgroundCli(std::vector<std::string> args, const std::string& name)
+      : output_(temp_path(name + ".log")) {
+    args.insert(args.begin(), UPKIE_RL_CLI_PATH);
+    std::vector<char*> argv;
+    for (std::string& arg : args) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    const int error = ::posix_spawn(&pid_, UPKIE_RL_CLI_PATH, &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (error != 0) pid_ = -1;
+  }
+  ~BackgroundCli() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+
+  /// The port of the "viewer: http://127.0.0.1:PORT/" line, or 0 after 60 s without it.
+  int viewer_port() const {
+    const std::regex url("viewer: http://127\\.0\\.0\\.1:([0-9]+)/");
+    for (int i = 0; i < 6000; ++i) {
+      std::smatch match;
+      const std::string text = read_bytes(output_);
+      if (std::regex_search(text, match, url)) return std::stoi(match[1]);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return 0;
+  }
+
+  /// Sends `signal` (0: none) and returns the exit code (-1 when killed or not started).
+  int wait(int signal = 0) {
+    if (pid_ <= 0) return -1;
+    if (signal != 0) ::kill(pid_, signal);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  std::string output() const { return read_bytes(output_); }
+
+ private:
+  std::filesystem::path output_;
+  pid_t pid_ = -1;
+};
+
+TEST(LiveViewCommand, TrainingStreamsTheEnvironmentItIsAskedFor) {
+  const auto run_dir = temp_path("view_train_run");
+  std::filesystem::remove_all(run_dir);
+  BackgroundCli train({"train", "--config", std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml",
+                       "--set", "ppo.total_timesteps=4096", "--set", "env.num_envs=2", "--quiet",
+                       "--run-dir", run_dir.string(), "--view", "--view-port", "0",
+                       "--view-wait", "1", "--view-env", "1"},
+                      "view_train");
+  const int port = train.viewer_port();
+  ASSERT_GT(port, 0) << train.output();
+  testing::FrameClient client(port);
+  const std::size_t frame_size = view_frame_size(1);
+  const std::vector<double> frames = client.read_frames(frame_size, 200);
+  ASSERT_GE(frames.size(), 200 * frame_size) << train.output();
+  // Steps count up within an episode, times follow the 5 ms agent step, and an ended
+  // episode starts the next one at step 0.
+  int episodes_seen = 1;
+  for (std::size_t row = 1; row < frames.size() / frame_size; ++row) {
+    const double* previous = &frames[(row - 1) * frame_size];
+    const double* frame = &frames[row * frame_size];
+    if (frame[kViewEpisode] == previous[kViewEpisode]) {
+      EXPECT_EQ(frame[kViewStep], previous[kViewStep] + 1);
+      EXPECT_NEAR(frame[kViewTime] - previous[kViewTime], 0.005, 1e-9);
+    } else {
+      EXPECT_EQ(frame[kViewEpisode], previous[kViewEpisode] + 1);
+      EXPECT_EQ(frame[kViewStep], 0.0);
+      ++episodes_seen;
+    }
+    EXPECT_NEAR(frame[kViewBaseZ], 0.6, 0.3);
+  }
+  EXPECT_GT(episodes_seen, 1) << "an untrained policy falls within 200 steps";
+  EXPECT_EQ(train.wait(), 0) << train.output();
+  EXPECT_NE(train.output().find("final model"), std::string::npos) << train.output();
+  std::filesystem::remove_all(run_dir);
+}
+
+TEST(LiveViewCommand, TheSpineStreamsEverySimulationStep) {
+  const std::string shm_name = "/upkie_rl_view_" + std::to_string(::getpid());
+  BackgroundCli spine({"spine", "--shm-name", shm_name, "--nb-substeps", "5", "--view",
+                       "--view-port", "0"},
+                      "view_spine");
+  const int port = spine.viewer_port();
+  ASSERT_GT(port, 0) << spine.output();
+  testing::FrameClient client(port);
+  const auto rollout = testing::run_cli(
+      "rollout --env Upkie-Spine-Pendulum --env-option shm_name=" + shm_name +
+      " --env-option regulate_frequency=false --env-option request_timeout=5"
+      " --controller linear:10,1,0,0.1 --episodes 1 --max-steps 100");
+  EXPECT_EQ(rollout.exit_code, 0) << rollout.output;
+  const std::size_t frame_size = view_frame_size(kNumServos);
+  const std::vector<double> frames = client.read_frames(frame_size, 101);
+  ASSERT_GE(frames.size(), 101 * frame_size) << spine.output();
+  // The reset, then one frame per agent step of 5 ms; the wheels get velocity targets.
+  EXPECT_EQ(frames[kViewStep], 0.0);
+  EXPECT_EQ(frames[100 * frame_size + kViewStep], 100.0);
+  EXPECT_NEAR(frames[100 * frame_size + kViewTime], 0.5, 1e-9);
+  double wheel_command = 0.0;
+  for (std::size_t row = 0; row < 101; ++row) {
+    wheel_command = std::max(wheel_command,
+                             std::abs(frames[row * frame_size + kViewFirstAction + 2]));
+  }
+  EXPECT_GT(wheel_command, 0.0);
+  EXPECT_EQ(spine.wait(SIGINT), 0) << spine.output();
+}
+
+}  // namespace
+}  // namespace upkie_rl
