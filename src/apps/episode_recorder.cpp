@@ -106,7 +106,8 @@ RecordFile read_record_file(const std::filesystem::path& path) {
   needed.insert(needed.end(), kGroundTruthColumns.begin(), kGroundTruthColumns.end());
   for (const auto& joint : kServoNames) needed.emplace_back(joint);
   const std::size_t num_required = needed.size();
-  const bool has_measured = column_of.count(kMeasuredColumns[0]) && column_of.count(kMeasuredColumns[1]);
+  const bool has_measured =
+      column_of.count(kMeasuredColumns[0]) && column_of.count(kMeasuredColumns[1]);
   if (has_measured) needed.insert(needed.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
   RecordFile file;
   const std::string action_prefix = "action.";
@@ -164,7 +165,8 @@ RecordFile read_record_file(const std::filesystem::path& path) {
     }
     if (!file.steps.empty() && file.steps.back().episode == step.episode &&
         step.time < file.steps.back().time) {
-      throw std::runtime_error(at + "time goes back within episode " + std::to_string(step.episode));
+      throw std::runtime_error(at + "time goes back within episode " +
+                               std::to_string(step.episode));
     }
     std::size_t next = num_required;
     if (has_measured) {

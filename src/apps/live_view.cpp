@@ -44,8 +44,8 @@ LiveView::LiveView(const LiveViewOptions& options, const std::string& title, dou
   ViewServerConfig config;
   config.host = options.host;
   config.port = options.port;
-  server_ = std::make_unique<ViewServer>(config, view_session_json(session, RobotModel::default_urdf_path().string()),
-                                         frames_);
+  server_ = std::make_unique<ViewServer>(
+      config, view_session_json(session, RobotModel::default_urdf_path().string()), frames_);
   std::cout << "viewer: " << server_->url() << std::endl;
 }
 
@@ -54,8 +54,7 @@ LiveView::~LiveView() = default;
 void LiveView::wait_for_browsers() {
   if (options_.wait_clients <= 0) return;
   const auto count = static_cast<std::size_t>(options_.wait_clients);
-  std::cout << "viewer: waiting for " << count << " browser(s) at " << server_->url()
-            << std::endl;
+  std::cout << "viewer: waiting for " << count << " browser(s) at " << server_->url() << std::endl;
   while (!server_->wait_for_clients(count, std::chrono::seconds(3600))) {
   }
 }
@@ -77,9 +76,10 @@ void LiveView::publish(const Observation& observation, int step, double episode_
     episode_start_time_ = observation.time;
     return;
   }
-  const auto due = episode_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                        std::chrono::duration<double>(
-                                            (observation.time - episode_start_time_) / options_.speed));
+  const auto due =
+      episode_start_ +
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>((observation.time - episode_start_time_) / options_.speed));
   if (due > now) std::this_thread::sleep_until(due);
 }
 

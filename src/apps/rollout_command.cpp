@@ -71,9 +71,10 @@ void run_rollout(const RolloutOptions& options) {
     if (env->full_observation() == nullptr) {
       throw std::runtime_error("--view needs an environment with full observations");
     }
-    view.emplace(options.view,
-                 options.env_id + ": " + (options.model.empty() ? options.controller : options.model),
-                 env->timestep(), env->action_space().names);
+    view.emplace(
+        options.view,
+        options.env_id + ": " + (options.model.empty() ? options.controller : options.model),
+        env->timestep(), env->action_space().names);
   }
   // Outputs last, once everything else is known to work: a failure above (a busy port, a
   // bad controller) leaves an existing record file as it was. Bad paths are still refused

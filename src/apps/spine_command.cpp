@@ -34,9 +34,9 @@ std::unique_ptr<LiveView> view_spine(const SpineOptions& options, SpineServer& s
                                      double timestep) {
   std::vector<std::string> action_names;
   for (const auto& joint : kServoNames) action_names.push_back(std::string(joint) + ".velocity");
-  auto view = std::make_unique<LiveView>(
-      options.view, "spine " + options.shm_name + " (" + options.backend + ")", timestep,
-      action_names);
+  auto view = std::make_unique<LiveView>(options.view,
+                                         "spine " + options.shm_name + " (" + options.backend + ")",
+                                         timestep, action_names);
   server.set_simulation_observer(
       [viewer = view.get(), episode = -1, step = 0, velocities = std::array<float, kNumServos>{}](
           const Observation& observation, const ServoAction& action, bool reset) mutable {

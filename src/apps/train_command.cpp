@@ -38,11 +38,11 @@ struct TrainOptions {
 std::unique_ptr<LiveView> view_training(const TrainOptions& options, TrainingRun& run) {
   const TrainingConfig& config = run.config();
   const double timestep = make_env(config.env_id, config.env_options)->timestep();
-  auto view = std::make_unique<LiveView>(
-      options.view,
-      "training " + config.env_id + ": environment " + std::to_string(options.view_env) + " of " +
-          std::to_string(config.num_envs),
-      timestep, run.ppo().env().action_space().names);
+  auto view = std::make_unique<LiveView>(options.view,
+                                         "training " + config.env_id + ": environment " +
+                                             std::to_string(options.view_env) + " of " +
+                                             std::to_string(config.num_envs),
+                                         timestep, run.ppo().env().action_space().names);
   LiveView* viewer = view.get();
   run.observe_env(static_cast<std::size_t>(options.view_env),
                   [viewer, episode = 0, step = 0, episode_return = 0.0](

@@ -110,7 +110,8 @@ void run_view(const ViewOptions& options) {
     out << self_contained_viewer_page(session_json);
     out.close();
     if (!out) throw std::runtime_error("cannot write " + options.html_path);
-    std::cout << "wrote " << options.html_path << " (" << std::filesystem::file_size(options.html_path)
+    std::cout << "wrote " << options.html_path << " ("
+              << std::filesystem::file_size(options.html_path)
               << " bytes): open it in a browser, no server needed" << std::endl;
     return;
   }

@@ -3,8 +3,8 @@
 /// Proximal Policy Optimisation with SB3 semantics on a VectorEnv: rollout collection with
 /// truncation bootstrapping, GAE, and clipped updates of an ActorCritic with FlatAdam.
 
-#include <functional>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <random>
 #include <span>

@@ -63,9 +63,9 @@ class TrainingRun {
   /// reward and whether its episode ended at that step; for viewers. The environment must
   /// have full observations (simulated or spine ones).
   /// @throws std::invalid_argument when `index` is not an environment of the run.
-  using EnvObserver = std::function<void(const Observation& observation,
-                                         std::span<const float> action, double reward,
-                                         bool episode_ended)>;
+  using EnvObserver =
+      std::function<void(const Observation& observation, std::span<const float> action,
+                         double reward, bool episode_ended)>;
   void observe_env(std::size_t index, EnvObserver observer);
 
   const TrainingConfig& config() const { return config_; }

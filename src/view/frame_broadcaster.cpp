@@ -22,7 +22,8 @@ void FrameBroadcaster::publish(std::span<const double> frame) {
   }
   const std::lock_guard lock(mutex_);
   const std::size_t slot = static_cast<std::size_t>(newest_ % capacity_);
-  std::copy(frame.begin(), frame.end(), ring_.begin() + static_cast<std::ptrdiff_t>(slot * frame_size_));
+  std::copy(frame.begin(), frame.end(),
+            ring_.begin() + static_cast<std::ptrdiff_t>(slot * frame_size_));
   ++newest_;
 }
 

@@ -16,7 +16,7 @@ namespace upkie_rl {
 
 /// Columns of a frame before the joint angles (kServoNames) and the actions.
 inline constexpr std::array<const char*, 13> kViewFrameLeadingFields = {
-    "episode", "step",   "time",   "return", "pitch",  "ground_position", "base_x",
+    "episode", "step",   "time",    "return",  "pitch",   "ground_position", "base_x",
     "base_y",  "base_z", "base_qw", "base_qx", "base_qy", "base_qz"};
 
 /// Column indices; the six joint angles follow kViewBaseQz in kServoNames order, then the

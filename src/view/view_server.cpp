@@ -107,8 +107,7 @@ struct ViewServer::Impl {
                     std::shared_ptr<beast::flat_buffer> buffer);
   void answer(std::shared_ptr<beast::tcp_stream> stream, std::shared_ptr<beast::flat_buffer> buffer,
               const http::request<http::string_body>& request);
-  void upgrade(std::shared_ptr<beast::tcp_stream> stream,
-               http::request<http::string_body> request);
+  void upgrade(std::shared_ptr<beast::tcp_stream> stream, http::request<http::string_body> request);
   void read_messages(const std::shared_ptr<ViewClient>& client);
   void drop(const std::shared_ptr<ViewClient>& client);
   void tick();
@@ -223,17 +222,15 @@ void ViewServer::Impl::upgrade(std::shared_ptr<beast::tcp_stream> stream,
     response->set(http::field::content_type, "text/plain");
     response->body() = frames && frames_path ? "too many viewers\n" : "no frame stream here\n";
     response->prepare_payload();
-    http::async_write(*stream, *response,
-                      [stream, response](beast::error_code, std::size_t) {
-                        beast::error_code ignored;
-                        stream->socket().shutdown(tcp::socket::shutdown_send, ignored);
-                      });
+    http::async_write(*stream, *response, [stream, response](beast::error_code, std::size_t) {
+      beast::error_code ignored;
+      stream->socket().shutdown(tcp::socket::shutdown_send, ignored);
+    });
     return;
   }
   stream->expires_never();  // the websocket stream keeps its own timeouts
   auto client = std::make_shared<ViewClient>(stream->release_socket());
-  client->stream.set_option(
-      websocket::stream_base::timeout::suggested(beast::role_type::server));
+  client->stream.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
   client->stream.read_message_max(kMaxRequestBytes);
   client->stream.binary(true);
   // Start with what the ring still holds, so that the plots fill at once.
@@ -315,8 +312,7 @@ void ViewServer::Impl::send(const std::shared_ptr<ViewClient>& client) {
     client->writing = true;
     client->write_started = SteadyClock::now();
     client->stream.async_write(
-        net::buffer(client->outgoing.data(), client->outgoing.size() * sizeof(double)),
-        on_written);
+        net::buffer(client->outgoing.data(), client->outgoing.size() * sizeof(double)), on_written);
   } else if (ended && !client->end_sent) {
     client->end_sent = true;
     client->text = nlohmann::json{{"type", "end"}, {"reason", end_reason}}.dump();

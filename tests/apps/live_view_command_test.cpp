@@ -1,10 +1,10 @@
 /// `upkie-rl train --view` and `upkie-rl spine --view`: frames of the real binary reach a
 /// WebSocket client. (`rollout --view` is tested in a browser: web/viewer/tests.)
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
-#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -39,9 +39,11 @@ class BackgroundCli {
     argv.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    const int error = ::posix_spawn(&pid_, UPKIE_RL_CLI_PATH, &actions, nullptr, argv.data(), environ);
+    const int error =
+        ::posix_spawn(&pid_, UPKIE_RL_CLI_PATH, &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (error != 0) pid_ = -1;
   }
@@ -84,11 +86,11 @@ class BackgroundCli {
 TEST(LiveViewCommand, TrainingStreamsTheEnvironmentItIsAskedFor) {
   const auto run_dir = temp_path("view_train_run");
   std::filesystem::remove_all(run_dir);
-  BackgroundCli train({"train", "--config", std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml",
-                       "--set", "ppo.total_timesteps=4096", "--set", "env.num_envs=2", "--quiet",
-                       "--run-dir", run_dir.string(), "--view", "--view-port", "0",
-                       "--view-wait", "1", "--view-env", "1"},
-                      "view_train");
+  BackgroundCli train(
+      {"train", "--config", std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml", "--set",
+       "ppo.total_timesteps=4096", "--set", "env.num_envs=2", "--quiet", "--run-dir",
+       run_dir.string(), "--view", "--view-port", "0", "--view-wait", "1", "--view-env", "1"},
+      "view_train");
   const int port = train.viewer_port();
   ASSERT_GT(port, 0) << train.output();
   testing::FrameClient client(port);
@@ -119,16 +121,16 @@ TEST(LiveViewCommand, TrainingStreamsTheEnvironmentItIsAskedFor) {
 
 TEST(LiveViewCommand, TheSpineStreamsEverySimulationStep) {
   const std::string shm_name = "/upkie_rl_view_" + std::to_string(::getpid());
-  BackgroundCli spine({"spine", "--shm-name", shm_name, "--nb-substeps", "5", "--view",
-                       "--view-port", "0"},
-                      "view_spine");
+  BackgroundCli spine(
+      {"spine", "--shm-name", shm_name, "--nb-substeps", "5", "--view", "--view-port", "0"},
+      "view_spine");
   const int port = spine.viewer_port();
   ASSERT_GT(port, 0) << spine.output();
   testing::FrameClient client(port);
-  const auto rollout = testing::run_cli(
-      "rollout --env Upkie-Spine-Pendulum --env-option shm_name=" + shm_name +
-      " --env-option regulate_frequency=false --env-option request_timeout=5"
-      " --controller linear:10,1,0,0.1 --episodes 1 --max-steps 100");
+  const auto rollout =
+      testing::run_cli("rollout --env Upkie-Spine-Pendulum --env-option shm_name=" + shm_name +
+                       " --env-option regulate_frequency=false --env-option request_timeout=5"
+                       " --controller linear:10,1,0,0.1 --episodes 1 --max-steps 100");
   EXPECT_EQ(rollout.exit_code, 0) << rollout.output;
   const std::size_t frame_size = view_frame_size(kNumServos);
   const std::vector<double> frames = client.read_frames(frame_size, 101);
@@ -139,8 +141,8 @@ TEST(LiveViewCommand, TheSpineStreamsEverySimulationStep) {
   EXPECT_NEAR(frames[100 * frame_size + kViewTime], 0.5, 1e-9);
   double wheel_command = 0.0;
   for (std::size_t row = 0; row < 101; ++row) {
-    wheel_command = std::max(wheel_command,
-                             std::abs(frames[row * frame_size + kViewFirstAction + 2]));
+    wheel_command =
+        std::max(wheel_command, std::abs(frames[row * frame_size + kViewFirstAction + 2]));
   }
   EXPECT_GT(wheel_command, 0.0);
   EXPECT_EQ(spine.wait(SIGINT), 0) << spine.output();

@@ -2,8 +2,8 @@
 /// real binary. (The pages themselves are tested in a browser: web/viewer/tests.)
 
 #include <gtest/gtest.h>
-#include <sys/socket.h>
 #include <netinet/in.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -104,7 +104,8 @@ TEST_F(ViewCommand, RecordsOfEarlierVersionsStillReplay) {
   // Without the pitch and ground_position columns: pitch from the base orientation.
   std::ifstream in(*record_);
   std::string line, old_format;
-  while (std::getline(in, line)) old_format += line.substr(0, line.rfind(',', line.rfind(',') - 1)) + "\n";
+  while (std::getline(in, line))
+    old_format += line.substr(0, line.rfind(',', line.rfind(',') - 1)) + "\n";
   const auto old_record = temp_path("old_format.csv");
   write_bytes(old_record, old_format);
   const auto html = temp_path("old_format.html");
@@ -144,8 +145,9 @@ TEST_F(ViewCommand, NamesWhatIsWrongWithARecord) {
       {"truncated.csv", header + "\n" + row + "\n" + row.substr(0, row.size() / 2),
        ":3: " + std::to_string(1 + std::count(row.begin(), row.begin() + row.size() / 2, ',')) +
            " fields, the header has"},
-      {"not_a_number.csv", header + "\n" + row.substr(0, row.find(",0.6,")) + ",high" +
-                               row.substr(row.find(",0.6,") + 4) + "\n",
+      {"not_a_number.csv",
+       header + "\n" + row.substr(0, row.find(",0.6,")) + ",high" +
+           row.substr(row.find(",0.6,") + 4) + "\n",
        "column base_z is not a number: \"high\""},
       {"fractional_step.csv", header + "\n0,0.5" + row.substr(row.find(',', 2)) + "\n",
        "episode and step must be whole numbers"},
@@ -174,8 +176,8 @@ TEST_F(ViewCommand, NamesABusyPortAndKeepsAnExistingRecord) {
 
   const auto kept = temp_path("kept.csv");
   write_bytes(kept, "precious\n");
-  result = run_cli("rollout --env Upkie-Bullet-Pendulum --view --view-port " + port +
-                   " --record " + kept.string());
+  result = run_cli("rollout --env Upkie-Bullet-Pendulum --view --view-port " + port + " --record " +
+                   kept.string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find("the port is in use"), std::string::npos) << result.output;
   EXPECT_EQ(read_bytes(kept), "precious\n");

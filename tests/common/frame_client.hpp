@@ -24,14 +24,16 @@ class FrameClient {
   explicit FrameClient(int port, int receive_buffer = 0) : ws_(io_) {
     tcp::socket& socket = beast::get_lowest_layer(ws_).socket();
     socket.open(tcp::v4());
-    if (receive_buffer > 0) socket.set_option(net::socket_base::receive_buffer_size(receive_buffer));
+    if (receive_buffer > 0)
+      socket.set_option(net::socket_base::receive_buffer_size(receive_buffer));
     socket.connect(
         tcp::endpoint(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)));
     ws_.handshake("127.0.0.1", "/frames");
   }
 
   /// The next message, or nothing after `timeout`.
-  std::optional<std::string> read(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000)) {
+  std::optional<std::string> read(
+      std::chrono::milliseconds timeout = std::chrono::milliseconds(5000)) {
     buffer_.clear();
     bool done = false;
     beast::error_code error;

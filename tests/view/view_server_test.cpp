@@ -46,7 +46,8 @@ std::pair<int, std::string> request(int port, const std::string& target,
                                     http::verb method = http::verb::get) {
   net::io_context io;
   beast::tcp_stream stream(io);
-  stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)));
+  stream.connect(
+      tcp::endpoint(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)));
   http::request<http::string_body> req(method, target, 11);
   req.set(http::field::host, "127.0.0.1");
   http::write(stream, req);
@@ -58,7 +59,8 @@ std::pair<int, std::string> request(int port, const std::string& target,
   return {static_cast<int>(parser.get().result_int()), parser.get().body()};
 }
 
-bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds timeout = 15000ms) {
+bool eventually(const std::function<bool()>& condition,
+                std::chrono::milliseconds timeout = 15000ms) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
     if (condition()) return true;
@@ -116,7 +118,8 @@ TEST(ViewServer, TenBrowsersGetEveryFrame) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize);
   const ViewServer server(any_port(), kSession, frames);
   std::vector<std::unique_ptr<testing::FrameClient>> clients;
-  for (int i = 0; i < 10; ++i) clients.push_back(std::make_unique<testing::FrameClient>(server.port()));
+  for (int i = 0; i < 10; ++i)
+    clients.push_back(std::make_unique<testing::FrameClient>(server.port()));
   ASSERT_TRUE(server.wait_for_clients(10, 5000ms));
   EXPECT_EQ(server.num_clients(), 10u);
   for (int i = 0; i < 100; ++i) frames->publish(frame_of(i));

@@ -14,7 +14,8 @@ namespace {
 
 std::size_t count(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
-  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) {
+  for (std::size_t at = text.find(needle); at != std::string::npos;
+       at = text.find(needle, at + 1)) {
     ++n;
   }
   return n;
@@ -65,7 +66,8 @@ TEST(ViewerPage, TheSelfContainedPageHoldsScriptAndSessionIntact) {
 TEST(ViewSession, LiveSessionsNameTheirWebSocket) {
   ViewSession session;
   session.action_names = {"a", "b"};
-  const nlohmann::json json = nlohmann::json::parse(view_session_json(session, UPKIE_RL_MODEL_PATH));
+  const nlohmann::json json =
+      nlohmann::json::parse(view_session_json(session, UPKIE_RL_MODEL_PATH));
   EXPECT_EQ(json["mode"], "live");
   EXPECT_EQ(json["websocket"], kViewFramesPath);
   EXPECT_EQ(json["frame_fields"].size(), view_frame_size(2));
