@@ -4,53 +4,35 @@
 #include <benchmark/benchmark.h>
 
 #include <atomic>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/websocket.hpp>
+#include <chrono>
 #include <memory>
 #include <thread>
 #include <vector>
 
+#include "common/frame_client.hpp"
 #include "view/frame_broadcaster.hpp"
 #include "view/view_frame.hpp"
 #include "view/view_server.hpp"
 
 namespace {
 
-namespace net = boost::asio;
-namespace beast = boost::beast;
-namespace websocket = beast::websocket;
-using tcp = net::ip::tcp;
-
-/// A browser stand-in that reads every message until the server goes away.
+/// A browser stand-in that reads every message on a thread of its own until destroyed.
 class ReadingClient {
  public:
-  explicit ReadingClient(int port) : ws_(io_) {
-    beast::get_lowest_layer(ws_).connect(
-        tcp::endpoint(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)));
-    ws_.handshake("127.0.0.1", "/frames");
+  explicit ReadingClient(int port) : client_(port) {
     thread_ = std::thread([this] {
-      beast::flat_buffer buffer;
-      beast::error_code error;
-      while (!error) {
-        ws_.read(buffer, error);
-        bytes_ += buffer.size();
-        buffer.clear();
-      }
+      while (!stop_.load()) client_.read(std::chrono::milliseconds(100));
     });
   }
   ~ReadingClient() {
-    beast::error_code ignored;
-    beast::get_lowest_layer(ws_).socket().shutdown(tcp::socket::shutdown_both, ignored);
+    stop_.store(true);
     thread_.join();
   }
-  std::size_t bytes() const { return bytes_.load(); }
 
  private:
-  net::io_context io_;
-  websocket::stream<beast::tcp_stream> ws_;
+  upkie_rl::testing::FrameClient client_;
+  std::atomic<bool> stop_{false};
   std::thread thread_;
-  std::atomic<std::size_t> bytes_{0};
 };
 
 void BM_PublishViewerFrame(benchmark::State& state) {

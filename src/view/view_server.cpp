@@ -42,7 +42,7 @@ namespace {
 
 /// Largest HTTP request or WebSocket message taken from a browser: the page sends nothing
 /// but its requests.
-constexpr std::size_t kMaxRequestBytes = 16 * 1024;
+constexpr std::size_t kMaxRequestBytes = std::size_t{16} * 1024;
 constexpr auto kHttpTimeout = std::chrono::seconds(30);
 
 }  // namespace
@@ -65,9 +65,9 @@ struct ViewClient : std::enable_shared_from_this<ViewClient> {
 };
 
 struct ViewServer::Impl {
-  Impl(const ViewServerConfig& config_in, std::string session_json_in,
+  Impl(ViewServerConfig config_in, std::string session_json_in,
        std::shared_ptr<const FrameBroadcaster> frames_in)
-      : config(config_in),
+      : config(std::move(config_in)),
         session_json(std::move(session_json_in)),
         page(served_viewer_page()),
         frames(std::move(frames_in)),
@@ -103,11 +103,13 @@ struct ViewServer::Impl {
 
   void listen();
   void accept();
-  void read_request(std::shared_ptr<beast::tcp_stream> stream,
-                    std::shared_ptr<beast::flat_buffer> buffer);
-  void answer(std::shared_ptr<beast::tcp_stream> stream, std::shared_ptr<beast::flat_buffer> buffer,
+  void read_request(const std::shared_ptr<beast::tcp_stream>& stream,
+                    const std::shared_ptr<beast::flat_buffer>& buffer);
+  void answer(const std::shared_ptr<beast::tcp_stream>& stream,
+              const std::shared_ptr<beast::flat_buffer>& buffer,
               const http::request<http::string_body>& request);
-  void upgrade(std::shared_ptr<beast::tcp_stream> stream, http::request<http::string_body> request);
+  void upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
+               const http::request<http::string_body>& request);
   void read_messages(const std::shared_ptr<ViewClient>& client);
   void drop(const std::shared_ptr<ViewClient>& client);
   void tick();
@@ -149,8 +151,8 @@ void ViewServer::Impl::accept() {
   });
 }
 
-void ViewServer::Impl::read_request(std::shared_ptr<beast::tcp_stream> stream,
-                                    std::shared_ptr<beast::flat_buffer> buffer) {
+void ViewServer::Impl::read_request(const std::shared_ptr<beast::tcp_stream>& stream,
+                                    const std::shared_ptr<beast::flat_buffer>& buffer) {
   auto parser = std::make_shared<http::request_parser<http::string_body>>();
   parser->header_limit(kMaxRequestBytes);
   parser->body_limit(kMaxRequestBytes);
@@ -161,15 +163,15 @@ void ViewServer::Impl::read_request(std::shared_ptr<beast::tcp_stream> stream,
                      ++http_requests;
                      http::request<http::string_body> request = parser->release();
                      if (websocket::is_upgrade(request)) {
-                       upgrade(stream, std::move(request));
+                       upgrade(stream, request);
                      } else {
                        answer(stream, buffer, request);
                      }
                    });
 }
 
-void ViewServer::Impl::answer(std::shared_ptr<beast::tcp_stream> stream,
-                              std::shared_ptr<beast::flat_buffer> buffer,
+void ViewServer::Impl::answer(const std::shared_ptr<beast::tcp_stream>& stream,
+                              const std::shared_ptr<beast::flat_buffer>& buffer,
                               const http::request<http::string_body>& request) {
   auto response = std::make_shared<http::response<http::string_body>>();
   response->version(request.version());
@@ -210,8 +212,8 @@ void ViewServer::Impl::answer(std::shared_ptr<beast::tcp_stream> stream,
                     });
 }
 
-void ViewServer::Impl::upgrade(std::shared_ptr<beast::tcp_stream> stream,
-                               http::request<http::string_body> request) {
+void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
+                               const http::request<http::string_body>& request) {
   const std::string_view target(request.target().data(), request.target().size());
   const bool frames_path = target.substr(0, target.find('?')) == kViewFramesPath;
   if (!frames || !frames_path || clients.size() >= config.max_clients) {
@@ -236,7 +238,9 @@ void ViewServer::Impl::upgrade(std::shared_ptr<beast::tcp_stream> stream,
   // Start with what the ring still holds, so that the plots fill at once.
   const std::uint64_t newest = frames->newest();
   client->last_frame = newest > frames->capacity() ? newest - frames->capacity() : 0;
-  client->stream.async_accept(request, [this, client](beast::error_code error) {
+  // Kept alive until the handshake is over.
+  auto held = std::make_shared<http::request<http::string_body>>(request);
+  client->stream.async_accept(*held, [this, client, held](beast::error_code error) {
     if (error) return;
     client->open = true;
     clients.push_back(client);

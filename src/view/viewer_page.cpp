@@ -58,7 +58,7 @@ std::string served_viewer_page() {
 }
 
 std::string self_contained_viewer_page(const std::string& session_json) {
-  return fill_template("<script id=\"upkie-session\" type=\"application/json\">" +
+  return fill_template(R"(<script id="upkie-session" type="application/json">)" +
                            escape_json(session_json) + "</script>",
                        "<script>" + escape_script(viewer_bundle()) + "</script>");
 }
