@@ -90,8 +90,8 @@ if [ "${#missing_no_deps[@]}" -gt 0 ]; then
   "$PYTHON" -m pip install "${pip_flags[@]}" --no-deps "${missing_no_deps[@]}"
 fi
 
-# The viewer's npm packages, exactly as package-lock.json says (CMake runs the same `npm ci`
-# when the lock file changes).
+# The viewer's npm packages, exactly as package-lock.json says, again whenever it changes
+# (web/viewer/build.mjs refuses to bundle with stale packages).
 viewer_dir="$(cd "$(dirname "$0")/.." && pwd)/web/viewer"
 if [ ! -f "$viewer_dir/node_modules/.package-lock.json" ] ||
    [ "$viewer_dir/package-lock.json" -nt "$viewer_dir/node_modules/.package-lock.json" ]; then

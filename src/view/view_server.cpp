@@ -60,7 +60,7 @@ struct ViewClient : std::enable_shared_from_this<ViewClient> {
   bool open = false;             ///< Handshake done, not yet closed.
   bool writing = false;
   bool end_sent = false;
-  bool awaits_end = false;  ///< Connected when end() was called, and not yet told.
+  bool awaits_end = false;  ///< Connected when end() was called, and not yet closed.
   SteadyClock::time_point write_started;
 };
 
@@ -114,6 +114,9 @@ struct ViewServer::Impl {
   void drop(const std::shared_ptr<ViewClient>& client);
   void tick();
   void send(const std::shared_ptr<ViewClient>& client);
+  /// Closes the WebSocket properly (close frames both ways), so that the browser reads
+  /// everything sent before, then forgets the client.
+  void close(const std::shared_ptr<ViewClient>& client);
   void notify();
   /// Counts `client` out of those end() waits for.
   void end_delivered(ViewClient& client);
@@ -306,7 +309,7 @@ void ViewServer::Impl::send(const std::shared_ptr<ViewClient>& client) {
       drop(client);
       return;
     }
-    if (client->end_sent && client->awaits_end) end_delivered(*client);
+    if (client->end_sent) close(client);
   };
   if (!client->outgoing.empty()) {
     const std::size_t count = client->outgoing.size() / frames->frame_size();
@@ -332,6 +335,13 @@ void ViewServer::Impl::end_delivered(ViewClient& client) {
   const std::lock_guard lock(wait_mutex);
   if (awaiting_end > 0) --awaiting_end;
   changed.notify_all();
+}
+
+void ViewServer::Impl::close(const std::shared_ptr<ViewClient>& client) {
+  client->writing = true;  // nothing more is sent
+  client->write_started = SteadyClock::now();
+  client->stream.async_close(websocket::close_code::normal,
+                             [this, client](beast::error_code) { drop(client); });
 }
 
 void ViewServer::Impl::notify() {

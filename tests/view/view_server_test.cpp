@@ -147,6 +147,9 @@ TEST(ViewServer, TheEndMessageFollowsTheLastFrames) {
   const nlohmann::json message = nlohmann::json::parse(*last);
   EXPECT_EQ(message["type"], "end");
   EXPECT_EQ(message["reason"], "the rollout is over");
+  // Then the server closes the WebSocket and forgets the browser.
+  EXPECT_FALSE(client.read());
+  EXPECT_TRUE(eventually([&] { return server.num_clients() == 0; }));
 }
 
 TEST(ViewServer, AStalledBrowserNeitherBlocksThePublisherNorTheOthers) {

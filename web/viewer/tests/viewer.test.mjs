@@ -82,7 +82,7 @@ after(async () => { await browser?.close(); });
 
 describe('live rollout', () => {
   test('draws the robot and follows the simulation; closing the browser never stops the run', async () => {
-    const { child, url, exited } = await serve([...ROLLOUT, '--episodes', '6', '--view', '--view-port', '0', '--view-wait', '1']);
+    const { child, url, exited } = await serve([...ROLLOUT, '--episodes', '12', '--view', '--view-port', '0', '--view-wait', '1']);
     try {
       const { page, errors } = await openViewer(browser, `${url}?follow=0`);
       await page.waitForFunction(() => window.upkieViewer.framesReceived > 20, null, { timeout: 20000 });
@@ -110,7 +110,7 @@ describe('live rollout', () => {
       await page.context().close();  // the browser goes away mid-run
       const { code, output } = await exited;
       assert.equal(code, 0, output);
-      assert.match(output, /mean return .* over 6 episodes/);
+      assert.match(output, /mean return .* over 12 episodes/);
     } finally {
       child.kill('SIGKILL');
     }
