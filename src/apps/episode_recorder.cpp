@@ -118,10 +118,10 @@ RecordFile read_record_file(const std::filesystem::path& path) {
     }
   }
   std::vector<std::size_t> index;
-  for (std::size_t i = 0; i < needed.size(); ++i) {
-    const auto found = column_of.find(needed[i]);
+  for (const std::string& name : needed) {
+    const auto found = column_of.find(name);
     if (found == column_of.end()) {
-      throw std::runtime_error(path.string() + ": no column \"" + needed[i] +
+      throw std::runtime_error(path.string() + ": no column \"" + name +
                                "\" in its header; is it a file of `upkie-rl rollout --record`?");
     }
     index.push_back(found->second);
