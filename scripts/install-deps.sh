@@ -6,6 +6,7 @@ set -euo pipefail
 DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libbullet-dev liburdfdom-dev libtinyxml-dev libeigen3-dev libtorch-dev python3-torch
+  libgloo-dev  # c10d's Gloo process group, for distributed training
   libopenblas0-serial  # single-threaded OpenBLAS for libtorch: the reference BLAS is slow
   libmsgpack-cxx-dev libboost-dev nlohmann-json3-dev libcli11-dev libyaml-cpp-dev
   libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox fonts-liberation

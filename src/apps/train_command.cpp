@@ -14,6 +14,9 @@
 #include "apps/live_view.hpp"
 #include "apps/progress_bar.hpp"
 #include "envs/registry.hpp"
+#include "policy/crc32c.hpp"
+#include "rl/communicator.hpp"
+#include "rl/distributed_launch.hpp"
 #include "rl/training_config.hpp"
 #include "rl/training_run.hpp"
 
@@ -31,7 +34,30 @@ struct TrainOptions {
   bool quiet = false;
   LiveViewOptions view;
   int view_env = 0;
+  double distributed_timeout = 300.0;
 };
+
+/// The communicator of this process: alone, or one rank of the world the launcher's
+/// variables describe (torchrun, srun).
+std::shared_ptr<Communicator> join_world(const TrainOptions& options, DistributedLaunch& launch) {
+  launch = distributed_launch_from_environment();
+  if (!launch.distributed()) return nullptr;
+  std::cerr << "rank " << launch.rank << " of " << launch.world_size << " (" << launch.source
+            << "): meeting at " << launch.master_addr << ":" << launch.master_port << std::endl;
+  return connect_communicator(
+      launch,
+      std::chrono::milliseconds(static_cast<std::int64_t>(1000.0 * options.distributed_timeout)));
+}
+
+/// CRC-32C of the policy's weights: equal on every rank of a data-parallel run.
+std::string weights_checksum(const TrainingRun& run) {
+  const torch::Tensor& weights = run.ppo().policy().flat_parameters();
+  char text[16];
+  std::snprintf(text, sizeof(text), "%08x",
+                crc32c({static_cast<const std::byte*>(weights.data_ptr()),
+                        static_cast<std::size_t>(weights.numel()) * weights.element_size()}));
+  return text;
+}
 
 /// Streams environment `index` of the run to a LiveView, as fast as the run goes: frames the
 /// browsers cannot take are dropped, the training never waits.
@@ -73,6 +99,8 @@ std::filesystem::path default_run_dir(const std::string& config_path) {
 }
 
 void run_train(const TrainOptions& options) {
+  DistributedLaunch launch;
+  const std::shared_ptr<Communicator> communicator = join_world(options, launch);
   std::unique_ptr<TrainingRun> run;
   if (!options.resume.empty()) {
     if (!options.config_path.empty() || !options.overrides.empty() ||
@@ -83,7 +111,7 @@ void run_train(const TrainOptions& options) {
     }
     std::optional<std::filesystem::path> run_dir;
     if (!options.run_dir.empty()) run_dir = options.run_dir;
-    run = TrainingRun::resume(options.resume, run_dir);
+    run = TrainingRun::resume(options.resume, run_dir, communicator);
     std::cerr << "resuming " << options.resume << " at " << run->ppo().num_timesteps() << " steps"
               << std::endl;
   } else {
@@ -97,25 +125,42 @@ void run_train(const TrainOptions& options) {
     const std::filesystem::path run_dir = options.run_dir.empty()
                                               ? default_run_dir(options.config_path)
                                               : std::filesystem::path(options.run_dir);
-    run = std::make_unique<TrainingRun>(config, run_dir);
+    run = std::make_unique<TrainingRun>(config, run_dir, communicator);
   }
   const TrainingConfig& config = run->config();
-  std::cerr << "training " << config.env_id << " with PPO: " << config.num_envs << " envs, "
-            << with_thousands(config.ppo.total_timesteps) << " steps, run directory "
-            << run->run_dir().string() << std::endl;
+  const bool writer = run->writes_outputs();
+  if (launch.distributed()) {
+    // ppo.n_steps and batch_size are per rank: each rank collects n_steps and each
+    // optimiser step averages the gradients of world_size minibatches.
+    std::cerr << "rank " << launch.rank << ": DD-PPO over " << launch.world_size
+              << " ranks: " << launch.world_size << " x " << config.num_envs
+              << " envs, global n_steps " << launch.world_size * config.ppo.n_steps
+              << ", global minibatch " << launch.world_size * config.ppo.batch_size << ", "
+              << with_thousands(config.ppo.total_timesteps) << " steps in all"
+              << (writer ? ", run directory " + run->run_dir().string() : "") << std::endl;
+  } else {
+    std::cerr << "training " << config.env_id << " with PPO: " << config.num_envs << " envs, "
+              << with_thousands(config.ppo.total_timesteps) << " steps, run directory "
+              << run->run_dir().string() << std::endl;
+  }
 
   std::unique_ptr<LiveView> view;
-  if (options.view.enabled) view = view_training(options, *run);
+  if (options.view.enabled && writer) view = view_training(options, *run);
   ProgressBar bar(config.ppo.total_timesteps);
   TrainingProgress last;
   const std::filesystem::path model = run->train([&](const TrainingProgress& progress) {
     last = progress;
-    if (!options.quiet)
+    if (!options.quiet && writer)
       bar.update(progress.timesteps, progress.steps_per_second, progress.mean_return);
   });
-  if (!options.quiet) bar.finish();
+  if (!options.quiet && writer) bar.finish();
   if (view) view->end("the training is over");
 
+  if (launch.distributed()) {
+    std::cout << "rank " << launch.rank << ": weights checksum " << weights_checksum(*run)
+              << std::endl;
+  }
+  if (!writer) return;
   const PpoTimings& timings = run->ppo().timings();
   const double accounted = timings.env_seconds + timings.inference_seconds + timings.update_seconds;
   std::cout << "trained " << with_thousands(last.timesteps) << " steps in "
@@ -124,7 +169,8 @@ void run_train(const TrainOptions& options) {
             << " steps/s); mean return of the last 100 episodes " << last.mean_return
             << ", mean length " << last.mean_length << std::endl;
   std::cout << "time: environments " << timings.env_seconds << " s, policy inference "
-            << timings.inference_seconds << " s, updates " << timings.update_seconds << " s, other "
+            << timings.inference_seconds << " s, updates " << timings.update_seconds
+            << " s (of which all-reduces " << timings.communication_seconds << " s), other "
             << std::max(0.0, last.elapsed_seconds - accounted) << " s" << std::endl;
   std::cout << "run directory: " << run->run_dir().string() << std::endl;
   std::cout << "final model: " << model.string() << std::endl;
@@ -152,6 +198,12 @@ void add_train_command(CLI::App& app) {
   command->add_flag("--quiet", options->quiet, "No progress bar");
   options->view.speed = 0.0;  // the training never waits for the viewer
   add_live_view_options(*command, options->view, false);
+  command
+      ->add_option("--dist-timeout", options->distributed_timeout,
+                   "Distributed runs (torchrun, srun): seconds a rank waits for the others "
+                   "before it stops with an error")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
   command->add_option("--view-env", options->view_env, "Environment of the run --view shows")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

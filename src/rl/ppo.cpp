@@ -133,7 +133,12 @@ void Ppo::collect_rollout() {
       dones[i] = (terminated || truncated) ? 1.0f : 0.0f;
       any_truncated = any_truncated || truncated;
       if (terminated || step.truncated[i] != 0) {
-        episodes_.add(step.episode_returns[i], step.episode_lengths[i]);
+        if (communicator_->world_size() == 1) {
+          episodes_.add(step.episode_returns[i], step.episode_lengths[i]);
+        } else {
+          ended_episodes_.push_back(step.episode_returns[i]);
+          ended_episodes_.push_back(static_cast<double>(step.episode_lengths[i]));
+        }
       }
     }
     if (any_truncated) {
@@ -148,15 +153,64 @@ void Ppo::collect_rollout() {
       }
     }
     std::copy(step.observations.begin(), step.observations.end(), last_observations_.begin());
-    num_timesteps_ += num_envs_;
+    num_timesteps_ += num_envs_ * communicator_->world_size();
     timings_.inference_seconds += seconds_since(start);
   }
   const auto start = Clock::now();
   inference_.run_critic(last_observations_);
   std::copy(inference_.values().begin(), inference_.values().end(), last_values_.begin());
   buffer_.compute_returns_and_advantages(last_values_, gamma, config_.ppo.gae_lambda);
+  if (communicator_->world_size() > 1) gather_ended_episodes();
   ++iterations_;
   timings_.update_seconds += seconds_since(start);
+}
+
+void Ppo::set_communicator(Communicator* communicator) {
+  if (started_) throw std::logic_error("Ppo::set_communicator after the first rollout");
+  communicator_ = communicator != nullptr ? communicator : &solo_;
+  if (communicator_->world_size() == 1) return;
+  const int rank = communicator_->rank();
+  if (rank > 0) {
+    // Other noise and minibatches than rank 0's (same seed, other stream).
+    rng_.seed(config_.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(rank)));
+    normal_.reset();
+  }
+  torch::NoGradGuard no_grad;
+  communicator_->broadcast(policy_->flat_parameters(), 0);
+  ended_episodes_.reserve(static_cast<std::size_t>(2 * num_envs_ * buffer_.num_steps()));
+}
+
+void Ppo::average_over_ranks(torch::Tensor values) {
+  const auto start = Clock::now();
+  communicator_->sum(values);
+  values.div_(static_cast<double>(communicator_->world_size()));
+  timings_.communication_seconds += seconds_since(start);
+}
+
+void Ppo::gather_ended_episodes() {
+  // Each rank fills its own slot of a zeroed buffer, and a sum gives everyone every slot:
+  // first the number of values per rank, then the values.
+  const int world = communicator_->world_size();
+  const int rank = communicator_->rank();
+  torch::Tensor counts = torch::zeros({world}, torch::kFloat64);
+  counts.data_ptr<double>()[rank] = static_cast<double>(ended_episodes_.size());
+  communicator_->sum(counts);
+  const auto* count_of = counts.data_ptr<double>();
+  std::int64_t widest = 0;
+  for (int r = 0; r < world; ++r) widest = std::max(widest, static_cast<std::int64_t>(count_of[r]));
+  if (widest > 0) {
+    torch::Tensor values = torch::zeros({world, widest}, torch::kFloat64);
+    std::copy(ended_episodes_.begin(), ended_episodes_.end(), values[rank].data_ptr<double>());
+    communicator_->sum(values);
+    // In rank order, so that the episode statistics are the same on every rank.
+    for (int r = 0; r < world; ++r) {
+      const double* row = values[r].data_ptr<double>();
+      for (std::int64_t i = 0; i + 1 < static_cast<std::int64_t>(count_of[r]); i += 2) {
+        episodes_.add(row[i], static_cast<std::int64_t>(row[i + 1]));
+      }
+    }
+  }
+  ended_episodes_.clear();
 }
 
 double Ppo::learning_rate_at(std::int64_t timesteps) const {
@@ -202,6 +256,8 @@ PpoUpdateStatistics Ppo::update() {
       // overwrites the flat gradients.
       const PpoLossStatistics loss =
           gradient_.compute(shuffled_view.rows(begin, length), *policy_, ppo);
+      // DD-PPO: the gradient of the minibatch of every rank together.
+      if (communicator_->world_size() > 1) average_over_ranks(policy_->flat_gradients());
       clip_gradient_norm(policy_->flat_gradients(), ppo.max_grad_norm);
       optimizer_.step();
       sum_pg += loss.policy_gradient_loss;
@@ -214,6 +270,15 @@ PpoUpdateStatistics Ppo::update() {
     }
   }
   n_updates_ += ppo.n_epochs;
+  if (communicator_->world_size() > 1) {
+    // Report the losses of every rank's minibatches, the same on every rank.
+    torch::Tensor sums =
+        torch::tensor({sum_pg, sum_value, sum_entropy, sum_kl, sum_clip}, torch::kFloat64);
+    average_over_ranks(sums);
+    const auto* values = sums.data_ptr<double>();
+    sum_pg = values[0], sum_value = values[1], sum_entropy = values[2], sum_kl = values[3],
+    sum_clip = values[4];
+  }
   const double count = static_cast<double>(minibatches);
   statistics.policy_gradient_loss = sum_pg / count;
   statistics.value_loss = sum_value / count;

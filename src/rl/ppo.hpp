@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rl/actor_critic.hpp"
+#include "rl/communicator.hpp"
 #include "rl/episode_statistics.hpp"
 #include "rl/flat_adam.hpp"
 #include "rl/linear_schedule.hpp"
@@ -42,6 +43,8 @@ struct PpoTimings {
   double env_seconds = 0.0;        ///< Inside VectorEnv::step and reset.
   double inference_seconds = 0.0;  ///< Policy forward passes and sampling in rollouts.
   double update_seconds = 0.0;     ///< GAE and gradient updates.
+  /// Of those, waiting for and summing over the other ranks (DD-PPO's all-reduces).
+  double communication_seconds = 0.0;
 };
 
 /// The PPO learner. It does not own the environment; the caller keeps it alive.
@@ -62,6 +65,15 @@ class Ppo {
   /// actions that made it; for viewers. Empty by default.
   using StepObserver = std::function<void(const VectorStep& step, std::span<const float> actions)>;
   void set_step_observer(StepObserver observer) { step_observer_ = std::move(observer); }
+
+  /// Makes this learner one rank of a data-parallel run (DD-PPO): every rank steps its own
+  /// environments; the gradient of each minibatch is averaged over the ranks before the
+  /// optimiser step, so the weights stay identical (rank 0's are broadcast here first);
+  /// ended episodes are gathered from every rank; timesteps count every rank's steps.
+  /// Ranks other than 0 draw their actions and minibatches from generators of their own.
+  /// The communicator must outlive the learner. Call before the first rollout.
+  void set_communicator(Communicator* communicator);
+  const Communicator& communicator() const { return *communicator_; }
 
   /// Sets the learning rate from the progress so far and runs n_epochs over the rollout.
   PpoUpdateStatistics update();
@@ -107,6 +119,12 @@ class Ppo {
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_;
   StepObserver step_observer_;
+  SoloCommunicator solo_;
+  Communicator* communicator_ = &solo_;
+  /// Episodes ended in this rollout (return, length), gathered over the ranks at its end.
+  std::vector<double> ended_episodes_;
+  void gather_ended_episodes();
+  void average_over_ranks(torch::Tensor values);
   bool started_ = false;
   std::int64_t num_timesteps_ = 0;
   std::int64_t iterations_ = 0;

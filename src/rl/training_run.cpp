@@ -78,8 +78,10 @@ std::vector<std::string> TrainingRun::logged_tags() {
           "time/update_seconds"};
 }
 
-TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir)
-    : TrainingRun(ResumeTag{}, config, run_dir) {
+TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir,
+                         std::shared_ptr<Communicator> communicator)
+    : TrainingRun(ResumeTag{}, config, run_dir, std::move(communicator)) {
+  if (!writes_outputs()) return;
   if (std::filesystem::exists(run_dir_ / "config.yaml")) {
     throw std::runtime_error("run directory " + run_dir_.string() +
                              " already holds a run; choose another --run-dir or --resume a "
@@ -91,8 +93,11 @@ TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::pa
   if (!file) throw std::runtime_error("cannot write " + (run_dir_ / "config.yaml").string());
 }
 
-TrainingRun::TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path run_dir)
-    : config_(std::move(config)), run_dir_(std::move(run_dir)) {
+TrainingRun::TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path run_dir,
+                         std::shared_ptr<Communicator> communicator)
+    : config_(std::move(config)),
+      run_dir_(std::move(run_dir)),
+      communicator_(communicator ? std::move(communicator) : std::make_shared<SoloCommunicator>()) {
   config_.validate();
   // The networks are tiny (minibatches of 128 through 64x64 layers): intra-op threads
   // would cost more in synchronisation than they save, and the cores are needed by the
@@ -110,6 +115,7 @@ void TrainingRun::make_learner() {
   normalize_ = normalize.get();
   env_ = std::move(normalize);
   ppo_ = std::make_unique<Ppo>(*env_, config_);
+  ppo_->set_communicator(communicator_.get());
 }
 
 void TrainingRun::observe_env(std::size_t index, EnvObserver observer) {
@@ -130,7 +136,8 @@ void TrainingRun::observe_env(std::size_t index, EnvObserver observer) {
 }
 
 std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& checkpoint_path,
-                                                 std::optional<std::filesystem::path> run_dir) {
+                                                 std::optional<std::filesystem::path> run_dir,
+                                                 std::shared_ptr<Communicator> communicator) {
   const Checkpoint checkpoint = load_checkpoint(checkpoint_path);
   TrainingConfig config;
   try {
@@ -143,8 +150,9 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
     const std::filesystem::path directory = checkpoint_path.parent_path();
     run_dir = directory.filename() == "checkpoints" ? directory.parent_path() : directory;
   }
-  std::unique_ptr<TrainingRun> run(new TrainingRun(ResumeTag{}, config, *run_dir));
-  std::filesystem::create_directories(run->run_dir_);
+  std::unique_ptr<TrainingRun> run(
+      new TrainingRun(ResumeTag{}, config, *run_dir, std::move(communicator)));
+  if (run->writes_outputs()) std::filesystem::create_directories(run->run_dir_);
   const std::string where = "checkpoint " + checkpoint_path.string() + ": ";
   try {
     restore_ppo_checkpoint(*run->ppo_, checkpoint);
@@ -158,19 +166,25 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
   } catch (const nlohmann::json::exception& error) {
     throw CheckpointError(where + "malformed header: " + error.what());
   }
+  // Again after the checkpoint's random state: ranks other than 0 draw from their own.
+  run->ppo_->set_communicator(run->communicator_.get());
   run->resumed_at_ = run->ppo_->num_timesteps();
-  if (!std::filesystem::exists(run->run_dir_ / "config.yaml")) {
+  if (run->writes_outputs() && !std::filesystem::exists(run->run_dir_ / "config.yaml")) {
     std::ofstream(run->run_dir_ / "config.yaml") << to_yaml(config);
   }
   return run;
 }
 
 std::uint64_t TrainingRun::segment_seed() const {
-  return config_.seed + static_cast<std::uint64_t>(checkpoints_saved_ * config_.num_envs);
+  const auto world = static_cast<std::int64_t>(communicator_->world_size());
+  const auto rank = static_cast<std::int64_t>(communicator_->rank());
+  return config_.seed +
+         static_cast<std::uint64_t>((checkpoints_saved_ * world + rank) * config_.num_envs);
 }
 
 void TrainingRun::save_checkpoint_now() {
   ++checkpoints_saved_;
+  if (!writes_outputs()) return;
   const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
   const std::filesystem::path path =
       run_dir_ / "checkpoints" / checkpoint_name(ppo_->num_timesteps());
@@ -179,6 +193,7 @@ void TrainingRun::save_checkpoint_now() {
 }
 
 std::filesystem::path TrainingRun::save_final_model() {
+  if (!writes_outputs()) return {};
   const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
   const std::string stem = "model_" + timestamp();
   std::filesystem::path path = run_dir_ / (stem + ".ckpt");
@@ -193,8 +208,17 @@ std::filesystem::path TrainingRun::save_final_model() {
 
 std::filesystem::path TrainingRun::train(
     const std::function<void(const TrainingProgress&)>& on_progress) {
-  TensorBoardWriter events(run_dir_);
-  ScalarCsvWriter csv(run_dir_ / "progress.csv", logged_tags(), resumed_at_);
+  // Rank 0 alone logs.
+  std::optional<TensorBoardWriter> events;
+  std::optional<ScalarCsvWriter> csv;
+  if (writes_outputs()) {
+    events.emplace(run_dir_);
+    csv.emplace(run_dir_ / "progress.csv", logged_tags(), resumed_at_);
+  }
+  const auto sum_over_ranks = [this](std::span<double> values) {
+    communicator_->sum(torch::from_blob(values.data(), {static_cast<std::int64_t>(values.size())},
+                                        torch::kFloat64));
+  };
   const std::int64_t total = config_.ppo.total_timesteps;
   const std::int64_t every = config_.checkpoint_every;
   const std::int64_t start_timesteps = ppo_->num_timesteps();
@@ -208,6 +232,7 @@ std::filesystem::path TrainingRun::train(
   while (ppo_->num_timesteps() < total) {
     env_->set_randomization_scale(config_.randomization_scale(ppo_->num_timesteps()));
     const PpoUpdateStatistics update = ppo_->iterate();
+    if (communicator_->world_size() > 1) normalize_->merge_statistics(sum_over_ranks);
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     TrainingProgress progress;
     progress.timesteps = ppo_->num_timesteps();
@@ -244,11 +269,13 @@ std::filesystem::path TrainingRun::train(
       scalars.push_back({"rollout/ep_rew_mean", f(progress.mean_return)});
       scalars.push_back({"rollout/ep_len_mean", f(progress.mean_length)});
     }
-    events.add_scalars(progress.timesteps, scalars, wall_time());
-    csv.write_row(scalars);
+    if (events) {
+      events->add_scalars(progress.timesteps, scalars, wall_time());
+      csv->write_row(scalars);
+    }
 
     if (progress.timesteps >= next_checkpoint && progress.timesteps < total) {
-      events.flush();
+      if (events) events->flush();
       save_checkpoint_now();
       while (next_checkpoint <= progress.timesteps) next_checkpoint += every;
       // Start fresh episodes so that a run resumed from this checkpoint continues
@@ -257,7 +284,7 @@ std::filesystem::path TrainingRun::train(
     }
     if (on_progress) on_progress(progress);
   }
-  events.flush();
+  if (events) events->flush();
   return save_final_model();
 }
 

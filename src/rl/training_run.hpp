@@ -47,12 +47,25 @@ class TrainingRun {
  public:
   /// Prepares a new run in `run_dir` (created if needed). Throws std::invalid_argument on
   /// a bad config or environment, std::runtime_error if `run_dir` already holds a run.
-  TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir);
+  ///
+  /// With a `communicator` of several ranks, the run is one rank of a data-parallel run
+  /// (Ppo::set_communicator): each rank steps config.num_envs environments of its own
+  /// (environment i of rank r takes seed + r·num_envs + i), the normalisation statistics
+  /// are merged over the ranks after each iteration, and rank 0 alone writes the run
+  /// directory (config, logs, checkpoints, final model). Timesteps count every rank's.
+  TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir,
+              std::shared_ptr<Communicator> communicator = nullptr);
 
   /// Continues the run saved in `checkpoint`, in `run_dir` (default: the run directory the
   /// checkpoint belongs to). Throws CheckpointError on a bad checkpoint.
+  /// Every rank of a data-parallel run reads the same checkpoint (rank 0's); the world size
+  /// may differ from the one that wrote it.
   static std::unique_ptr<TrainingRun> resume(const std::filesystem::path& checkpoint,
-                                             std::optional<std::filesystem::path> run_dir = {});
+                                             std::optional<std::filesystem::path> run_dir = {},
+                                             std::shared_ptr<Communicator> communicator = nullptr);
+
+  /// Rank 0 of a data-parallel run, or a run alone: the one that writes.
+  bool writes_outputs() const { return communicator_->rank() == 0; }
 
   /// Trains until config.ppo.total_timesteps, calling `on_progress` after each update, and
   /// saves the final model. Returns the path of the final model checkpoint.
@@ -81,7 +94,8 @@ class TrainingRun {
 
  private:
   struct ResumeTag {};
-  TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path run_dir);
+  TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path run_dir,
+              std::shared_ptr<Communicator> communicator);
   void make_learner();
   void save_checkpoint_now();
   std::uint64_t segment_seed() const;
@@ -92,6 +106,7 @@ class TrainingRun {
   VecNormalize* normalize_ = nullptr;  // owned by env_
   std::unique_ptr<VectorEnv> env_;
   std::unique_ptr<Ppo> ppo_;
+  std::shared_ptr<Communicator> communicator_;
   std::int64_t checkpoints_saved_ = 0;
   std::optional<std::int64_t> resumed_at_;
   std::optional<std::filesystem::path> last_checkpoint_;

@@ -1,5 +1,7 @@
 #include "vec/running_mean_std.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -92,6 +94,41 @@ void RunningMeanStd::from_json(const nlohmann::json& json, const std::string& na
   mean_ = std::move(mean);
   var_ = std::move(var);
   count_ = json.at("count").get<double>();
+}
+
+void RunningMeanStd::merge_across_processes(
+    RunningMeanStd& at_last_merge,
+    const std::function<void(std::span<double>)>& sum_over_processes) {
+  const std::size_t n = size();
+  // What this process added since the last merge, recovered from the parallel-merge
+  // formulas: count, then per component the sums of x and of x squared about zero.
+  const double added = count_ - at_last_merge.count_;
+  std::vector<double> sums(1 + 2 * n, 0.0);
+  sums[0] = added;
+  if (added > 0.0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double mean_before = at_last_merge.mean_[i];
+      const double added_mean = (mean_[i] * count_ - mean_before * at_last_merge.count_) / added;
+      const double delta = added_mean - mean_before;
+      const double added_m2 = var_[i] * count_ - at_last_merge.var_[i] * at_last_merge.count_ -
+                              delta * delta * at_last_merge.count_ * added / count_;
+      sums[1 + i] = added * added_mean;
+      sums[1 + n + i] = added_m2 + added * added_mean * added_mean;
+    }
+  }
+  sum_over_processes(sums);
+  const double total = sums[0];
+  if (total > 0.0) {
+    std::vector<double> batch_mean(n), batch_var(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      batch_mean[i] = sums[1 + i] / total;
+      batch_var[i] = std::max(0.0, sums[1 + n + i] / total - batch_mean[i] * batch_mean[i]);
+    }
+    at_last_merge.update_from_moments(batch_mean, batch_var, total);
+  }
+  mean_ = at_last_merge.mean_;
+  var_ = at_last_merge.var_;
+  count_ = at_last_merge.count_;
 }
 
 }  // namespace upkie_rl

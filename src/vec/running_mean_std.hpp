@@ -2,6 +2,7 @@
 /// @file
 /// RunningMeanStd: running mean and variance of vectors (SB3's RunningMeanStd, float64).
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -29,6 +30,15 @@ class RunningMeanStd {
   /// Merges a batch given by its moments (var is the population variance).
   void update_from_moments(std::span<const double> batch_mean, std::span<const double> batch_var,
                            double batch_count);
+
+  /// Makes this the statistics of every process of a data-parallel run. `at_last_merge` is a
+  /// copy of this object after the previous merge (or the start); since then each process
+  /// updated its own copy with its own batches. The moments each process added are summed
+  /// over the processes by `sum_over_processes` (in place, the same length everywhere) and
+  /// merged into `at_last_merge`; the result becomes both this object and the new
+  /// `at_last_merge`, identical on every process.
+  void merge_across_processes(RunningMeanStd& at_last_merge,
+                              const std::function<void(std::span<double>)>& sum_over_processes);
 
   /// {"mean": [...], "var": [...], "count": c}.
   nlohmann::json to_json() const;

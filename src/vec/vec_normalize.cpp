@@ -24,7 +24,9 @@ VecNormalize::VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfi
       config_(config),
       observation_size_(venv_->observation_space().size()),
       observation_rms_(observation_size_),
-      return_rms_(1) {
+      return_rms_(1),
+      merged_observation_rms_(observation_size_),
+      merged_return_rms_(1) {
   check_config(config_);
   const std::size_t n = venv_->num_envs();
   returns_.assign(n, 0.0);
@@ -146,7 +148,15 @@ void VecNormalize::load_state(const nlohmann::json& state) {
   check_config(config);
   observation_rms_ = std::move(observations);
   return_rms_ = std::move(returns);
+  merged_observation_rms_ = observation_rms_;
+  merged_return_rms_ = return_rms_;
   config_ = config;
+}
+
+void VecNormalize::merge_statistics(
+    const std::function<void(std::span<double>)>& sum_over_processes) {
+  observation_rms_.merge_across_processes(merged_observation_rms_, sum_over_processes);
+  return_rms_.merge_across_processes(merged_return_rms_, sum_over_processes);
 }
 
 }  // namespace upkie_rl

@@ -56,6 +56,12 @@ class VecNormalize final : public VectorEnv {
   /// size, missing key, wrong type). Leaves the object unchanged when it throws.
   void load_state(const nlohmann::json& state);
 
+  /// Makes the statistics those of every process of a data-parallel run
+  /// (RunningMeanStd::merge_across_processes on the observations' and the returns'), so
+  /// that they are identical on every process. Call it at the same point of every process,
+  /// between steps.
+  void merge_statistics(const std::function<void(std::span<double>)>& sum_over_processes);
+
   const VectorEnv& inner() const { return *venv_; }
   const RunningMeanStd& observation_statistics() const { return observation_rms_; }
   const RunningMeanStd& return_statistics() const { return return_rms_; }
@@ -78,6 +84,9 @@ class VecNormalize final : public VectorEnv {
   std::size_t observation_size_;
   RunningMeanStd observation_rms_;
   RunningMeanStd return_rms_;
+  // The statistics after the last merge_statistics (or construction, or load_state).
+  RunningMeanStd merged_observation_rms_;
+  RunningMeanStd merged_return_rms_;
   std::vector<double> returns_;  // Discounted return G per env.
   std::vector<float> raw_observations_;
   std::vector<float> raw_rewards_;

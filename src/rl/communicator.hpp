@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// The collective operations of data-parallel training (DD-PPO), over the processes of a
+/// run: sums and broadcasts of flat tensors. A world of one process needs no network.
+
+#include <torch/torch.h>
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+#include "rl/distributed_launch.hpp"
+
+namespace upkie_rl {
+
+/// Raised when the processes of a run cannot meet or one of them stops answering. The
+/// message names the operation, the rank and, when known, the rank at fault.
+class DistributedError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Communicator {
+ public:
+  virtual ~Communicator() = default;
+  virtual int rank() const = 0;
+  virtual int world_size() const = 0;
+  /// Replaces `values` (contiguous, CPU, float32 or float64) by its sum over the ranks.
+  /// @throws DistributedError after the timeout when a rank does not join.
+  virtual void sum(torch::Tensor values) = 0;
+  /// Replaces `values` on every rank by rank `root`'s.
+  virtual void broadcast(torch::Tensor values, int root) = 0;
+};
+
+/// A world of one process: sums and broadcasts leave the values as they are.
+class SoloCommunicator final : public Communicator {
+ public:
+  int rank() const override { return 0; }
+  int world_size() const override { return 1; }
+  void sum(torch::Tensor values) override { static_cast<void>(values); }
+  void broadcast(torch::Tensor values, int root) override {
+    static_cast<void>(values);
+    static_cast<void>(root);
+  }
+};
+
+/// Joins the world `launch` describes: rank 0 serves a c10d TCPStore at
+/// master_addr:master_port (unless the launcher serves it) and the others connect to it
+/// (the rendezvous), then a Gloo
+/// process group runs the collectives over TCP. A world of one gives a SoloCommunicator.
+/// @param timeout How long the rendezvous and each collective operation may wait.
+/// @throws DistributedError naming the address when the rendezvous fails.
+std::unique_ptr<Communicator> connect_communicator(const DistributedLaunch& launch,
+                                                   std::chrono::milliseconds timeout);
+
+}  // namespace upkie_rl

@@ -1,0 +1,245 @@
+/// `upkie-rl train` as ranks of a data-parallel run (DD-PPO), from the real binary: the
+/// launcher's variables set by the test, and torchrun itself when it is installed.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apps/cli_runner.hpp"
+#include "common/temp_files.hpp"
+
+extern char** environ;
+
+namespace upkie_rl {
+namespace {
+
+using testing::read_bytes;
+using testing::temp_path;
+
+int free_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
+  socklen_t length = sizeof(address);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
+  ::close(fd);
+  return ntohs(address.sin_port);
+}
+
+/// A process with extra environment variables, its output in a file.
+class Process {
+ public:
+  Process(std::vector<std::string> args, const std::vector<std::string>& variables,
+          const std::string& name)
+      : output_(temp_path(name + ".log")) {
+    std::vector<std::string> environment = variables;
+    for (char** entry = environ; *entry != nullptr; ++entry) environment.emplace_back(*entry);
+    std::vector<char*> argv, envp;
+    for (std::string& arg : args) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    for (std::string& entry : environment) envp.push_back(entry.data());
+    envp.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    if (::posix_spawnp(&pid_, argv[0], &actions, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  ~Process() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  void kill() const { ::kill(pid_, SIGKILL); }
+  /// The exit code, or -1 when it was killed.
+  int wait() {
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string output() const { return read_bytes(output_); }
+
+ private:
+  std::filesystem::path output_;
+  pid_t pid_ = -1;
+};
+
+/// `upkie-rl train` arguments of a short pendulum run.
+std::vector<std::string> train_args(const std::filesystem::path& run_dir, int num_envs, int n_steps,
+                                    std::int64_t total, int batch_size = 64) {
+  return {UPKIE_RL_CLI_PATH, "train",
+          "--config",        std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml",
+          "--set",           "env.num_envs=" + std::to_string(num_envs),
+          "--set",           "env.threads=0",
+          "--set",           "ppo.n_steps=" + std::to_string(n_steps),
+          "--set",           "ppo.batch_size=" + std::to_string(batch_size),
+          "--set",           "ppo.total_timesteps=" + std::to_string(total),
+          "--quiet",         "--run-dir",
+          run_dir.string()};
+}
+
+std::vector<std::string> rank_variables(int rank, int world_size, int port) {
+  return {"WORLD_SIZE=" + std::to_string(world_size), "RANK=" + std::to_string(rank),
+          "LOCAL_RANK=" + std::to_string(rank), "MASTER_ADDR=127.0.0.1",
+          "MASTER_PORT=" + std::to_string(port)};
+}
+
+std::string checksum_of(const std::string& output, int rank) {
+  std::smatch match;
+  const std::regex line("rank " + std::to_string(rank) + ": weights checksum ([0-9a-f]{8})");
+  return std::regex_search(output, match, line) ? match[1].str() : "";
+}
+
+/// A column of progress.csv.
+std::vector<std::string> column(const std::filesystem::path& csv, const std::string& name) {
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  std::vector<std::string> names;
+  std::stringstream fields(header);
+  for (std::string field; std::getline(fields, field, ',');) names.push_back(field);
+  const auto index = std::find(names.begin(), names.end(), name) - names.begin();
+  std::vector<std::string> values;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string field;
+    for (long i = 0; i <= index; ++i) std::getline(row, field, ',');
+    values.push_back(field);
+  }
+  return values;
+}
+
+TEST(DistributedTrain, TwoRanksEndWithIdenticalWeightsAndRankZeroAloneWrites) {
+  const auto dir0 = temp_path("dist_rank0"), dir1 = temp_path("dist_rank1");
+  std::filesystem::remove_all(dir0);
+  std::filesystem::remove_all(dir1);
+  const int port = free_port();
+  Process rank1(train_args(dir1, 2, 256, 2048), rank_variables(1, 2, port), "dist_rank1");
+  Process rank0(train_args(dir0, 2, 256, 2048), rank_variables(0, 2, port), "dist_rank0");
+  ASSERT_EQ(rank0.wait(), 0) << rank0.output();
+  ASSERT_EQ(rank1.wait(), 0) << rank1.output();
+  const std::string checksum = checksum_of(rank0.output(), 0);
+  ASSERT_EQ(checksum.size(), 8u) << rank0.output();
+  EXPECT_EQ(checksum_of(rank1.output(), 1), checksum) << rank1.output();
+  EXPECT_NE(rank0.output().find("DD-PPO over 2 ranks: 2 x 2 envs, global n_steps 512, global "
+                                "minibatch 128"),
+            std::string::npos)
+      << rank0.output();
+  // Rank 0 counts both ranks' steps: 4 iterations of 2 x 256.
+  EXPECT_EQ(column(dir0 / "progress.csv", "time/total_timesteps"),
+            (std::vector<std::string>{"512", "1024", "1536", "2048"}));
+  EXPECT_FALSE(std::filesystem::exists(dir1)) << "rank 1 writes nothing";
+  EXPECT_NE(rank0.output().find("final model"), std::string::npos);
+  std::filesystem::remove_all(dir0);
+}
+
+// The invariants of the data-parallel run against one process with the environments of
+// both ranks: the steps of an iteration, the number of optimiser steps and the learning
+// rate schedule are the same; the returns and losses are not (other environments, other
+// minibatches).
+TEST(DistributedTrain, TwoRanksCountLikeOneProcessWithTwiceTheEnvironments) {
+  const auto dir_ranks = temp_path("dist_invariant"), dir_alone = temp_path("alone_invariant");
+  std::filesystem::remove_all(dir_ranks);
+  std::filesystem::remove_all(dir_alone);
+  const int port = free_port();
+  {
+    Process rank1(train_args(temp_path("unused"), 2, 256, 2048), rank_variables(1, 2, port),
+                  "inv_rank1");
+    Process rank0(train_args(dir_ranks, 2, 256, 2048), rank_variables(0, 2, port), "inv_rank0");
+    ASSERT_EQ(rank0.wait(), 0) << rank0.output();
+    ASSERT_EQ(rank1.wait(), 0) << rank1.output();
+  }
+  Process alone(train_args(dir_alone, 4, 512, 2048, 128), {}, "inv_alone");
+  ASSERT_EQ(alone.wait(), 0) << alone.output();
+  for (const char* tag : {"time/total_timesteps", "time/iterations", "train/n_updates",
+                          "train/learning_rate", "train/clip_range"}) {
+    EXPECT_EQ(column(dir_ranks / "progress.csv", tag), column(dir_alone / "progress.csv", tag))
+        << tag;
+  }
+  EXPECT_NE(column(dir_ranks / "progress.csv", "train/value_loss"),
+            column(dir_alone / "progress.csv", "train/value_loss"));
+  std::filesystem::remove_all(dir_ranks);
+  std::filesystem::remove_all(dir_alone);
+}
+
+TEST(DistributedTrain, KillingOneRankEndsTheOtherWithAClearErrorAndKeepsItsCheckpoints) {
+  const auto dir0 = temp_path("dist_fault");
+  std::filesystem::remove_all(dir0);
+  const int port = free_port();
+  std::vector<std::string> args0 = train_args(dir0, 2, 256, 100'000'000);
+  args0.insert(args0.end(), {"--set", "checkpoint_every=1024", "--dist-timeout", "10"});
+  std::vector<std::string> args1 = train_args(temp_path("unused"), 2, 256, 100'000'000);
+  args1.insert(args1.end(), {"--set", "checkpoint_every=1024", "--dist-timeout", "10"});
+  Process rank0(args0, rank_variables(0, 2, port), "fault_rank0");
+  Process rank1(args1, rank_variables(1, 2, port), "fault_rank1");
+  // Wait for a checkpoint, then kill rank 1.
+  const auto checkpoints = dir0 / "checkpoints";
+  for (int i = 0;
+       i < 600 && (!std::filesystem::exists(checkpoints) || std::filesystem::is_empty(checkpoints));
+       ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_TRUE(std::filesystem::exists(checkpoints)) << rank0.output();
+  rank1.kill();
+  const auto killed_at = std::chrono::steady_clock::now();
+  const int code = rank0.wait();
+  const auto waited = std::chrono::steady_clock::now() - killed_at;
+  EXPECT_EQ(code, 1) << rank0.output();
+  EXPECT_LT(waited, std::chrono::seconds(60));
+  EXPECT_NE(rank0.output().find("rank 0 of 2"), std::string::npos) << rank0.output();
+  // The checkpoints written before are whole: a rollout loads the last one.
+  std::filesystem::path last;
+  for (const auto& entry : std::filesystem::directory_iterator(checkpoints)) {
+    if (entry.path().extension() == ".ckpt" && entry.path() > last) last = entry.path();
+  }
+  ASSERT_FALSE(last.empty());
+  const auto rollout = testing::run_cli(
+      "rollout --env Upkie-Bullet-Pendulum --max-steps 5 --model " + last.string());
+  EXPECT_EQ(rollout.exit_code, 0) << rollout.output;
+  std::filesystem::remove_all(dir0);
+}
+
+TEST(DistributedTrain, TorchrunLaunchesIt) {
+  if (std::system("command -v torchrun > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "torchrun is not installed (python3-torch); the variables it sets are "
+                    "tested above";
+  }
+  const auto dir = temp_path("dist_torchrun");
+  std::filesystem::remove_all(dir);
+  std::vector<std::string> args = train_args(dir, 2, 256, 1024);
+  // torchrun 1.13 (Debian) knows only the underscore spellings; later ones take both. On
+  // Python 3.11 it cannot parse its default "--redirects 0 --tee 0" (Std.from_str returns
+  // None for 0), so the output goes through its tee instead.
+  args.insert(args.begin(),
+              {"torchrun", "--nproc_per_node", "2", "--master_port", std::to_string(free_port()),
+               "--redirects", "1", "--tee", "1", "--no_python"});
+  Process launcher(args, {}, "torchrun");
+  ASSERT_EQ(launcher.wait(), 0) << launcher.output();
+  const std::string checksum = checksum_of(launcher.output(), 0);
+  ASSERT_EQ(checksum.size(), 8u) << launcher.output();
+  EXPECT_EQ(checksum_of(launcher.output(), 1), checksum) << launcher.output();
+  EXPECT_TRUE(std::filesystem::exists(dir / "progress.csv"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace upkie_rl

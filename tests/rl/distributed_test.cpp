@@ -1,0 +1,190 @@
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <map>
+#include <thread>
+
+#include "rl/communicator.hpp"
+#include "rl/distributed_launch.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using namespace std::chrono_literals;
+
+DistributedLaunch launch_from(const std::map<std::string, std::string>& variables) {
+  return distributed_launch_from_environment(
+      [&](const std::string& name) -> std::optional<std::string> {
+        const auto found = variables.find(name);
+        if (found == variables.end()) return std::nullopt;
+        return found->second;
+      });
+}
+
+std::string error_of(const std::map<std::string, std::string>& variables) {
+  try {
+    launch_from(variables);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "no error";
+}
+
+TEST(DistributedLaunch, WithoutALauncherTheProcessTrainsAlone) {
+  const DistributedLaunch alone = launch_from({});
+  EXPECT_FALSE(alone.distributed());
+  EXPECT_EQ(alone.source, "alone");
+  EXPECT_FALSE(launch_from({{"WORLD_SIZE", "1"}, {"RANK", "0"}}).distributed());
+  EXPECT_FALSE(launch_from({{"SLURM_NTASKS", "1"}, {"SLURM_PROCID", "0"}}).distributed());
+}
+
+TEST(DistributedLaunch, ReadsTorchrunsVariables) {
+  const DistributedLaunch launch = launch_from({{"WORLD_SIZE", "4"},
+                                                {"RANK", "3"},
+                                                {"LOCAL_RANK", "1"},
+                                                {"MASTER_ADDR", "10.0.0.7"},
+                                                {"MASTER_PORT", "29400"}});
+  EXPECT_TRUE(launch.distributed());
+  EXPECT_EQ(launch.source, "torchrun");
+  EXPECT_EQ(launch.world_size, 4);
+  EXPECT_EQ(launch.rank, 3);
+  EXPECT_EQ(launch.local_rank, 1);
+  EXPECT_EQ(launch.master_addr, "10.0.0.7");
+  EXPECT_EQ(launch.master_port, 29400);
+  EXPECT_FALSE(launch.launcher_store);
+  EXPECT_TRUE(launch_from({{"WORLD_SIZE", "2"},
+                           {"RANK", "0"},
+                           {"MASTER_ADDR", "127.0.0.1"},
+                           {"MASTER_PORT", "29400"},
+                           {"TORCHELASTIC_USE_AGENT_STORE", "True"}})
+                  .launcher_store)
+      << "torchrun's agent serves the store: rank 0 connects to it";
+}
+
+TEST(DistributedLaunch, ReadsSlurmsVariables) {
+  const DistributedLaunch launch = launch_from({{"SLURM_NTASKS", "8"},
+                                                {"SLURM_PROCID", "5"},
+                                                {"SLURM_LOCALID", "1"},
+                                                {"MASTER_ADDR", "node001"},
+                                                {"MASTER_PORT", "29500"}});
+  EXPECT_EQ(launch.source, "slurm");
+  EXPECT_EQ(launch.world_size, 8);
+  EXPECT_EQ(launch.rank, 5);
+  EXPECT_EQ(launch.master_addr, "node001");
+}
+
+TEST(DistributedLaunch, NamesTheVariableAtFault) {
+  const std::map<std::string, std::string> good = {
+      {"WORLD_SIZE", "2"}, {"RANK", "1"}, {"MASTER_ADDR", "127.0.0.1"}, {"MASTER_PORT", "29500"}};
+  auto with = [&](const std::string& name, const std::string& value) {
+    auto variables = good;
+    variables[name] = value;
+    return variables;
+  };
+  auto without = [&](const std::string& name) {
+    auto variables = good;
+    variables.erase(name);
+    return variables;
+  };
+  EXPECT_NE(error_of(with("RANK", "2")).find("RANK=\"2\" is not an integer in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(error_of(with("WORLD_SIZE", "two")).find("WORLD_SIZE=\"two\""), std::string::npos);
+  EXPECT_NE(error_of(with("MASTER_PORT", "70000")).find("MASTER_PORT"), std::string::npos);
+  EXPECT_NE(error_of(without("MASTER_ADDR")).find("MASTER_ADDR is not set"), std::string::npos);
+  EXPECT_NE(error_of(without("RANK")).find("RANK is not set"), std::string::npos);
+}
+
+int free_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
+  socklen_t length = sizeof(address);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
+  ::close(fd);
+  return ntohs(address.sin_port);
+}
+
+DistributedLaunch loopback(int rank, int world_size, int port) {
+  DistributedLaunch launch;
+  launch.world_size = world_size;
+  launch.rank = rank;
+  launch.master_addr = "127.0.0.1";
+  launch.master_port = port;
+  return launch;
+}
+
+TEST(Communicator, TwoRanksSumAndBroadcast) {
+  const int port = free_port();
+  std::array<torch::Tensor, 2> sums, broadcasts;
+  std::array<std::string, 2> errors;
+  std::vector<std::thread> ranks;
+  for (int rank = 0; rank < 2; ++rank) {
+    ranks.emplace_back([&, rank] {
+      try {
+        const auto communicator = connect_communicator(loopback(rank, 2, port), 20s);
+        EXPECT_EQ(communicator->rank(), rank);
+        sums[rank] = torch::tensor({1.0f + rank, 10.0f * (rank + 1)});
+        communicator->sum(sums[rank]);
+        broadcasts[rank] = torch::full({3}, static_cast<double>(rank), torch::kFloat64);
+        communicator->broadcast(broadcasts[rank], 1);
+      } catch (const std::exception& error) {
+        errors[rank] = error.what();
+      }
+    });
+  }
+  for (auto& thread : ranks) thread.join();
+  for (int rank = 0; rank < 2; ++rank) {
+    ASSERT_EQ(errors[rank], "") << "rank " << rank;
+    EXPECT_TRUE(torch::equal(sums[rank], torch::tensor({3.0f, 30.0f})));
+    EXPECT_TRUE(torch::equal(broadcasts[rank], torch::full({3}, 1.0, torch::kFloat64)));
+  }
+}
+
+TEST(Communicator, ARankThatNeverComesTimesTheOthersOut) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    connect_communicator(loopback(0, 2, free_port()), 2s);
+    FAIL() << "rank 0 met nobody";
+  } catch (const DistributedError& error) {
+    EXPECT_NE(std::string(error.what()).find("rank 0 of 2"), std::string::npos) << error.what();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 30s);
+}
+
+TEST(Communicator, ARankThatStopsAnsweringTimesTheOthersOut) {
+  const int port = free_port();
+  std::string error;
+  std::thread rank0([&] {
+    try {
+      const auto communicator = connect_communicator(loopback(0, 2, port), 3s);
+      torch::Tensor values = torch::ones({4});
+      communicator->sum(values);  // together
+      communicator->sum(values);  // rank 1 is gone
+    } catch (const DistributedError& caught) {
+      error = caught.what();
+    }
+  });
+  {
+    const auto communicator = connect_communicator(loopback(1, 2, port), 3s);
+    torch::Tensor values = torch::ones({4});
+    communicator->sum(values);
+  }  // rank 1 leaves
+  rank0.join();
+  EXPECT_NE(error.find("rank 0 of 2: sum failed"), std::string::npos) << error;
+}
+
+TEST(Communicator, AWorldOfOneNeedsNoNetwork) {
+  const auto communicator = connect_communicator(DistributedLaunch{}, 1s);
+  torch::Tensor values = torch::tensor({2.0f});
+  communicator->sum(values);
+  EXPECT_EQ(values.item<float>(), 2.0f);
+  EXPECT_EQ(communicator->world_size(), 1);
+}
+
+}  // namespace
+}  // namespace upkie_rl
