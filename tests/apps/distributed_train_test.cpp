@@ -1,14 +1,7 @@
 /// `upkie-rl train` as ranks of a data-parallel run (DD-PPO), from the real binary: the
 /// launcher's variables set by the test, and torchrun itself when it is installed.
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -19,69 +12,16 @@
 #include <vector>
 
 #include "apps/cli_runner.hpp"
+#include "common/background_process.hpp"
 #include "common/temp_files.hpp"
-
-extern char** environ;
 
 namespace upkie_rl {
 namespace {
 
+using testing::free_port;
 using testing::read_bytes;
 using testing::temp_path;
-
-int free_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
-  socklen_t length = sizeof(address);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(fd);
-  return ntohs(address.sin_port);
-}
-
-/// A process with extra environment variables, its output in a file.
-class Process {
- public:
-  Process(std::vector<std::string> args, const std::vector<std::string>& variables,
-          const std::string& name)
-      : output_(temp_path(name + ".log")) {
-    std::vector<std::string> environment = variables;
-    for (char** entry = environ; *entry != nullptr; ++entry) environment.emplace_back(*entry);
-    std::vector<char*> argv, envp;
-    for (std::string& arg : args) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    for (std::string& entry : environment) envp.push_back(entry.data());
-    envp.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                     0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    if (::posix_spawnp(&pid_, argv[0], &actions, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~Process() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
-  void kill() const { ::kill(pid_, SIGKILL); }
-  /// The exit code, or -1 when it was killed.
-  int wait() {
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  std::string output() const { return read_bytes(output_); }
-
- private:
-  std::filesystem::path output_;
-  pid_t pid_ = -1;
-};
+using Process = testing::BackgroundProcess;
 
 /// `upkie-rl train` arguments of a short pendulum run.
 std::vector<std::string> train_args(const std::filesystem::path& run_dir, int num_envs, int n_steps,
@@ -133,8 +73,8 @@ TEST(DistributedTrain, TwoRanksEndWithIdenticalWeightsAndRankZeroAloneWrites) {
   std::filesystem::remove_all(dir0);
   std::filesystem::remove_all(dir1);
   const int port = free_port();
-  Process rank1(train_args(dir1, 2, 256, 2048), rank_variables(1, 2, port), "dist_rank1");
-  Process rank0(train_args(dir0, 2, 256, 2048), rank_variables(0, 2, port), "dist_rank0");
+  Process rank1(train_args(dir1, 2, 256, 2048), "dist_rank1", rank_variables(1, 2, port));
+  Process rank0(train_args(dir0, 2, 256, 2048), "dist_rank0", rank_variables(0, 2, port));
   ASSERT_EQ(rank0.wait(), 0) << rank0.output();
   ASSERT_EQ(rank1.wait(), 0) << rank1.output();
   const std::string checksum = checksum_of(rank0.output(), 0);
@@ -162,13 +102,13 @@ TEST(DistributedTrain, TwoRanksCountLikeOneProcessWithTwiceTheEnvironments) {
   std::filesystem::remove_all(dir_alone);
   const int port = free_port();
   {
-    Process rank1(train_args(temp_path("unused"), 2, 256, 2048), rank_variables(1, 2, port),
-                  "inv_rank1");
-    Process rank0(train_args(dir_ranks, 2, 256, 2048), rank_variables(0, 2, port), "inv_rank0");
+    Process rank1(train_args(temp_path("unused"), 2, 256, 2048), "inv_rank1",
+                  rank_variables(1, 2, port));
+    Process rank0(train_args(dir_ranks, 2, 256, 2048), "inv_rank0", rank_variables(0, 2, port));
     ASSERT_EQ(rank0.wait(), 0) << rank0.output();
     ASSERT_EQ(rank1.wait(), 0) << rank1.output();
   }
-  Process alone(train_args(dir_alone, 4, 512, 2048, 128), {}, "inv_alone");
+  Process alone(train_args(dir_alone, 4, 512, 2048, 128), "inv_alone");
   ASSERT_EQ(alone.wait(), 0) << alone.output();
   for (const char* tag : {"time/total_timesteps", "time/iterations", "train/n_updates",
                           "train/learning_rate", "train/clip_range"}) {
@@ -189,8 +129,8 @@ TEST(DistributedTrain, KillingOneRankEndsTheOtherWithAClearErrorAndKeepsItsCheck
   args0.insert(args0.end(), {"--set", "checkpoint_every=1024", "--dist-timeout", "10"});
   std::vector<std::string> args1 = train_args(temp_path("unused"), 2, 256, 100'000'000);
   args1.insert(args1.end(), {"--set", "checkpoint_every=1024", "--dist-timeout", "10"});
-  Process rank0(args0, rank_variables(0, 2, port), "fault_rank0");
-  Process rank1(args1, rank_variables(1, 2, port), "fault_rank1");
+  Process rank0(args0, "fault_rank0", rank_variables(0, 2, port));
+  Process rank1(args1, "fault_rank1", rank_variables(1, 2, port));
   // Wait for a checkpoint, then kill rank 1.
   const auto checkpoints = dir0 / "checkpoints";
   for (int i = 0;
@@ -232,7 +172,7 @@ TEST(DistributedTrain, TorchrunLaunchesIt) {
   args.insert(args.begin(),
               {"torchrun", "--nproc_per_node", "2", "--master_port", std::to_string(free_port()),
                "--redirects", "1", "--tee", "1", "--no_python"});
-  Process launcher(args, {}, "torchrun");
+  Process launcher(args, "torchrun");
   ASSERT_EQ(launcher.wait(), 0) << launcher.output();
   const std::string checksum = checksum_of(launcher.output(), 0);
   ASSERT_EQ(checksum.size(), 8u) << launcher.output();

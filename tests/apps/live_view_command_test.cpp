@@ -1,12 +1,7 @@
 /// `upkie-rl train --view` and `upkie-rl spine --view`: frames of the real binary reach a
 /// WebSocket client. (`rollout --view` is tested in a browser: web/viewer/tests.)
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -16,11 +11,10 @@
 #include <vector>
 
 #include "apps/cli_runner.hpp"
+#include "common/background_process.hpp"
 #include "common/frame_client.hpp"
 #include "common/temp_files.hpp"
 #include "view/view_frame.hpp"
-
-extern char** environ;
 
 namespace upkie_rl {
 namespace {
@@ -28,59 +22,29 @@ namespace {
 using testing::read_bytes;
 using testing::temp_path;
 
-/// `upkie-rl <args>` in the background, its output in a file.
-class BackgroundCli {
+/// `upkie-rl <args>` in the background, and the port of the viewer it serves.
+class BackgroundCli : public testing::BackgroundProcess {
  public:
-  explicit BackgroundCli(std::vector<std::string> args, const std::string& name)
-      : output_(temp_path(name + ".log")) {
-    args.insert(args.begin(), UPKIE_RL_CLI_PATH);
-    std::vector<char*> argv;
-    for (std::string& arg : args) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                     0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    const int error =
-        ::posix_spawn(&pid_, UPKIE_RL_CLI_PATH, &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (error != 0) pid_ = -1;
-  }
-  ~BackgroundCli() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
+  BackgroundCli(std::vector<std::string> args, const std::string& name)
+      : BackgroundProcess(with_cli(std::move(args)), name) {}
 
   /// The port of the "viewer: http://127.0.0.1:PORT/" line, or 0 after 60 s without it.
   int viewer_port() const {
     const std::regex url("viewer: http://127\\.0\\.0\\.1:([0-9]+)/");
     for (int i = 0; i < 6000; ++i) {
       std::smatch match;
-      const std::string text = read_bytes(output_);
+      const std::string text = output();
       if (std::regex_search(text, match, url)) return std::stoi(match[1]);
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return 0;
   }
 
-  /// Sends `signal` (0: none) and returns the exit code (-1 when killed or not started).
-  int wait(int signal = 0) {
-    if (pid_ <= 0) return -1;
-    if (signal != 0) ::kill(pid_, signal);
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
-  std::string output() const { return read_bytes(output_); }
-
  private:
-  std::filesystem::path output_;
-  pid_t pid_ = -1;
+  static std::vector<std::string> with_cli(std::vector<std::string> args) {
+    args.insert(args.begin(), UPKIE_RL_CLI_PATH);
+    return args;
+  }
 };
 
 TEST(LiveViewCommand, TrainingStreamsTheEnvironmentItIsAskedFor) {

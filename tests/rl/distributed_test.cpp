@@ -1,12 +1,10 @@
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <map>
 #include <thread>
 
+#include "common/background_process.hpp"
 #include "rl/communicator.hpp"
 #include "rl/distributed_launch.hpp"
 
@@ -14,6 +12,7 @@ namespace upkie_rl {
 namespace {
 
 using namespace std::chrono_literals;
+using testing::free_port;
 
 DistributedLaunch launch_from(const std::map<std::string, std::string>& variables) {
   return distributed_launch_from_environment(
@@ -95,18 +94,6 @@ TEST(DistributedLaunch, NamesTheVariableAtFault) {
   EXPECT_NE(error_of(with("MASTER_PORT", "70000")).find("MASTER_PORT"), std::string::npos);
   EXPECT_NE(error_of(without("MASTER_ADDR")).find("MASTER_ADDR is not set"), std::string::npos);
   EXPECT_NE(error_of(without("RANK")).find("RANK is not set"), std::string::npos);
-}
-
-int free_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address));
-  socklen_t length = sizeof(address);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(fd);
-  return ntohs(address.sin_port);
 }
 
 DistributedLaunch loopback(int rank, int world_size, int port) {
