@@ -41,6 +41,7 @@ ViewSession replay_session(const RecordFile& record, const std::string& title) {
   session.action_names = record.action_names;
   const std::size_t frame_size = view_frame_size(record.action_names.size());
   std::vector<double> frame(frame_size);
+  std::vector<float> action;
   double episode_return = 0.0;
   for (std::size_t row = 0; row < record.steps.size(); ++row) {
     const RecordedStep& step = record.steps[row];
@@ -48,22 +49,19 @@ ViewSession replay_session(const RecordFile& record, const std::string& title) {
       session.episodes.push_back({step.episode, {}});
       episode_return = 0.0;
     }
-    frame[kViewEpisode] = step.episode;
-    frame[kViewStep] = step.step;
-    frame[kViewTime] = step.time;
-    frame[kViewReturn] = episode_return;
-    frame[kViewPitch] = step.pitch;
-    frame[kViewGroundPosition] = step.ground_position;
-    const Eigen::Vector3d& position = step.pose.base_position;
-    const Eigen::Quaterniond orientation = step.pose.base_orientation.normalized();
-    const std::array<double, 7> base = {position.x(),    position.y(),    position.z(),
-                                        orientation.w(), orientation.x(), orientation.y(),
-                                        orientation.z()};
-    std::copy(base.begin(), base.end(), frame.begin() + kViewBaseX);
-    std::copy(step.pose.joint_angles.begin(), step.pose.joint_angles.end(),
-              frame.begin() + kViewFirstJoint);
-    std::copy(step.action.begin(), step.action.begin() + (frame_size - kViewFirstAction),
-              frame.begin() + kViewFirstAction);
+    // The row as the observation it recorded, so that one writer fills every frame.
+    Observation observation;
+    observation.time = step.time;
+    observation.base_orientation.pitch = step.pitch;
+    observation.wheel_odometry.position = step.ground_position;
+    observation.has_sim = true;
+    observation.sim_base.position = step.pose.base_position;
+    observation.sim_base.orientation = step.pose.base_orientation.normalized();
+    for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+      observation.servo[servo].position = step.pose.joint_angles[servo];
+    }
+    action.assign(step.action.begin(), step.action.end());
+    write_view_frame(observation, {step.episode, step.step, episode_return}, action, frame);
     std::vector<double>& frames = session.episodes.back().frames;
     frames.insert(frames.end(), frame.begin(), frame.end());
     episode_return += step.reward;
