@@ -27,6 +27,9 @@ void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 /// `upkie-rl train`: PPO training from a YAML configuration (train_command.cpp).
 void add_train_command(CLI::App& app);
+/// `upkie-rl sweep`: independent trainings over seeds and settings, and their summary
+/// (sweep_command.cpp).
+void add_sweep_command(CLI::App& app);
 /// `upkie-rl plot`: loss, KL and return figures of a training run (plot_command.cpp).
 void add_plot_command(CLI::App& app);
 

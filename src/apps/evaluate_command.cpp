@@ -22,6 +22,7 @@
 #include "apps/policy_controller.hpp"
 #include "apps/robustness_grid.hpp"
 #include "envs/builtin_controllers.hpp"
+#include "envs/episode_runner.hpp"
 #include "envs/registry.hpp"
 
 namespace upkie_rl::apps {
@@ -101,27 +102,17 @@ CellResult evaluate_cell(const EvaluateOptions& options, const Contender& conten
                                                : make_policy_controller(contender.model, *env);
   std::vector<float> observation(env->observation_space().size());
   std::vector<float> action(env->action_space().size());
-  CellResult result;
+  std::vector<EpisodeOutcome> outcomes;
   for (int episode = 0; episode < options.episodes; ++episode) {
-    env->reset(options.seed + static_cast<std::uint64_t>(episode), observation);
-    controller->reset();
-    double total = 0.0;
-    int length = 0;
-    bool terminated = false;
-    while (length < options.max_steps) {
-      controller->act(observation, action);
-      const StepResult step = env->step(action, observation);
-      total += step.reward;
-      ++length;
-      if (step.terminated || step.truncated) {
-        terminated = step.terminated;
-        break;
-      }
-    }
-    result.successes += terminated ? 0 : 1;
-    result.mean_return += total / options.episodes;
-    result.mean_length += static_cast<double>(length) / options.episodes;
+    outcomes.push_back(run_episode(*env, *controller,
+                                   options.seed + static_cast<std::uint64_t>(episode),
+                                   options.max_steps, observation, action));
   }
+  const EpisodeSummary summary = summarize_episodes(outcomes);
+  CellResult result;
+  result.successes = summary.successes;
+  result.mean_return = summary.mean_return;
+  result.mean_length = summary.mean_length;
   return result;
 }
 

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -94,6 +95,46 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
            << quoted(figure.smoothed_label) << '\n';
     script << "unset output\n";
   }
+  run_gnuplot(gnuplot, script.str());
+}
+
+void draw_curves_figure(const CurvesFigure& figure) {
+  const std::string gnuplot = find_gnuplot();
+  // A qualitative palette (matplotlib's tab10), repeated past ten groups.
+  static constexpr std::array<const char*, 10> kColours = {
+      "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+      "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  std::vector<std::string> groups;
+  std::ostringstream script;
+  script << terminal_line(gnuplot, 1000, 600);
+  script << "set grid\nset key bottom right\nset termoption noenhanced\nset format x '%.1s%c'\n";
+  std::ostringstream plots;
+  for (std::size_t c = 0; c < figure.curves.size(); ++c) {
+    const CurvesFigure::Curve& curve = figure.curves[c];
+    const std::string block = "$curve" + std::to_string(c);
+    script << block << " << EOD\n";
+    for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i) {
+      if (!std::isnan(curve.y[i])) script << curve.x[i] << ' ' << curve.y[i] << '\n';
+    }
+    script << "EOD\n";
+    auto found = std::find(groups.begin(), groups.end(), curve.group);
+    const bool first_of_group = found == groups.end();
+    if (first_of_group) found = groups.insert(groups.end(), curve.group);
+    const auto group = static_cast<std::size_t>(found - groups.begin());
+    plots << (c ? ", " : "") << block << " using 1:2 with lines lw 1.5 lc rgb '"
+          << kColours[group % kColours.size()] << "' "
+          << (first_of_group ? "title " + quoted(curve.group) : std::string("notitle"));
+  }
+  script << "set output " << quoted(figure.output.string()) << '\n';
+  script << "set title " << quoted(figure.title) << '\n';
+  script << "set xlabel " << quoted(figure.x_label) << '\n';
+  script << "set ylabel " << quoted(figure.y_label) << '\n';
+  if (figure.curves.empty()) {
+    script << "set label 'no data yet' at graph 0.5, 0.5 center\nplot [0:1] [0:1] NaN notitle\n";
+  } else {
+    script << "plot " << plots.str() << '\n';
+  }
+  script << "unset output\n";
   run_gnuplot(gnuplot, script.str());
 }
 

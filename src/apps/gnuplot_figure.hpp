@@ -33,6 +33,21 @@ struct HeatMapFigure {
   std::vector<double> values;         ///< Row-major, y_values.size() x x_values.size().
 };
 
+/// Curves of several runs on one figure (a sweep's return curves): the curves of one group
+/// share a colour, and each group is named once in the key.
+struct CurvesFigure {
+  struct Curve {
+    std::string group;
+    std::vector<double> x;
+    std::vector<double> y;  ///< NaN values are left out.
+  };
+  std::filesystem::path output;  ///< PNG file to write.
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  std::vector<Curve> curves;
+};
+
 /// Full path of the gnuplot executable on PATH; throws std::runtime_error saying how to
 /// install it when there is none.
 std::string find_gnuplot();
@@ -40,6 +55,9 @@ std::string find_gnuplot();
 /// Draws the figures in one gnuplot session. Throws std::runtime_error if gnuplot is
 /// missing or fails.
 void draw_trend_figures(const std::vector<TrendFigure>& figures);
+
+/// Draws the figure. Throws std::runtime_error if gnuplot is missing or fails.
+void draw_curves_figure(const CurvesFigure& figure);
 
 /// Draws the heat maps in one gnuplot session (red 0 % to green 100 %). Throws
 /// std::runtime_error if gnuplot is missing or fails.

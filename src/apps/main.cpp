@@ -23,6 +23,7 @@ int run(int argc, char** argv) {
   upkie_rl::apps::add_bench_command(app);
   upkie_rl::apps::add_spine_command(app);
   upkie_rl::apps::add_train_command(app);
+  upkie_rl::apps::add_sweep_command(app);
   upkie_rl::apps::add_plot_command(app);
   try {
     app.parse(argc, argv);

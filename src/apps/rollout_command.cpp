@@ -16,6 +16,7 @@
 #include "apps/policy_controller.hpp"
 #include "apps/video_recorder.hpp"
 #include "envs/builtin_controllers.hpp"
+#include "envs/episode_runner.hpp"
 #include "envs/registry.hpp"
 #include "sim/observation_dict.hpp"
 
@@ -132,14 +133,12 @@ void run_rollout(const RolloutOptions& options) {
               << options.video.fps << " frames/s" << std::endl;
   }
 
-  const double n = static_cast<double>(returns.size());
-  double mean = 0.0, mean_length = 0.0, variance = 0.0;
-  for (std::size_t e = 0; e < returns.size(); ++e) {
-    mean += returns[e] / n;
-    mean_length += lengths[e] / n;
-  }
-  for (double value : returns) variance += (value - mean) * (value - mean) / n;
-  const double std_return = std::sqrt(variance);
+  std::vector<EpisodeOutcome> outcomes;
+  for (std::size_t e = 0; e < returns.size(); ++e) outcomes.push_back({returns[e], lengths[e]});
+  const EpisodeSummary summary = summarize_episodes(outcomes);
+  const double mean = summary.mean_return;
+  const double mean_length = summary.mean_length;
+  const double std_return = summary.std_return;
   std::cout << "mean return " << mean << " +- " << std_return << " over " << returns.size()
             << " episodes, mean length " << mean_length << std::endl;
   if (options.json) {

@@ -2,7 +2,6 @@
 /// `upkie-rl train`: PPO training from a YAML configuration, with a progress bar, a run
 /// directory (config, TensorBoard events, CSV, checkpoints, final model) and resumption.
 
-#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -89,13 +88,8 @@ std::unique_ptr<LiveView> view_training(const TrainOptions& options, TrainingRun
 }
 
 std::filesystem::path default_run_dir(const std::string& config_path) {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char stamp[32];
-  std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &local);
   return std::filesystem::path("runs") /
-         (std::filesystem::path(config_path).stem().string() + "-" + stamp);
+         (std::filesystem::path(config_path).stem().string() + "-" + local_timestamp());
 }
 
 void run_train(const TrainOptions& options) {

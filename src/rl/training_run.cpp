@@ -26,15 +26,6 @@ double wall_time() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-std::string timestamp() {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char buffer[32];
-  std::strftime(buffer, sizeof(buffer), "%Y%m%d-%H%M%S", &local);
-  return buffer;
-}
-
 NormalizeConfig normalize_config(const NormalizationConfig& config) {
   NormalizeConfig out;
   out.observations = config.observations;
@@ -54,6 +45,15 @@ std::string checkpoint_name(std::int64_t timesteps) {
 }
 
 }  // namespace
+
+std::string local_timestamp() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char buffer[32];
+  std::strftime(buffer, sizeof(buffer), "%Y%m%d-%H%M%S", &local);
+  return buffer;
+}
 
 std::vector<std::string> TrainingRun::logged_tags() {
   return {"time/total_timesteps",
@@ -195,7 +195,7 @@ void TrainingRun::save_checkpoint_now() {
 std::filesystem::path TrainingRun::save_final_model() {
   if (!writes_outputs()) return {};
   const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
-  const std::string stem = "model_" + timestamp();
+  const std::string stem = "model_" + local_timestamp();
   std::filesystem::path path = run_dir_ / (stem + ".ckpt");
   save_checkpoint(make_ppo_checkpoint(*ppo_, normalize_->state(), extra), path);
   torchscript_path_ = run_dir_ / (stem + ".pt");

@@ -31,6 +31,9 @@
 
 namespace upkie_rl {
 
+/// The local time as YYYYmmdd-HHMMSS, as in the default names of runs and models.
+std::string local_timestamp();
+
 /// What the run reports after each update (for progress bars).
 struct TrainingProgress {
   std::int64_t timesteps = 0;
