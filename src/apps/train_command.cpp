@@ -43,9 +43,10 @@ std::shared_ptr<Communicator> join_world(const TrainOptions& options, Distribute
   if (!launch.distributed()) return nullptr;
   std::cerr << "rank " << launch.rank << " of " << launch.world_size << " (" << launch.source
             << "): meeting at " << launch.master_addr << ":" << launch.master_port << std::endl;
-  return connect_communicator(
-      launch,
-      std::chrono::milliseconds(static_cast<std::int64_t>(1000.0 * options.distributed_timeout)));
+  CommunicatorOptions communicator_options;
+  communicator_options.timeout =
+      std::chrono::milliseconds(static_cast<std::int64_t>(1000.0 * options.distributed_timeout));
+  return connect_communicator(launch, communicator_options);
 }
 
 /// CRC-32C of the policy's weights: equal on every rank of a data-parallel run.

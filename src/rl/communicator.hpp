@@ -6,8 +6,10 @@
 #include <torch/torch.h>
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "rl/distributed_launch.hpp"
 
@@ -44,13 +46,30 @@ class SoloCommunicator final : public Communicator {
   }
 };
 
+/// How the ranks of a data-parallel run wait for and watch over each other.
+struct CommunicatorOptions {
+  /// How long the rendezvous and each collective operation may wait for the other ranks.
+  std::chrono::milliseconds timeout{300'000};
+  /// Each rank writes a heartbeat (a count, and how many operations it has entered) to the
+  /// rendezvous store this often. When an operation fails, the heartbeats name the rank at
+  /// fault: one whose heartbeat stopped (dead, stopped, unreachable), or one alive that did
+  /// not reach the operation (hung or far slower).
+  std::chrono::milliseconds heartbeat_period{1000};
+  /// A rank that sees another abort the run, or loses the store (rank 0 or the launcher is
+  /// gone), and is still alive this much later (its main thread is stuck outside the
+  /// collectives, which would otherwise fail by themselves) gives up through `on_abandoned`.
+  std::chrono::milliseconds abort_grace{10'000};
+  /// Called from the heartbeat thread with the reason. Default: print it on stderr and end
+  /// the process with exit code 1, so that no rank is left running.
+  std::function<void(const std::string& reason)> on_abandoned;
+};
+
 /// Joins the world `launch` describes: rank 0 serves a c10d TCPStore at
 /// master_addr:master_port (unless the launcher serves it) and the others connect to it
-/// (the rendezvous), then a Gloo
-/// process group runs the collectives over TCP. A world of one gives a SoloCommunicator.
-/// @param timeout How long the rendezvous and each collective operation may wait.
+/// (the rendezvous), then a Gloo process group runs the collectives over TCP, and a thread
+/// of each rank beats its heartbeat. A world of one gives a SoloCommunicator.
 /// @throws DistributedError naming the address when the rendezvous fails.
 std::unique_ptr<Communicator> connect_communicator(const DistributedLaunch& launch,
-                                                   std::chrono::milliseconds timeout);
+                                                   const CommunicatorOptions& options);
 
 }  // namespace upkie_rl

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <regex>
 #include <string>
 #include <thread>
@@ -145,7 +146,10 @@ TEST(DistributedTrain, KillingOneRankEndsTheOtherWithAClearErrorAndKeepsItsCheck
   const auto waited = std::chrono::steady_clock::now() - killed_at;
   EXPECT_EQ(code, 1) << rank0.output();
   EXPECT_LT(waited, std::chrono::seconds(60));
-  EXPECT_NE(rank0.output().find("rank 0 of 2"), std::string::npos) << rank0.output();
+  EXPECT_NE(rank0.output().find("upkie-rl: error: rank 0 of 2: sum failed: rank 1 stopped "
+                                "answering (no heartbeat for 2.5 s"),
+            std::string::npos)
+      << rank0.output();
   // The checkpoints written before are whole: a rollout loads the last one.
   std::filesystem::path last;
   for (const auto& entry : std::filesystem::directory_iterator(checkpoints)) {
@@ -156,6 +160,71 @@ TEST(DistributedTrain, KillingOneRankEndsTheOtherWithAClearErrorAndKeepsItsCheck
       "rollout --env Upkie-Bullet-Pendulum --max-steps 5 --model " + last.string());
   EXPECT_EQ(rollout.exit_code, 0) << rollout.output;
   std::filesystem::remove_all(dir0);
+}
+
+/// Two ranks of a long run with checkpoints every 1,024 steps and a `timeout` in seconds, and
+/// rank 0's run directory; returns when rank 0 has written a checkpoint.
+struct LongRun {
+  std::filesystem::path dir0 = temp_path("dist_long");
+  std::unique_ptr<Process> rank0, rank1;
+
+  LongRun(const std::string& name, const std::string& timeout) {
+    std::filesystem::remove_all(dir0);
+    const int port = free_port();
+    auto args = [&](const std::filesystem::path& dir) {
+      std::vector<std::string> out = train_args(dir, 2, 256, 100'000'000);
+      out.insert(out.end(), {"--set", "checkpoint_every=1024", "--dist-timeout", timeout});
+      return out;
+    };
+    rank0 = std::make_unique<Process>(args(dir0), name + "_rank0", rank_variables(0, 2, port));
+    rank1 = std::make_unique<Process>(args(temp_path("unused")), name + "_rank1",
+                                      rank_variables(1, 2, port));
+    const auto checkpoints = dir0 / "checkpoints";
+    for (int i = 0; i < 600 && (!std::filesystem::exists(checkpoints) ||
+                                std::filesystem::is_empty(checkpoints));
+         ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+  ~LongRun() { std::filesystem::remove_all(dir0); }
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A hung rank (stopped by SIGSTOP: no heartbeat, no collective): the other gives up after
+// --dist-timeout naming it; once it runs again it finds the run over and ends by itself.
+TEST(DistributedTrain, AHungRankIsNamedAfterTheTimeoutAndEndsWhenItWakes) {
+  LongRun run("hung", "4");
+  ASSERT_TRUE(std::filesystem::exists(run.dir0 / "checkpoints")) << run.rank0->output();
+  ASSERT_EQ(::kill(run.rank1->pid(), SIGSTOP), 0);
+  const auto stopped_at = std::chrono::steady_clock::now();
+  EXPECT_EQ(run.rank0->wait(), 1) << run.rank0->output();
+  const double waited = seconds_since(stopped_at);
+  EXPECT_GE(waited, 3.5);
+  EXPECT_LT(waited, 30.0);
+  EXPECT_NE(run.rank0->output().find("rank 1 stopped answering"), std::string::npos)
+      << run.rank0->output();
+  ::kill(run.rank1->pid(), SIGCONT);
+  const auto woken_at = std::chrono::steady_clock::now();
+  EXPECT_EQ(run.rank1->wait(), 1) << run.rank1->output();
+  EXPECT_LT(seconds_since(woken_at), 30.0);
+  EXPECT_NE(run.rank1->output().find("rank 0 stopped"), std::string::npos)
+      << run.rank1->output();
+}
+
+// Rank 0 dies: it served the rendezvous store, and the others say so.
+TEST(DistributedTrain, WhenRankZeroDiesTheOthersNameIt) {
+  LongRun run("rank0_dies", "10");
+  ASSERT_TRUE(std::filesystem::exists(run.dir0 / "checkpoints")) << run.rank0->output();
+  run.rank0->kill();
+  const auto killed_at = std::chrono::steady_clock::now();
+  EXPECT_EQ(run.rank1->wait(), 1) << run.rank1->output();
+  EXPECT_LT(seconds_since(killed_at), 30.0);
+  EXPECT_NE(run.rank1->output().find("upkie-rl: error: rank 1 of 2: sum failed: rank 0 stopped"),
+            std::string::npos)
+      << run.rank1->output();
 }
 
 TEST(DistributedTrain, TorchrunLaunchesIt) {

@@ -69,6 +69,7 @@ class BackgroundProcess {
   BackgroundProcess& operator=(const BackgroundProcess&) = delete;
 
   void kill() const { ::kill(pid_, SIGKILL); }
+  pid_t pid() const { return pid_; }
 
   /// Sends `signal` (0: none), waits, and returns the exit code (-1 when killed or not
   /// started).

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <future>
 #include <map>
 #include <thread>
 
@@ -105,6 +106,17 @@ DistributedLaunch loopback(int rank, int world_size, int port) {
   return launch;
 }
 
+/// Options of the tests: a process that runs every rank must not end when one is abandoned.
+CommunicatorOptions test_options(std::chrono::milliseconds timeout,
+                                 std::function<void(const std::string&)> on_abandoned = {}) {
+  CommunicatorOptions options;
+  options.timeout = timeout;
+  options.heartbeat_period = 200ms;
+  options.abort_grace = 1s;
+  options.on_abandoned = on_abandoned ? std::move(on_abandoned) : [](const std::string&) {};
+  return options;
+}
+
 TEST(Communicator, TwoRanksSumAndBroadcast) {
   const int port = free_port();
   std::array<torch::Tensor, 2> sums, broadcasts;
@@ -113,7 +125,7 @@ TEST(Communicator, TwoRanksSumAndBroadcast) {
   for (int rank = 0; rank < 2; ++rank) {
     ranks.emplace_back([&, rank] {
       try {
-        const auto communicator = connect_communicator(loopback(rank, 2, port), 20s);
+        const auto communicator = connect_communicator(loopback(rank, 2, port), test_options(20s));
         EXPECT_EQ(communicator->rank(), rank);
         sums[rank] = torch::tensor({1.0f + rank, 10.0f * (rank + 1)});
         communicator->sum(sums[rank]);
@@ -135,7 +147,7 @@ TEST(Communicator, TwoRanksSumAndBroadcast) {
 TEST(Communicator, ARankThatNeverComesTimesTheOthersOut) {
   const auto start = std::chrono::steady_clock::now();
   try {
-    connect_communicator(loopback(0, 2, free_port()), 2s);
+    connect_communicator(loopback(0, 2, free_port()), test_options(2s));
     FAIL() << "rank 0 met nobody";
   } catch (const DistributedError& error) {
     EXPECT_NE(std::string(error.what()).find("rank 0 of 2"), std::string::npos) << error.what();
@@ -148,7 +160,7 @@ TEST(Communicator, ARankThatStopsAnsweringTimesTheOthersOut) {
   std::string error;
   std::thread rank0([&] {
     try {
-      const auto communicator = connect_communicator(loopback(0, 2, port), 3s);
+      const auto communicator = connect_communicator(loopback(0, 2, port), test_options(3s));
       torch::Tensor values = torch::ones({4});
       communicator->sum(values);  // together
       communicator->sum(values);  // rank 1 is gone
@@ -157,16 +169,56 @@ TEST(Communicator, ARankThatStopsAnsweringTimesTheOthersOut) {
     }
   });
   {
-    const auto communicator = connect_communicator(loopback(1, 2, port), 3s);
+    const auto communicator = connect_communicator(loopback(1, 2, port), test_options(3s));
     torch::Tensor values = torch::ones({4});
     communicator->sum(values);
   }  // rank 1 leaves
   rank0.join();
-  EXPECT_NE(error.find("rank 0 of 2: sum failed"), std::string::npos) << error;
+  EXPECT_NE(error.find("rank 0 of 2: sum failed: rank 1 stopped answering (no heartbeat for 0.5 s"),
+            std::string::npos)
+      << error;
+}
+
+// Rank 1 stays alive but never reaches the second sum (its main thread is stuck): rank 0
+// times out and names it as alive but behind; rank 1's heartbeat thread sees the abort and
+// gives its process up.
+TEST(Communicator, ARankStuckOutsideTheCollectivesIsNamedAndGivesUp) {
+  const int port = free_port();
+  std::string error;
+  std::thread rank0([&] {
+    try {
+      const auto communicator = connect_communicator(loopback(0, 2, port), test_options(2s));
+      torch::Tensor values = torch::ones({4});
+      communicator->sum(values);
+      communicator->sum(values);
+    } catch (const DistributedError& caught) {
+      error = caught.what();
+    }
+  });
+  std::promise<std::string> abandoned;
+  std::future<std::string> reason = abandoned.get_future();
+  {
+    const auto communicator = connect_communicator(
+        loopback(1, 2, port),
+        test_options(2s, [&](const std::string& why) { abandoned.set_value(why); }));
+    torch::Tensor values = torch::ones({4});
+    communicator->sum(values);
+    ASSERT_EQ(reason.wait_for(30s), std::future_status::ready) << "rank 1 was never abandoned";
+  }
+  rank0.join();
+  EXPECT_NE(error.find("rank 0 of 2: sum failed: rank 1 is alive but did not reach this "
+                       "operation (1 behind"),
+            std::string::npos)
+      << error;
+  const std::string why = reason.get();
+  EXPECT_NE(why.find("rank 1 of 2: "), std::string::npos) << why;
+  EXPECT_TRUE(why.find("the run was aborted (rank 0 of 2: sum failed") != std::string::npos ||
+              why.find("rank 0 stopped") != std::string::npos)
+      << why;
 }
 
 TEST(Communicator, AWorldOfOneNeedsNoNetwork) {
-  const auto communicator = connect_communicator(DistributedLaunch{}, 1s);
+  const auto communicator = connect_communicator(DistributedLaunch{}, test_options(1s));
   torch::Tensor values = torch::tensor({2.0f});
   communicator->sum(values);
   EXPECT_EQ(values.item<float>(), 2.0f);
