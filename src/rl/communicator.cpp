@@ -42,9 +42,9 @@ class GlooCommunicator final : public Communicator {
     // Loopback worlds talk over 127.0.0.1; others over the interface the host name
     // resolves to (GLOO_SOCKET_IFNAME is not read here).
     const bool loopback = launch.master_addr == "127.0.0.1" || launch.master_addr == "localhost";
-    gloo_options->devices.push_back(loopback
-                                   ? c10d::ProcessGroupGloo::createDeviceForHostname("127.0.0.1")
-                                   : c10d::ProcessGroupGloo::createDefaultDevice());
+    gloo_options->devices.push_back(
+        loopback ? c10d::ProcessGroupGloo::createDeviceForHostname("127.0.0.1")
+                 : c10d::ProcessGroupGloo::createDefaultDevice());
     gloo_options->threads = 1;
     try {
       // Our keys apart from the launcher's, in a store it may share.
@@ -64,8 +64,8 @@ class GlooCommunicator final : public Communicator {
       health_options.waitWorkers = false;
       health_options.timeout = std::min(timeout, std::chrono::milliseconds(5000));
       health_ = c10::make_intrusive<c10d::PrefixStore>(
-          "upkie_rl/health", c10::make_intrusive<c10d::TCPStore>(launch.master_addr,
-                                                                 health_options));
+          "upkie_rl/health",
+          c10::make_intrusive<c10d::TCPStore>(launch.master_addr, health_options));
       publish_heartbeat(0);
     } catch (const std::exception& error) {
       throw DistributedError(who() + ": cannot write heartbeats to the store at " + where + ": " +
@@ -185,8 +185,7 @@ class GlooCommunicator final : public Communicator {
                 seconds.substr(0, seconds.find('.') + 2) +
                 " s: it died, was stopped, or its host is unreachable)";
       } else if (second.operations < entered) {
-        fault = "rank " + std::to_string(rank) +
-                " is alive but did not reach this operation (" +
+        fault = "rank " + std::to_string(rank) + " is alive but did not reach this operation (" +
                 std::to_string(entered - second.operations) + " behind: hung or far slower)";
       }
       if (!fault.empty()) faults += (faults.empty() ? "" : "; ") + fault;

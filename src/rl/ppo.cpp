@@ -169,15 +169,18 @@ void Ppo::set_communicator(Communicator* communicator) {
   if (started_) throw std::logic_error("Ppo::set_communicator after the first rollout");
   communicator_ = communicator != nullptr ? communicator : &solo_;
   if (communicator_->world_size() == 1) return;
-  const int rank = communicator_->rank();
-  if (rank > 0) {
-    // Other noise and minibatches than rank 0's (same seed, other stream).
-    rng_.seed(config_.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(rank)));
-    normal_.reset();
-  }
+  reseed_rank_stream(0);
   torch::NoGradGuard no_grad;
   communicator_->broadcast(policy_->flat_parameters(), 0);
   ended_episodes_.reserve(static_cast<std::size_t>(2 * num_envs_ * buffer_.num_steps()));
+}
+
+void Ppo::reseed_rank_stream(std::uint64_t segment) {
+  const auto rank = static_cast<std::uint64_t>(communicator_->rank());
+  if (rank == 0) return;
+  // Other noise and minibatches than rank 0's: same seed, a stream per (rank, segment).
+  rng_.seed(config_.seed ^ (0x9E3779B97F4A7C15ULL * rank) ^ (0xBF58476D1CE4E5B9ULL * segment));
+  normal_.reset();
 }
 
 void Ppo::average_over_ranks(torch::Tensor values) {

@@ -73,6 +73,12 @@ class Ppo {
   /// Ranks other than 0 draw their actions and minibatches from generators of their own.
   /// The communicator must outlive the learner. Call before the first rollout.
   void set_communicator(Communicator* communicator);
+
+  /// On ranks other than 0, restarts the generator of action noise and minibatches from
+  /// (seed, rank, `segment`); rank 0's generator is left as it is (checkpoints save it).
+  /// Called at every checkpoint, so that a data-parallel run resumed from one with the same
+  /// world size draws on every rank what the uninterrupted run drew.
+  void reseed_rank_stream(std::uint64_t segment);
   const Communicator& communicator() const { return *communicator_; }
 
   /// Sets the learning rate from the progress so far and runs n_epochs over the rollout.

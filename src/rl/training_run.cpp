@@ -182,6 +182,11 @@ std::uint64_t TrainingRun::segment_seed() const {
          static_cast<std::uint64_t>((checkpoints_saved_ * world + rank) * config_.num_envs);
 }
 
+void TrainingRun::start_segment() {
+  ppo_->reset_environments(segment_seed());
+  ppo_->reseed_rank_stream(static_cast<std::uint64_t>(checkpoints_saved_));
+}
+
 void TrainingRun::save_checkpoint_now() {
   ++checkpoints_saved_;
   if (!writes_outputs()) return;
@@ -227,7 +232,7 @@ std::filesystem::path TrainingRun::train(
   while (next_checkpoint <= start_timesteps) next_checkpoint += every;
   const auto start = Clock::now();
   env_->set_randomization_scale(config_.randomization_scale(ppo_->num_timesteps()));
-  ppo_->reset_environments(segment_seed());
+  start_segment();
   std::vector<ScalarValue> scalars;
   while (ppo_->num_timesteps() < total) {
     env_->set_randomization_scale(config_.randomization_scale(ppo_->num_timesteps()));
@@ -280,7 +285,7 @@ std::filesystem::path TrainingRun::train(
       while (next_checkpoint <= progress.timesteps) next_checkpoint += every;
       // Start fresh episodes so that a run resumed from this checkpoint continues
       // exactly like this one.
-      ppo_->reset_environments(segment_seed());
+      start_segment();
     }
     if (on_progress) on_progress(progress);
   }

@@ -102,6 +102,9 @@ class TrainingRun {
   void make_learner();
   void save_checkpoint_now();
   std::uint64_t segment_seed() const;
+  /// New episodes (and, on ranks other than 0, a new random stream) at the start of
+  /// training and after each checkpoint: what a resumed run starts from too.
+  void start_segment();
   std::filesystem::path save_final_model();
 
   TrainingConfig config_;

@@ -162,6 +162,70 @@ TEST(DistributedTrain, KillingOneRankEndsTheOtherWithAClearErrorAndKeepsItsCheck
   std::filesystem::remove_all(dir0);
 }
 
+// Resuming from rank 0's checkpoint: with the same world size, the run continues as the
+// uninterrupted one did (the same weights at the end, the same logged values); with another
+// world size, it continues on the global timestep count (the learning rate schedule and the
+// end), with other environments and minibatches.
+TEST(DistributedTrain, ResumesWithTheSameOrAnotherWorldSize) {
+  const auto whole = temp_path("dist_whole"), again = temp_path("dist_again"),
+             alone = temp_path("dist_resumed_alone");
+  for (const auto& dir : {whole, again, alone}) std::filesystem::remove_all(dir);
+  auto with_checkpoints = [](std::vector<std::string> args) {
+    args.insert(args.end(), {"--set", "checkpoint_every=2048"});
+    return args;
+  };
+  std::string uninterrupted;
+  {
+    const int port = free_port();
+    Process rank1(with_checkpoints(train_args(temp_path("unused"), 2, 256, 4096)), "whole_rank1",
+                  rank_variables(1, 2, port));
+    Process rank0(with_checkpoints(train_args(whole, 2, 256, 4096)), "whole_rank0",
+                  rank_variables(0, 2, port));
+    ASSERT_EQ(rank0.wait(), 0) << rank0.output();
+    ASSERT_EQ(rank1.wait(), 0) << rank1.output();
+    uninterrupted = checksum_of(rank0.output(), 0);
+  }
+  const std::string checkpoint =
+      (whole / "checkpoints" / "checkpoint_000002048_steps.ckpt").string();
+  ASSERT_TRUE(std::filesystem::exists(checkpoint));
+  auto resume_args = [&](const std::filesystem::path& dir) {
+    return std::vector<std::string>{UPKIE_RL_CLI_PATH, "train",     "--resume",  checkpoint,
+                                    "--quiet",         "--run-dir", dir.string()};
+  };
+  {
+    const int port = free_port();
+    Process rank1(resume_args(temp_path("unused")), "again_rank1", rank_variables(1, 2, port));
+    Process rank0(resume_args(again), "again_rank0", rank_variables(0, 2, port));
+    ASSERT_EQ(rank0.wait(), 0) << rank0.output();
+    ASSERT_EQ(rank1.wait(), 0) << rank1.output();
+    EXPECT_EQ(checksum_of(rank0.output(), 0), uninterrupted) << rank0.output();
+    EXPECT_EQ(checksum_of(rank1.output(), 1), uninterrupted) << rank1.output();
+  }
+  for (const char* tag : {"time/total_timesteps", "train/value_loss", "rollout/ep_rew_mean"}) {
+    const auto whole_values = column(whole / "progress.csv", tag);
+    const auto resumed_values = column(again / "progress.csv", tag);
+    ASSERT_EQ(resumed_values.size(), 4U) << tag;
+    EXPECT_TRUE(std::equal(resumed_values.begin(), resumed_values.end(), whole_values.end() - 4))
+        << tag;
+  }
+  Process resumed_alone(resume_args(alone), "resumed_alone");
+  ASSERT_EQ(resumed_alone.wait(), 0) << resumed_alone.output();
+  const auto steps = column(alone / "progress.csv", "time/total_timesteps");
+  ASSERT_EQ(steps.size(), 8U) << "2,048 more steps, 256 per iteration";
+  EXPECT_EQ(steps.front(), "2304");
+  EXPECT_EQ(steps.back(), "4096");
+  const auto rates = column(alone / "progress.csv", "train/learning_rate");
+  const auto whole_rates = column(whole / "progress.csv", "train/learning_rate");
+  const auto whole_steps = column(whole / "progress.csv", "time/total_timesteps");
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const auto found = std::find(whole_steps.begin(), whole_steps.end(), steps[i]);
+    if (found == whole_steps.end()) continue;
+    EXPECT_EQ(rates[i], whole_rates[static_cast<std::size_t>(found - whole_steps.begin())])
+        << "the schedule follows the global timesteps, at " << steps[i];
+  }
+  for (const auto& dir : {whole, again, alone}) std::filesystem::remove_all(dir);
+}
+
 /// Two ranks of a long run with checkpoints every 1,024 steps and a `timeout` in seconds, and
 /// rank 0's run directory; returns when rank 0 has written a checkpoint.
 struct LongRun {
@@ -210,8 +274,7 @@ TEST(DistributedTrain, AHungRankIsNamedAfterTheTimeoutAndEndsWhenItWakes) {
   const auto woken_at = std::chrono::steady_clock::now();
   EXPECT_EQ(run.rank1->wait(), 1) << run.rank1->output();
   EXPECT_LT(seconds_since(woken_at), 30.0);
-  EXPECT_NE(run.rank1->output().find("rank 0 stopped"), std::string::npos)
-      << run.rank1->output();
+  EXPECT_NE(run.rank1->output().find("rank 0 stopped"), std::string::npos) << run.rank1->output();
 }
 
 // Rank 0 dies: it served the rendezvous store, and the others say so.
