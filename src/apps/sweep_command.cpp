@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -129,9 +130,10 @@ void run_one(const Sweep& sweep, const SweepRun& run) {
   }
   outcome.evaluation = summarize_episodes(episodes);
   write_sweep_outcome(run_dir, outcome);
-  std::cout << "run " << run.name << ": evaluation return " << outcome.evaluation.mean_return
-            << " +- " << outcome.evaluation.std_return << " over " << outcome.evaluation.episodes
-            << " episodes (" << outcome.evaluation.successes << " survived), mean length "
+  std::cout << "run " << run.name << ": evaluation return " << std::fixed << std::setprecision(1)
+            << outcome.evaluation.mean_return << " +- " << outcome.evaluation.std_return
+            << std::defaultfloat << " over " << outcome.evaluation.episodes << " episodes ("
+            << outcome.evaluation.successes << " survived), mean length "
             << outcome.evaluation.mean_length << std::endl;
 }
 
@@ -191,8 +193,9 @@ int run_pending(const Sweep& sweep, int jobs) {
         child->exit_code == 0 ? read_sweep_outcome(sweep.run_dir(run)) : std::nullopt;
     if (outcome) {
       std::cout << "[" << elapsed() << "] " << finished << "/" << pending.size() << " done "
-                << run.name << ": evaluation return " << outcome->evaluation.mean_return << " +- "
-                << outcome->evaluation.std_return << std::endl;
+                << run.name << ": evaluation return " << std::fixed << std::setprecision(1)
+                << outcome->evaluation.mean_return << " +- " << outcome->evaluation.std_return
+                << std::defaultfloat << std::endl;
     } else if (stopping) {
       std::cout << "[" << elapsed() << "] stopped " << run.name << std::endl;
     } else {
