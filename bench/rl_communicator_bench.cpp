@@ -10,18 +10,12 @@
 #include <vector>
 
 #include "common/background_process.hpp"
+#include "common/loopback_launch.hpp"
 #include "rl/communicator.hpp"
 
 namespace {
 
-upkie_rl::DistributedLaunch loopback(int rank, int world_size, int port) {
-  upkie_rl::DistributedLaunch launch;
-  launch.world_size = world_size;
-  launch.rank = rank;
-  launch.master_addr = "127.0.0.1";
-  launch.master_port = port;
-  return launch;
-}
+using upkie_rl::testing::loopback_launch;
 
 upkie_rl::CommunicatorOptions bench_options() {
   upkie_rl::CommunicatorOptions options;
@@ -38,8 +32,8 @@ void BM_GradientAllReduce(benchmark::State& state) {
   std::vector<std::thread> followers;
   for (int rank = 1; rank < world_size; ++rank) {
     followers.emplace_back([=] {
-      const auto communicator = upkie_rl::connect_communicator(loopback(rank, world_size, port),
-                                                               bench_options());
+      const auto communicator =
+          upkie_rl::connect_communicator(loopback_launch(rank, world_size, port), bench_options());
       torch::Tensor values = torch::zeros({size + 1});
       while (true) {
         values[size] = 0.0f;
@@ -49,7 +43,7 @@ void BM_GradientAllReduce(benchmark::State& state) {
     });
   }
   const auto communicator =
-      upkie_rl::connect_communicator(loopback(0, world_size, port), bench_options());
+      upkie_rl::connect_communicator(loopback_launch(0, world_size, port), bench_options());
   torch::Tensor values = torch::ones({size + 1});
   for (auto _ : state) {
     values[size] = 0.0f;

@@ -18,6 +18,7 @@ std::filesystem::path this_executable() { return std::filesystem::read_symlink("
 pid_t spawn_logged(const std::vector<std::string>& arguments, const std::filesystem::path& log) {
   if (arguments.empty()) throw std::invalid_argument("spawn_logged: no command");
   std::vector<char*> argv;
+  argv.reserve(arguments.size() + 1);
   for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;

@@ -3,7 +3,7 @@
 /// bounded number at a time or handed one by one to a cluster's launcher, then one summary
 /// of their final evaluations and a figure of their return curves.
 
-#include <signal.h>
+#include <csignal>
 
 #include <algorithm>
 #include <chrono>

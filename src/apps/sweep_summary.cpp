@@ -183,7 +183,7 @@ std::string write_sweep_summary(const Sweep& sweep) {
     row.status = run_status(sweep, run, row.outcome);
     rows.push_back(std::move(row));
   }
-  const std::string markdown =
+  std::string markdown =
       "Final evaluation: deterministic policy, " + std::to_string(sweep.plan.evaluation_episodes) +
       " episodes per run (seeds from " + std::to_string(sweep.plan.evaluation_seed) + ", at most " +
       std::to_string(sweep.plan.evaluation_max_steps) + " steps each).\n\n" + settings_table(rows) +

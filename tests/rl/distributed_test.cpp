@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "common/background_process.hpp"
+#include "common/loopback_launch.hpp"
 #include "rl/communicator.hpp"
 #include "rl/distributed_launch.hpp"
 
@@ -97,14 +98,7 @@ TEST(DistributedLaunch, NamesTheVariableAtFault) {
   EXPECT_NE(error_of(without("RANK")).find("RANK is not set"), std::string::npos);
 }
 
-DistributedLaunch loopback(int rank, int world_size, int port) {
-  DistributedLaunch launch;
-  launch.world_size = world_size;
-  launch.rank = rank;
-  launch.master_addr = "127.0.0.1";
-  launch.master_port = port;
-  return launch;
-}
+using testing::loopback_launch;
 
 /// Options of the tests: a process that runs every rank must not end when one is abandoned.
 CommunicatorOptions test_options(std::chrono::milliseconds timeout,
@@ -125,7 +119,8 @@ TEST(Communicator, TwoRanksSumAndBroadcast) {
   for (int rank = 0; rank < 2; ++rank) {
     ranks.emplace_back([&, rank] {
       try {
-        const auto communicator = connect_communicator(loopback(rank, 2, port), test_options(20s));
+        const auto communicator =
+            connect_communicator(loopback_launch(rank, 2, port), test_options(20s));
         EXPECT_EQ(communicator->rank(), rank);
         sums[rank] = torch::tensor({1.0f + rank, 10.0f * (rank + 1)});
         communicator->sum(sums[rank]);
@@ -147,7 +142,7 @@ TEST(Communicator, TwoRanksSumAndBroadcast) {
 TEST(Communicator, ARankThatNeverComesTimesTheOthersOut) {
   const auto start = std::chrono::steady_clock::now();
   try {
-    connect_communicator(loopback(0, 2, free_port()), test_options(2s));
+    connect_communicator(loopback_launch(0, 2, free_port()), test_options(2s));
     FAIL() << "rank 0 met nobody";
   } catch (const DistributedError& error) {
     EXPECT_NE(std::string(error.what()).find("rank 0 of 2"), std::string::npos) << error.what();
@@ -160,7 +155,7 @@ TEST(Communicator, ARankThatStopsAnsweringTimesTheOthersOut) {
   std::string error;
   std::thread rank0([&] {
     try {
-      const auto communicator = connect_communicator(loopback(0, 2, port), test_options(3s));
+      const auto communicator = connect_communicator(loopback_launch(0, 2, port), test_options(3s));
       torch::Tensor values = torch::ones({4});
       communicator->sum(values);  // together
       communicator->sum(values);  // rank 1 is gone
@@ -169,7 +164,7 @@ TEST(Communicator, ARankThatStopsAnsweringTimesTheOthersOut) {
     }
   });
   {
-    const auto communicator = connect_communicator(loopback(1, 2, port), test_options(3s));
+    const auto communicator = connect_communicator(loopback_launch(1, 2, port), test_options(3s));
     torch::Tensor values = torch::ones({4});
     communicator->sum(values);
   }  // rank 1 leaves
@@ -187,7 +182,7 @@ TEST(Communicator, ARankStuckOutsideTheCollectivesIsNamedAndGivesUp) {
   std::string error;
   std::thread rank0([&] {
     try {
-      const auto communicator = connect_communicator(loopback(0, 2, port), test_options(2s));
+      const auto communicator = connect_communicator(loopback_launch(0, 2, port), test_options(2s));
       torch::Tensor values = torch::ones({4});
       communicator->sum(values);
       communicator->sum(values);
@@ -199,7 +194,7 @@ TEST(Communicator, ARankStuckOutsideTheCollectivesIsNamedAndGivesUp) {
   std::future<std::string> reason = abandoned.get_future();
   {
     const auto communicator = connect_communicator(
-        loopback(1, 2, port),
+        loopback_launch(1, 2, port),
         test_options(2s, [&](const std::string& why) { abandoned.set_value(why); }));
     torch::Tensor values = torch::ones({4});
     communicator->sum(values);
