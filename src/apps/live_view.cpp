@@ -1,8 +1,10 @@
 #include "apps/live_view.hpp"
 
 #include <iostream>
+#include <stdexcept>
 #include <thread>
 
+#include "apps/interrupt_handlers.hpp"
 #include "model/robot_model.hpp"
 #include "view/view_frame.hpp"
 #include "view/view_session.hpp"
@@ -55,7 +57,13 @@ void LiveView::wait_for_browsers() {
   if (options_.wait_clients <= 0) return;
   const auto count = static_cast<std::size_t>(options_.wait_clients);
   std::cout << "viewer: waiting for " << count << " browser(s) at " << server_->url() << std::endl;
-  while (!server_->wait_for_clients(count, std::chrono::seconds(3600))) {
+  // Ctrl-C or SIGTERM while nobody comes ends the command with an error, not a hang.
+  const InterruptHandlers interrupts;
+  while (!server_->wait_for_clients(count, std::chrono::seconds(3600), &interrupt_requested)) {
+    if (interrupt_requested.load()) {
+      throw std::runtime_error("interrupted while waiting for " + std::to_string(count) +
+                               " browser(s) (--view-wait)");
+    }
   }
 }
 

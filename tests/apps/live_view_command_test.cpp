@@ -83,6 +83,19 @@ TEST(LiveViewCommand, TrainingStreamsTheEnvironmentItIsAskedFor) {
   std::filesystem::remove_all(run_dir);
 }
 
+// Waiting for browsers that never come: Ctrl-C ends the command with an error, at once.
+TEST(LiveViewCommand, CtrlCWhileWaitingForBrowsersEndsTheCommand) {
+  BackgroundCli rollout({"rollout", "--env", "Upkie-Bullet-Pendulum", "--controller", "zero",
+                         "--view", "--view-port", "0", "--view-wait", "1"},
+                        "view_wait_interrupted");
+  ASSERT_NE(rollout.viewer_port(), 0) << rollout.output();
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(rollout.wait(SIGINT), 1) << rollout.output();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  EXPECT_NE(rollout.output().find("interrupted while waiting for 1 browser(s)"), std::string::npos)
+      << rollout.output();
+}
+
 TEST(LiveViewCommand, TheSpineStreamsEverySimulationStep) {
   const std::string shm_name = "/upkie_rl_view_" + std::to_string(::getpid());
   BackgroundCli spine(
