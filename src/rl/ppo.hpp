@@ -79,7 +79,6 @@ class Ppo {
   /// Called at every checkpoint, so that a data-parallel run resumed from one with the same
   /// world size draws on every rank what the uninterrupted run drew.
   void reseed_rank_stream(std::uint64_t segment);
-  const Communicator& communicator() const { return *communicator_; }
 
   /// Sets the learning rate from the progress so far and runs n_epochs over the rollout.
   PpoUpdateStatistics update();

@@ -166,8 +166,6 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
   } catch (const nlohmann::json::exception& error) {
     throw CheckpointError(where + "malformed header: " + error.what());
   }
-  // Again after the checkpoint's random state: ranks other than 0 draw from their own.
-  run->ppo_->set_communicator(run->communicator_.get());
   run->resumed_at_ = run->ppo_->num_timesteps();
   if (run->writes_outputs() && !std::filesystem::exists(run->run_dir_ / "config.yaml")) {
     std::ofstream(run->run_dir_ / "config.yaml") << to_yaml(config);

@@ -1,7 +1,6 @@
 #include "vec/running_mean_std.hpp"
 
 #include <algorithm>
-
 #include <cmath>
 #include <stdexcept>
 
