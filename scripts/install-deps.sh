@@ -4,7 +4,7 @@
 set -euo pipefail
 
 DEBIAN_PACKAGES=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git ccache
   libbullet-dev liburdfdom-dev libtinyxml-dev libeigen3-dev libtorch-dev python3-torch
   libgloo-dev  # c10d's Gloo process group, for distributed training
   libopenblas0-serial  # single-threaded OpenBLAS for libtorch: the reference BLAS is slow
