@@ -12,6 +12,8 @@ DEBIAN_PACKAGES=(
   libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox fonts-liberation
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
   python3-dev pybind11-dev  # the upkie_rl Python extension module
+  libonnx-dev  # ONNX export: the ONNX project's protobuf classes and checker
+  python3-yaml  # upkie_rl.sb3_convert reads and writes training configurations
   # offscreen rendering without display or GPU (EGL, Mesa's llvmpipe), videos (H.264, GIF)
   libegl-dev libegl-mesa0 libgl1-mesa-dri ffmpeg
   # the browser viewer's tests: Debian's Chromium, driven by playwright-core (npm)
@@ -29,12 +31,13 @@ fi
 # built against numpy 1.x). upkie: the public agent side, for the spine interoperability
 # tests. mujoco: its wheel ships libmujoco.so 3.3 and the C headers, which CMake links
 # (Debian has only MuJoCo 2.2, without the mjSpec API the model is built with). moviepy:
-# Gymnasium's RecordVideo writes with it.
+# Gymnasium's RecordVideo writes with it. onnxruntime: the tests run exported ONNX policies
+# with it (its wheels accept numpy 1.x).
 PYTHON_PACKAGES=(
   "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium>=1.0,<1.1" "msgpack:msgpack"
   "upkie:upkie" "tensorboard:tensorboard" "scikit_build_core:scikit-build-core"
   "pybind11:pybind11" "cloudpickle:cloudpickle" "pandas:pandas" "matplotlib:matplotlib"
-  "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy"
+  "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy" "onnxruntime:onnxruntime"
 )
 # Installed without their dependencies, which are listed above: Debian's torch calls
 # itself 1.13.0a0, a pre-release that SB3's "torch>=1.13" refuses, so pip would fetch

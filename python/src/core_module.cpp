@@ -57,4 +57,5 @@ PYBIND11_MODULE(_core, module) {
   upkie_rl::python::bind_env(module);
   upkie_rl::python::bind_vector_env(module);
   upkie_rl::python::bind_policy(module);
+  upkie_rl::python::bind_model_files(module);
 }

@@ -71,6 +71,23 @@ def make_sb3_vec_env(env_id, num_envs, num_threads=None, seed=None, **options):
     return make(env_id, num_envs, num_threads, seed, **options)
 
 
+def export_onnx(model, path):
+    """Writes the model or checkpoint ``model`` as an ONNX policy at ``path``: raw float32
+    observations (batch, obs_dim) in, clipped deterministic actions out, with the
+    normalisation inside; metadata: env_id, env_options, spaces, frequency, provenance."""
+    _core.export_onnx(str(model), str(path))
+
+
+def model_provenance(model):
+    """How the model or checkpoint ``model`` was made (a dict: upkie-rl version and commit,
+    date, source, env id and options, seed, timesteps, training config; "unknown" where an
+    older file does not say)."""
+    import json
+
+    header, _ = _core.read_model_checkpoint(str(model))
+    return json.loads(_core.model_provenance(header))
+
+
 register()
 
 __all__ = [
@@ -83,9 +100,11 @@ __all__ = [
     "UpkieVectorEnv",
     "env_options",
     "evaluate",
+    "export_onnx",
     "load_policy",
     "make_sb3_vec_env",
     "make_vec",
+    "model_provenance",
     "register",
     "registered_env_ids",
 ]

@@ -32,5 +32,9 @@ void add_train_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 /// `upkie-rl plot`: loss, KL and return figures of a training run (plot_command.cpp).
 void add_plot_command(CLI::App& app);
+/// `upkie-rl export`: a trained model as ONNX (export_command.cpp).
+void add_export_command(CLI::App& app);
+/// `upkie-rl info`: a model's spaces and provenance (info_command.cpp).
+void add_info_command(CLI::App& app);
 
 }  // namespace upkie_rl::apps

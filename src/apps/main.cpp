@@ -25,6 +25,8 @@ int run(int argc, char** argv) {
   upkie_rl::apps::add_train_command(app);
   upkie_rl::apps::add_sweep_command(app);
   upkie_rl::apps::add_plot_command(app);
+  upkie_rl::apps::add_export_command(app);
+  upkie_rl::apps::add_info_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

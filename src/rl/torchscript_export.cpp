@@ -46,7 +46,8 @@ std::string add_layers(torch::jit::Module& module, const std::vector<DenseLayer>
 
 void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& normalizer,
                         const BoxSpace& observation_space, const BoxSpace& action_space,
-                        const std::string& env_id, const std::filesystem::path& path) {
+                        const std::string& env_id, const std::filesystem::path& path,
+                        const nlohmann::json& provenance) {
   torch::NoGradGuard no_grad;
   torch::jit::Module module("UpkiePolicy");
   std::string source = "def forward(self, observation: Tensor) -> Tensor:\n";
@@ -68,7 +69,8 @@ void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& 
   const nlohmann::json metadata = {{"env_id", env_id},
                                    {"observation_space", space_to_json(observation_space)},
                                    {"action_space", space_to_json(action_space)},
-                                   {"deterministic", true}};
+                                   {"deterministic", true},
+                                   {"provenance", provenance}};
   torch::jit::ExtraFilesMap extra_files{{"metadata.json", metadata.dump()}};
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   try {

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "policy/observation_normalizer.hpp"
+#include "policy/provenance.hpp"
 #include "rl/checkpoint.hpp"
 #include "rl/ppo_checkpoint.hpp"
 #include "rl/torchscript_export.hpp"
@@ -21,6 +22,9 @@ namespace upkie_rl {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The provenance "source" of the models a training writes.
+constexpr const char* kTrainingSource = "upkie-rl train";
 
 double wall_time() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
@@ -188,7 +192,8 @@ void TrainingRun::start_segment() {
 void TrainingRun::save_checkpoint_now() {
   ++checkpoints_saved_;
   if (!writes_outputs()) return;
-  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
+  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}},
+                                {"provenance", new_provenance(kTrainingSource)}};
   const std::filesystem::path path =
       run_dir_ / "checkpoints" / checkpoint_name(ppo_->num_timesteps());
   save_checkpoint(make_ppo_checkpoint(*ppo_, normalize_->state(), extra), path);
@@ -197,15 +202,18 @@ void TrainingRun::save_checkpoint_now() {
 
 std::filesystem::path TrainingRun::save_final_model() {
   if (!writes_outputs()) return {};
-  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}}};
+  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}},
+                                {"provenance", new_provenance(kTrainingSource)}};
   const std::string stem = "model_" + local_timestamp();
   std::filesystem::path path = run_dir_ / (stem + ".ckpt");
-  save_checkpoint(make_ppo_checkpoint(*ppo_, normalize_->state(), extra), path);
+  const Checkpoint checkpoint = make_ppo_checkpoint(*ppo_, normalize_->state(), extra);
+  save_checkpoint(checkpoint, path);
   torchscript_path_ = run_dir_ / (stem + ".pt");
   export_torchscript(
       ppo_->policy(),
       ObservationNormalizer::from_state(normalize_->state(), env_->observation_space().size()),
-      env_->observation_space(), env_->action_space(), config_.env_id, torchscript_path_);
+      env_->observation_space(), env_->action_space(), config_.env_id, torchscript_path_,
+      model_provenance(checkpoint.header));
   return path;
 }
 

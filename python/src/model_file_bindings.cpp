@@ -1,0 +1,81 @@
+// Python bindings of model files: checkpoint reading and writing (for the Stable-Baselines3
+// converter, upkie_rl/sb3_convert.py), provenance, and ONNX export.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "bindings.hpp"
+#include "onnx/onnx_error.hpp"
+#include "onnx/onnx_export.hpp"
+#include "policy/checkpoint_file.hpp"
+#include "policy/deployed_policy.hpp"
+#include "policy/provenance.hpp"
+
+namespace py = pybind11;
+
+namespace upkie_rl::python {
+namespace {
+
+// (header as JSON text, {name: float32 array}) of a checkpoint, checked as a model.
+py::tuple read_model_checkpoint(const std::string& path) {
+  CheckpointFile file = read_checkpoint_file(path);
+  DeployedPolicy::from_checkpoint(file, "model " + path);  // Refuses what is not a model.
+  py::dict tensors;
+  for (auto& [name, tensor] : file.tensors) {
+    py::array_t<float> array(tensor.shape);
+    std::copy(tensor.values.begin(), tensor.values.end(), array.mutable_data());
+    tensors[py::str(name)] = array;
+  }
+  return py::make_tuple(file.header.dump(), tensors);
+}
+
+// Writes a checkpoint from JSON header text and {name: float32 array}, then reads it back
+// as a model so that a converter cannot write a file the other commands refuse.
+void write_model_checkpoint(const std::string& path, const std::string& header,
+                            const py::dict& tensors) {
+  CheckpointFile file;
+  file.header = nlohmann::json::parse(header);
+  for (const auto& [name, value] : tensors) {
+    const auto array =
+        py::cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(value);
+    FloatTensor tensor;
+    for (py::ssize_t i = 0; i < array.ndim(); ++i) tensor.shape.push_back(array.shape(i));
+    tensor.values.assign(array.data(), array.data() + array.size());
+    file.tensors[py::cast<std::string>(name)] = std::move(tensor);
+  }
+  DeployedPolicy::from_checkpoint(file, "converted model " + path);
+  write_checkpoint_file(file, path);
+}
+
+}  // namespace
+
+void bind_model_files(py::module_& module) {
+  py::register_exception<OnnxError>(module, "OnnxError", PyExc_ValueError);
+  module.def("read_model_checkpoint", &read_model_checkpoint, py::arg("path"),
+             "(header JSON text, {tensor name: float32 array}) of a model or checkpoint.");
+  module.def(
+      "write_model_checkpoint", &write_model_checkpoint, py::arg("path"), py::arg("header"),
+      py::arg("tensors"),
+      "Writes a checkpoint (header JSON text, {name: float32 array}) that loads as a model.");
+  module.def(
+      "new_provenance", [](const std::string& source) { return new_provenance(source).dump(); },
+      py::arg("source"), "Provenance entry (JSON text) of a model made now by this build.");
+  module.def(
+      "model_provenance",
+      [](const std::string& header) {
+        return model_provenance(nlohmann::json::parse(header)).dump();
+      },
+      py::arg("header"), "Complete provenance (JSON text) of a checkpoint header (JSON text).");
+  module.def(
+      "export_onnx",
+      [](const std::string& model, const std::string& onnx) {
+        py::gil_scoped_release release;
+        export_onnx_file(model, onnx);
+      },
+      py::arg("model"), py::arg("onnx"), "Exports a model or checkpoint as an ONNX policy.");
+}
+
+}  // namespace upkie_rl::python

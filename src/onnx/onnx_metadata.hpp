@@ -1,0 +1,24 @@
+#pragma once
+/// @file
+/// The names an exported ONNX policy uses, written by onnx_export.cpp and read back by
+/// onnx_model_info.cpp, the tests and users' deployment code.
+
+namespace upkie_rl::onnx_names {
+
+/// The graph's one input: raw observations, float32, shape (batch, observation size).
+inline constexpr const char* kObservation = "observation";
+/// The graph's one output: deterministic actions, float32, shape (batch, action size).
+inline constexpr const char* kAction = "action";
+/// The symbolic batch dimension of both.
+inline constexpr const char* kBatch = "batch";
+
+/// Metadata properties (ModelProto.metadata_props). Spaces, options and provenance are JSON.
+inline constexpr const char* kEnvId = "env_id";
+inline constexpr const char* kEnvOptions = "env_options";
+inline constexpr const char* kObservationSpace = "observation_space";
+inline constexpr const char* kActionSpace = "action_space";
+/// Control frequency in Hz (text), "unknown" when the environment does not say.
+inline constexpr const char* kFrequency = "frequency";
+inline constexpr const char* kProvenance = "provenance";
+
+}  // namespace upkie_rl::onnx_names

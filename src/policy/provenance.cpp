@@ -1,0 +1,98 @@
+#include "policy/provenance.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <ctime>
+#include <sstream>
+
+#include "policy/build_info.hpp"
+#include "policy/checkpoint_file.hpp"
+#include "policy/model_header.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof(buffer), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return buffer;
+}
+
+// The entries read from the rest of the header, each "unknown" when it cannot be read.
+void complete_from_header(const nlohmann::json& header, nlohmann::json& provenance) {
+  try {
+    const std::string config = checkpoint_config_yaml(header);
+    provenance["config"] = config;
+    provenance["env_id"] = checkpoint_env_id(header);
+    nlohmann::json options = nlohmann::json::object();
+    for (const auto& [name, value] : checkpoint_env_options(header)) options[name] = value;
+    provenance["env_options"] = options;
+    const YAML::Node seed = YAML::Load(config)["seed"];
+    if (seed && seed.IsScalar()) provenance["seed"] = seed.as<std::string>();
+  } catch (const CheckpointError&) {
+    // A header without (readable) configuration: those fields stay unknown.
+  } catch (const YAML::Exception&) {
+  }
+  const auto counters = header.find("counters");
+  if (counters != header.end() && counters->is_object()) {
+    const auto timesteps = counters->find("num_timesteps");
+    if (timesteps != counters->end() && timesteps->is_number_integer()) {
+      provenance["timesteps"] = timesteps->get<std::int64_t>();
+    }
+  }
+}
+
+}  // namespace
+
+nlohmann::json new_provenance(const std::string& source) {
+  return {{"upkie_rl_version", upkie_rl_version()},
+          {"git_commit", upkie_rl_git_commit()},
+          {"date", utc_now()},
+          {"source", source}};
+}
+
+nlohmann::json model_provenance(const nlohmann::json& header) {
+  nlohmann::json provenance = nlohmann::json::object();
+  const auto stored = header.find("provenance");
+  if (stored != header.end() && stored->is_object()) provenance = *stored;
+  // What the stored entry says wins (an import records the original's seed and steps).
+  nlohmann::json from_header = nlohmann::json::object();
+  complete_from_header(header, from_header);
+  for (const auto& [key, value] : from_header.items()) {
+    if (!provenance.contains(key)) provenance[key] = value;
+  }
+  for (const char* key : {"upkie_rl_version", "git_commit", "date", "source", "env_id",
+                          "env_options", "seed", "timesteps", "config"}) {
+    if (!provenance.contains(key)) provenance[key] = kUnknownProvenance;
+  }
+  return provenance;
+}
+
+std::string format_provenance(const nlohmann::json& provenance) {
+  std::ostringstream out;
+  std::string config;
+  for (const auto& [key, value] : provenance.items()) {
+    if (key == "config") {
+      config = value.is_string() ? value.get<std::string>() : value.dump();
+      continue;
+    }
+    out << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump()) << "\n";
+  }
+  if (!config.empty()) {
+    out << "config:";
+    if (config == kUnknownProvenance) {
+      out << " " << config << "\n";
+    } else {
+      out << "\n";
+      std::istringstream lines(config);
+      for (std::string line; std::getline(lines, line);) out << "  " << line << "\n";
+    }
+  }
+  return out.str();
+}
+
+}  // namespace upkie_rl
