@@ -184,6 +184,43 @@ def test_trained_upkie_rl_policy_exports_to_sb3(tmp_path):
     assert describe_sb3(tmp_path / "ppo.zip")["upkie_rl"]["env_id"] == "Upkie-MuJoCo-Pendulum"
 
 
+@pytest.mark.parametrize("activation", ["Tanh", "ReLU", "ELU", "LeakyReLU", "SiLU", "GELU",
+                                        "Sigmoid", "Softplus", "SELU"])
+def test_every_supported_activation_converts_to_the_same_actions(activation, tmp_path):
+    """An untrained PPO (standard normal weights, larger than SB3's initial ones, so that
+    every layer works in its nonlinear range) through import, ONNX export and export back
+    to SB3."""
+    ort = pytest.importorskip("onnxruntime")
+    venv = upkie_rl.make_sb3_vec_env(ENV_ID, num_envs=1)
+    model = sb3.PPO("MlpPolicy", venv, device="cpu", seed=3,
+                    policy_kwargs={"net_arch": [16, 8], "activation_fn": getattr(torch.nn, activation)})
+    torch.manual_seed(5)
+    with torch.no_grad():
+        for parameter in model.policy.parameters():
+            parameter.normal_(0.0, 1.0)
+    model.save(tmp_path / "ppo.zip")
+    imported = import_sb3(tmp_path / "ppo.zip", ENV_ID, tmp_path / "imported.ckpt")
+    observations = np.random.default_rng(4).normal(0, 2, (500, 4)).astype(np.float32)
+    expected, _ = model.predict(observations, deterministic=True)
+    assert np.std(expected) > 0.05  # The actions vary: the comparison below means something.
+    np.testing.assert_allclose(upkie_rl.load_policy(imported)(observations), expected, atol=1e-5)
+    upkie_rl.export_onnx(imported, tmp_path / "policy.onnx")
+    session = ort.InferenceSession(str(tmp_path / "policy.onnx"), providers=["CPUExecutionProvider"])
+    (onnx_actions,) = session.run(None, {"observation": observations})
+    np.testing.assert_allclose(onnx_actions, expected, atol=1e-5)
+    export_sb3(imported, tmp_path / "back.zip")
+    back, _ = sb3.PPO.load(tmp_path / "back.zip", device="cpu").predict(observations, deterministic=True)
+    np.testing.assert_allclose(back, expected, atol=1e-5)
+
+
+def test_an_activation_without_equivalent_is_refused(tmp_path):
+    venv = upkie_rl.make_sb3_vec_env(ENV_ID, num_envs=1)
+    sb3.PPO("MlpPolicy", venv, device="cpu",
+            policy_kwargs={"activation_fn": torch.nn.Hardswish}).save(tmp_path / "ppo.zip")
+    with pytest.raises(ConversionError, match="activation Hardswish has no upkie-rl equivalent"):
+        import_sb3(tmp_path / "ppo.zip", ENV_ID, tmp_path / "out.ckpt")
+
+
 # ---------------------------------------------------------------------------------------
 # What cannot be converted, and hostile inputs
 

@@ -46,8 +46,11 @@ MAX_MEMBER_BYTES = 64 << 20
 #: Most members an SB3 zip may have (SB3 writes six).
 MAX_MEMBERS = 64
 
-# SB3 activation classes and the actor activation upkie-rl evaluates them with.
-ACTIVATIONS = {"Tanh": "tanh", "ReLU": "relu"}
+# SB3 activation classes (torch.nn, default parameters) and upkie-rl's names for them
+# (policy/activation.hpp): the actor is evaluated with the same function.
+ACTIVATIONS = {"Tanh": "tanh", "ReLU": "relu", "ELU": "elu", "LeakyReLU": "leaky_relu",
+               "SiLU": "silu", "GELU": "gelu", "Sigmoid": "sigmoid", "Softplus": "softplus",
+               "SELU": "selu"}
 _CHECKPOINT_FORMAT = "upkie-rl checkpoint"
 _IMPORT_SOURCE = "upkie_rl.sb3_convert import"
 
@@ -528,7 +531,10 @@ def export_sb3(model: PathLike, output: PathLike, vecnormalize: Optional[PathLik
         )
     observation_space = _gym_box(header["observation_space"])
     action_space = _gym_box(header["action_space"])
-    activation = {"relu": torch.nn.ReLU, "tanh": torch.nn.Tanh}[policy["activation"]]
+    torch_names = {ours: torch_name for torch_name, ours in ACTIVATIONS.items()}
+    if policy["activation"] not in torch_names:
+        raise ConversionError(f"{model}: activation {policy['activation']} has no SB3 equivalent")
+    activation = getattr(torch.nn, torch_names[policy["activation"]])
     venv = _spaces_env(observation_space, action_space)
     provenance = json.loads(_core.model_provenance(header_text))
     ppo = PPO(

@@ -89,6 +89,15 @@ std::string add_normalization(GraphBuilder& graph, const ObservationNormalizer& 
                      "normalized_observation");
 }
 
+onnx::NodeProto& add_float_attribute(onnx::NodeProto& node, const char* name, float value) {
+  onnx::AttributeProto& attribute = *node.add_attribute();
+  attribute.set_name(name);
+  attribute.set_type(onnx::AttributeProto::FLOAT);
+  attribute.set_f(value);
+  return node;
+}
+
+// The activation as ONNX operators of opset 13, with PyTorch's parameters (policy/activation.hpp).
 std::string add_activation(GraphBuilder& graph, Activation activation, const std::string& input,
                            const std::string& output) {
   switch (activation) {
@@ -96,8 +105,36 @@ std::string add_activation(GraphBuilder& graph, Activation activation, const std
       return graph.apply("Relu", {input}, output);
     case Activation::kTanh:
       return graph.apply("Tanh", {input}, output);
+    case Activation::kELU:
+      add_float_attribute(graph.node("Elu", {input}, output), "alpha", 1.0f);
+      return output;
+    case Activation::kLeakyReLU:
+      add_float_attribute(graph.node("LeakyRelu", {input}, output), "alpha", 0.01f);
+      return output;
+    case Activation::kSigmoid:
+      return graph.apply("Sigmoid", {input}, output);
+    case Activation::kSoftplus:
+      return graph.apply("Softplus", {input}, output);
+    case Activation::kSELU:
+      return graph.apply("Selu", {input}, output);  // ONNX's defaults are PyTorch's α and λ.
+    case Activation::kSiLU:
+      return graph.apply("Mul", {input, graph.apply("Sigmoid", {input}, output + "_sigmoid")},
+                         output);
+    case Activation::kGELU: {
+      // GELU is an operator from opset 20 only: x/2·(1 + erf(x/√2)).
+      const std::string scaled =
+          graph.apply("Div", {input, graph.constant(output + "_sqrt2", {std::sqrt(2.0f)}, {})},
+                      output + "_scaled");
+      const std::string erf = graph.apply("Erf", {scaled}, output + "_erf");
+      const std::string plus_one = graph.apply(
+          "Add", {erf, graph.constant(output + "_one", {1.0f}, {})}, output + "_plus_one");
+      const std::string half = graph.apply(
+          "Mul", {input, graph.constant(output + "_half", {0.5f}, {})}, output + "_half_x");
+      return graph.apply("Mul", {half, plus_one}, output);
+    }
   }
-  throw OnnxError("activation without ONNX operator");
+  throw OnnxError(std::string("activation ") + activation_name(activation) +
+                  " has no ONNX operators");
 }
 
 // The actor's dense layers (Gemm: x·Wᵀ + b) with the activation between them.

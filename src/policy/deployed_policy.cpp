@@ -87,11 +87,7 @@ void DeployedPolicy::act(std::span<const float> observation, std::span<float> ac
       double sum = biases[i];
       const float* w = weights + i * layer.in;
       for (std::int64_t j = 0; j < layer.in; ++j) sum += static_cast<double>(w[j]) * x[j];
-      auto value = static_cast<float>(sum);
-      if (!last) {
-        value = shape_.activation == Activation::kReLU ? std::max(value, 0.0f) : std::tanh(value);
-      }
-      y[i] = value;
+      y[i] = static_cast<float>(last ? sum : apply_activation(shape_.activation, sum));
     }
     x = y;
   }

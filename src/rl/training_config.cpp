@@ -136,6 +136,10 @@ std::vector<Field> fields(TrainingConfig& c) {
                    } catch (const std::invalid_argument&) {
                      bad_value("policy.activation", text, "relu or tanh");
                    }
+                   // The others are for imported policies, which are evaluated, not trained.
+                   if (!is_trainable(c.policy.activation)) {
+                     bad_value("policy.activation", text, "relu or tanh");
+                   }
                  },
                  [&c] { return std::string(activation_name(c.policy.activation)); }});
   real("policy.log_std_init", c.policy.log_std_init);

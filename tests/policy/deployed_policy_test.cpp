@@ -180,8 +180,8 @@ TEST(DeployedPolicy, ForeignOrInconsistentModelsNameTheProblem) {
   file.header["policy"]["actor_hidden_sizes"] = {5, 0};
   expect_error(file, "policy sizes must be in");
   file = model.file();
-  file.header["policy"]["activation"] = "sigmoid";
-  expect_error(file, "unknown activation 'sigmoid'");
+  file.header["policy"]["activation"] = "swish";
+  expect_error(file, "unknown activation 'swish'");
   file = model.file();
   file.tensors["policy.parameters"].values.pop_back();
   file.tensors["policy.parameters"].shape = {file.tensors["policy.parameters"].shape[0] - 1};

@@ -21,7 +21,7 @@ TEST(ModelHeader, PolicyShapeRoundTripAndBounds) {
   huge["critic_hidden_sizes"] = {2'000'000};
   EXPECT_THROW(policy_shape_from_json(huge), CheckpointError);
   nlohmann::json unknown = json;
-  unknown["activation"] = "gelu";
+  unknown["activation"] = "swish";
   EXPECT_THROW(policy_shape_from_json(unknown), std::invalid_argument);
 }
 
