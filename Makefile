@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz format tidy clean
+.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz format tidy clean pi
 
 all: build
 
@@ -107,6 +107,16 @@ fuzz:
 	$(FUZZ_DIR)/fuzz/spine_server_fuzzer -runs=$(FUZZ_RUNS) -max_len=8192 \
 	  -print_final_stats=1 $(FUZZ_DIR)/server_corpus fuzz/server_corpus >/dev/null
 
+# The robot's bundle: upkie-rl-agent cross-compiled for aarch64 (Raspberry Pi 4), its arm64
+# libraries, a policy (PI_POLICY), the URDF, a run script and a README, in $(PI_DIR)/bundle.
+PI_DIR ?= build-pi
+PI_POLICY ?= tests/data/policies/pendulum_bullet_seed0.ckpt
+pi: deps
+	cmake -S . -B $(PI_DIR)/cmake -G Ninja -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake -DUPKIE_RL_AGENT_ONLY=ON
+	cmake --build $(PI_DIR)/cmake -j $(JOBS)
+	bash scripts/pi/make-bundle.sh $(PI_DIR)/cmake/upkie-rl-agent $(PI_POLICY) $(PI_DIR)/bundle
+
 format:
 	find src tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
 
@@ -114,4 +124,4 @@ tidy: configure
 	find src -name '*.cpp' | xargs -P $(JOBS) -n 4 clang-tidy -p $(BUILD_DIR) --quiet 2>/dev/null
 
 clean:
-	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(TSAN_DIR)
+	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(TSAN_DIR) $(PI_DIR)

@@ -18,7 +18,14 @@ DEBIAN_PACKAGES=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri ffmpeg
   # the browser viewer's tests: Debian's Chromium, driven by playwright-core (npm)
   chromium
+  # the robot runner for the robot's Raspberry Pi (aarch64): cross compiler, and qemu-user
+  # to test it here (`make pi`, tests/agent)
+  g++-aarch64-linux-gnu qemu-user
 )
+# The compiled libraries the aarch64 runner links, Debian's arm64 builds (multiarch): their
+# headers are the native -dev packages above.
+ARM64_PACKAGES=(libyaml-cpp0.7:arm64 liburdfdom-model3.0:arm64 libtinyxml2.6.2v5:arm64
+  libconsole-bridge1.0:arm64)
 # Node.js and npm bundle the viewer page (web/viewer). Debian's packages only when the
 # machine has no node: a NodeSource or nvm node brings its own npm, which Debian's would
 # conflict with.
@@ -62,6 +69,20 @@ if [ "${#missing[@]}" -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 else
   echo "install-deps: Debian packages present"
+fi
+missing_arm64=()
+for package in "${ARM64_PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing_arm64+=("$package")
+  fi
+done
+if [ "${#missing_arm64[@]}" -gt 0 ]; then
+  echo "install-deps: installing arm64 libraries: ${missing_arm64[*]}"
+  if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    $SUDO dpkg --add-architecture arm64
+  fi
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing_arm64[@]}"
 fi
 
 # Python packages go to the interpreter that builds the extension and runs pytest:

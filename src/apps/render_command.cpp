@@ -6,7 +6,7 @@
 #include <string>
 
 #include "apps/commands.hpp"
-#include "apps/episode_recorder.hpp"
+#include "apps/record_file.hpp"
 #include "apps/video_recorder.hpp"
 #include "sim/base_observer.hpp"
 

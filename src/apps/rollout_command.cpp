@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/episode_recorder.hpp"
+#include "apps/record_file.hpp"
 #include "apps/live_view.hpp"
 #include "apps/policy_controller.hpp"
 #include "apps/video_recorder.hpp"

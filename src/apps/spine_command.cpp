@@ -5,6 +5,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -25,8 +26,25 @@ struct SpineOptions {
   double spine_frequency = 1000.0;
   int nb_substeps = 0;
   std::string backend = "bullet";
+  /// A push in every episode: force [N] along the world's x axis (forward) on the base,
+  /// from `push_time` to push_time + push_duration after each Start [s]. 0 N: none.
+  double push_force = 0.0;
+  double push_time = 1.0;
+  double push_duration = 0.2;
+  double observation_latency = 0.0;  ///< Age of the observations sent [s].
+  double cycle_jitter = 0.0;         ///< Lateness of each cycle, up to [s].
   LiveViewOptions view;
 };
+
+/// Applies the push of `options` to `simulation` at the simulation time of `observation`.
+void apply_push(const SpineOptions& options, PhysicsSimulation& simulation,
+                const Observation& observation) {
+  if (options.push_force == 0.0) return;
+  const double since = observation.time - options.push_time;
+  const bool pushing = since >= 0.0 && since < options.push_duration;
+  const Eigen::Vector3d force(pushing ? options.push_force : 0.0, 0.0, 0.0);
+  if (force != simulation.base_force()) simulation.set_base_force(force);
+}
 
 /// Streams every simulation step of the spine to a LiveView: each Start begins an episode,
 /// and the "actions" plotted are the six servo velocity targets.
@@ -72,6 +90,9 @@ void run_spine(const SpineOptions& options) {
   if (!(options.spine_frequency > 0.0)) {
     throw std::invalid_argument("--spine-frequency must be positive");
   }
+  if (options.push_force != 0.0 && options.view.enabled) {
+    throw std::invalid_argument("--push-force does not work with --view yet");
+  }
   const bool real_time = options.nb_substeps == 0;
   std::shared_ptr<const RobotModel> model = RobotModel::default_model();
 
@@ -87,6 +108,11 @@ void run_spine(const SpineOptions& options) {
   config.real_time = real_time;
   config.frequency = options.spine_frequency;
   config.default_servo_gains = simulation.servo_gains();
+  // In simulation steps: one per cycle in real time, one per action on request.
+  const double step_duration = physics.physics_timestep * physics.nb_substeps;
+  config.observation_delay_steps =
+      static_cast<int>(std::lround(options.observation_latency / step_duration));
+  config.cycle_jitter = options.cycle_jitter;
   for (std::size_t i = 0; i < kNumServos; ++i) {
     config.maximum_torques[i] = model->servo_limits(i).effort;
   }
@@ -107,6 +133,11 @@ void run_spine(const SpineOptions& options) {
     if (options.view.enabled) {
       view = view_spine(options, server, physics.physics_timestep * physics.nb_substeps);
       view->wait_for_browsers();
+    } else if (options.push_force != 0.0) {
+      server.set_simulation_observer(
+          [&options, &simulation](const Observation& observation, const ServoAction&, bool) {
+            apply_push(options, simulation, observation);
+          });
     }
     if (real_time) {
       spdlog::info("spine {}: {}, real time, {} Hz, one {} ms physics step per cycle",
@@ -116,6 +147,10 @@ void run_spine(const SpineOptions& options) {
       spdlog::info("spine {}: {}, on request, {} physics steps of {} ms per action",
                    options.shm_name, options.backend, physics.nb_substeps,
                    1e3 * physics.physics_timestep);
+    }
+    if (config.observation_delay_steps > 0 || config.cycle_jitter > 0.0) {
+      spdlog::info("spine {}: observations {} simulation steps old, cycles up to {} ms late",
+                   options.shm_name, config.observation_delay_steps, 1e3 * config.cycle_jitter);
     }
     server.run(interrupt_requested);
     error = server.error();
@@ -149,6 +184,27 @@ void add_spine_command(CLI::App& app) {
   command->add_option("--backend", options->backend, "Physics engine")
       ->capture_default_str()
       ->check(CLI::IsMember({"bullet", "mujoco"}));
+  command
+      ->add_option("--push-force", options->push_force,
+                   "Push the base forward with this force in every episode [N], 0 for none")
+      ->capture_default_str();
+  command->add_option("--push-time", options->push_time, "When the push starts after a Start [s]")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--push-duration", options->push_duration, "How long the push lasts [s]")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--observation-latency", options->observation_latency,
+                   "Sim-to-real timing: send observations this old [s], rounded to simulation "
+                   "steps (the pi3hat's are about one 1 ms cycle old)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
+  command
+      ->add_option("--cycle-jitter", options->cycle_jitter,
+                   "Sim-to-real timing, real time: start each cycle up to this late [s]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   options->view.speed = 0.0;  // the spine keeps its own pace
   add_live_view_options(*command, options->view, false);
   command->callback([options] { run_spine(*options); });

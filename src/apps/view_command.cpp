@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/episode_recorder.hpp"
+#include "apps/record_file.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "envs/registry.hpp"
 #include "model/robot_model.hpp"

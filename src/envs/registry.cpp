@@ -6,26 +6,17 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "envs/action_lag.hpp"
-#include "envs/gyropod_env.hpp"
+#include "envs/env_settings.hpp"
 #include "envs/observation_noise.hpp"
-#include "envs/option_table.hpp"
-#include "envs/pendulum_env.hpp"
 #include "envs/servos_env.hpp"
-#include "envs/servos_task_env.hpp"
 #include "envs/time_limit.hpp"
-#include "model/inertia_source.hpp"
-#include "sim/bullet_simulation.hpp"
-#include "sim/mock_simulation.hpp"
-#include "sim/mujoco_simulation.hpp"
-#include "spine/spine_backend.hpp"
 
 namespace upkie_rl {
 
 namespace {
 
-enum class Backend { kBullet, kMujoco, kMock, kSpine };
-enum class Kind { kServos, kPendulum, kGyropod, kServosTask };
+using Backend = EnvBackend;
+using Kind = EnvKind;
 
 struct BackendName {
   std::string_view name;
@@ -47,54 +38,11 @@ constexpr std::array<KindName, 4> kKinds = {{{"Servos", Kind::kServos},
                                              {"Gyropod", Kind::kGyropod},
                                              {"ServosTask", Kind::kServosTask}}};
 
-struct EnvId {
-  Backend backend;
-  Kind kind;
-};
-
 std::string registered_list() {
   std::string list;
   for (const std::string& id : registered_env_ids()) list += (list.empty() ? "" : ", ") + id;
   return list;
 }
-
-EnvId parse_id(const std::string& id) {
-  constexpr std::string_view kPrefix = "Upkie-";
-  const std::string_view view(id);
-  const std::size_t dash = view.find('-', kPrefix.size());
-  if (view.substr(0, kPrefix.size()) == kPrefix && dash != std::string_view::npos) {
-    std::string_view backend = view.substr(kPrefix.size(), dash - kPrefix.size());
-    const std::string_view kind = view.substr(dash + 1);
-    if (backend == "PyBullet") backend = "Bullet";
-    for (const BackendName& b : kBackends) {
-      if (b.name != backend) continue;
-      for (const KindName& k : kKinds) {
-        if (k.name == kind) return EnvId{b.backend, k.kind};
-      }
-    }
-  }
-  throw std::invalid_argument("environment id \"" + id +
-                              "\" not found; registered ids: " + registered_list() +
-                              " (Upkie-PyBullet-* is an alias of Upkie-Bullet-*)");
-}
-
-/// Everything the options of an id set, with the defaults of each kind.
-struct EnvSettings {
-  double frequency = 200.0;  // [Hz]
-  int nb_substeps = 0;       // 0: round(1000 / frequency), physics at about 1 kHz.
-  InertiaSource inertia_source = InertiaSource::kBulletBoxRule;
-  InitRandomization init_rand;
-  PerturbationSettings perturbations;  // physics backends only
-  double observation_noise = 0.0;      // half-width, in the observation's units
-  ActionLagSettings action_lag;
-  SpineBackendConfig spine;
-  int max_episode_steps = 0;  // 0: no time limit.
-  PendulumConfig pendulum;
-  GyropodConfig gyropod;
-  ServosTaskConfig task;
-  /// MuJoCo's compiled model, built once per factory and shared by its environments.
-  std::shared_ptr<const MujocoModel> mujoco_model;
-};
 
 constexpr double kHuge = 1e9;
 
@@ -118,8 +66,29 @@ void add_balance_options(OptionTable& table, BalanceRewardWeights& reward,
                    "reward weight of (second action difference)^2");
 }
 
-/// The options of `id`, bound to `settings`, whose defaults it sets first.
-OptionTable option_table(const EnvId& id, EnvSettings& settings) {
+}  // namespace
+
+EnvId parse_env_id(const std::string& id) {
+  constexpr std::string_view kPrefix = "Upkie-";
+  const std::string_view view(id);
+  const std::size_t dash = view.find('-', kPrefix.size());
+  if (view.substr(0, kPrefix.size()) == kPrefix && dash != std::string_view::npos) {
+    std::string_view backend = view.substr(kPrefix.size(), dash - kPrefix.size());
+    const std::string_view kind = view.substr(dash + 1);
+    if (backend == "PyBullet") backend = "Bullet";
+    for (const BackendName& b : kBackends) {
+      if (b.name != backend) continue;
+      for (const KindName& k : kKinds) {
+        if (k.name == kind) return EnvId{b.backend, k.kind};
+      }
+    }
+  }
+  throw std::invalid_argument("environment id \"" + id +
+                              "\" not found; registered ids: " + registered_list() +
+                              " (Upkie-PyBullet-* is an alias of Upkie-Bullet-*)");
+}
+
+OptionTable env_option_table(const EnvId& id, EnvSettings& settings) {
   const Kind kind = id.kind;
   const bool timed = kind == Kind::kPendulum || kind == Kind::kServosTask;
   settings.max_episode_steps = timed ? 300 : 0;
@@ -226,58 +195,42 @@ OptionTable option_table(const EnvId& id, EnvSettings& settings) {
   return table;
 }
 
-/// The physics settings of `settings`, common to Bullet and MuJoCo.
-void set_physics(const EnvSettings& settings, PhysicsConfig& config) {
-  config.nb_substeps =
-      settings.nb_substeps > 0
-          ? settings.nb_substeps
-          : std::max(1, static_cast<int>(std::lround(1000.0 / settings.frequency)));
-  config.physics_timestep = 1.0 / (settings.frequency * config.nb_substeps);
-  config.inertia_source = settings.inertia_source;
+std::string env_id_name(EnvBackend backend, EnvKind kind) {
+  std::string name = "Upkie-";
+  for (const BackendName& b : kBackends) {
+    if (b.backend == backend) name += std::string(b.name) + "-";
+  }
+  for (const KindName& k : kKinds) {
+    if (k.kind == kind) name += k.name;
+  }
+  return name;
 }
 
-MujocoConfig mujoco_config(const EnvSettings& settings) {
-  MujocoConfig config;
-  set_physics(settings, config);
+EnvSettings parse_env_settings(const EnvId& id, const std::string& name,
+                               const EnvOptions& options) {
+  EnvSettings settings;
+  env_option_table(id, settings).apply(options, name);
+  try {
+    settings.perturbations.validate();
+    settings.action_lag.validate();
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(name + ": " + error.what());
+  }
+  return settings;
+}
+
+SpineBackendConfig spine_backend_config(const EnvSettings& settings) {
+  SpineBackendConfig config = settings.spine;
+  config.agent_frequency = settings.frequency;
   return config;
 }
 
-std::unique_ptr<Simulation> make_simulation(Backend backend, const EnvSettings& settings,
-                                            const std::shared_ptr<const RobotModel>& model,
-                                            int& physics_steps_per_step) {
-  switch (backend) {
-    case Backend::kBullet: {
-      BulletConfig config;
-      set_physics(settings, config);
-      physics_steps_per_step = config.nb_substeps;
-      return std::make_unique<BulletSimulation>(model, config);
-    }
-    case Backend::kMujoco: {
-      const MujocoConfig config = mujoco_config(settings);
-      physics_steps_per_step = config.nb_substeps;
-      return std::make_unique<MujocoSimulation>(model, config, settings.mujoco_model);
-    }
-    case Backend::kSpine: {
-      SpineBackendConfig config = settings.spine;
-      config.agent_frequency = settings.frequency;
-      physics_steps_per_step = 0;
-      return std::make_unique<SpineBackend>(config);
-    }
-    case Backend::kMock:
-    default:
-      physics_steps_per_step = 0;
-      return std::make_unique<MockSimulation>(model, 1.0 / settings.frequency);
-  }
-}
-
-std::unique_ptr<Env> build(const EnvId& id, const EnvSettings& settings) {
-  std::shared_ptr<const RobotModel> model = RobotModel::default_model();
-  int physics_steps_per_step = 0;
-  std::unique_ptr<Simulation> simulation =
-      make_simulation(id.backend, settings, model, physics_steps_per_step);
-  auto servos =
-      std::make_unique<ServosEnv>(std::move(simulation), std::move(model), settings.init_rand,
-                                  physics_steps_per_step, settings.perturbations);
+std::unique_ptr<Env> assemble_env(const EnvId& id, const EnvSettings& settings,
+                                  std::unique_ptr<Simulation> simulation,
+                                  int physics_steps_per_step) {
+  auto servos = std::make_unique<ServosEnv>(std::move(simulation), RobotModel::default_model(),
+                                            settings.init_rand, physics_steps_per_step,
+                                            settings.perturbations);
   std::unique_ptr<Env> env;
   switch (id.kind) {
     case Kind::kServos:
@@ -305,8 +258,6 @@ std::unique_ptr<Env> build(const EnvId& id, const EnvSettings& settings) {
   return env;
 }
 
-}  // namespace
-
 std::vector<std::string> registered_env_ids() {
   std::vector<std::string> ids;
   for (const BackendName& backend : kBackends) {
@@ -317,33 +268,9 @@ std::vector<std::string> registered_env_ids() {
   return ids;
 }
 
-EnvFactory make_env_factory(const std::string& id, const EnvOptions& options) {
-  const EnvId parsed = parse_id(id);
-  EnvSettings settings;
-  option_table(parsed, settings).apply(options, id);
-  try {
-    settings.perturbations.validate();
-    settings.action_lag.validate();
-  } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument(id + ": " + error.what());
-  }
-  // Fail here, not in the factory, on the model or a settings error.
-  const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
-  if (parsed.backend == Backend::kMujoco) {
-    const MujocoConfig config = mujoco_config(settings);
-    config.validate();
-    settings.mujoco_model = build_mujoco_model(*model, config);
-  }
-  return [parsed, settings]() { return build(parsed, settings); };
-}
-
-std::unique_ptr<Env> make_env(const std::string& id, const EnvOptions& options) {
-  return make_env_factory(id, options)();
-}
-
 std::vector<std::string> env_option_help(const std::string& id) {
   EnvSettings settings;
-  return option_table(parse_id(id), settings).describe();
+  return env_option_table(parse_env_id(id), settings).describe();
 }
 
 EnvOptions task_options(const std::string& source_id, const EnvOptions& options,
@@ -366,7 +293,7 @@ EnvOptions task_options(const std::string& source_id, const EnvOptions& options,
 
 std::vector<OptionInfo> env_option_info(const std::string& id) {
   EnvSettings settings;
-  return option_table(parse_id(id), settings).info();
+  return env_option_table(parse_env_id(id), settings).info();
 }
 
 }  // namespace upkie_rl

@@ -111,6 +111,8 @@ void SpineBackend::stop() {
   memory_.set_request(Request::kStop);
 }
 
+void SpineBackend::force_stop() { memory_.set_request(Request::kStop); }
+
 const Observation& SpineBackend::reset(const ResetState& state) {
   stop();
   write_start_config_msgpack(state, config_.start_parameters, buffer_);

@@ -62,6 +62,11 @@ class SpineBackend final : public Simulation {
   /// Asks the spine to stop its actuators (does not wait for completion).
   void stop();
 
+  /// Writes the Stop request over whatever request is pending, without waiting: what an
+  /// agent leaving a silent spine does, so that a spine that comes back (a frozen process
+  /// resumed) finds Stop rather than a stale action.
+  void force_stop();
+
   const SpineBackendConfig& config() const { return config_; }
 
  private:

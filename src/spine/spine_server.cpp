@@ -2,9 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <thread>
 #include <utility>
 
@@ -34,6 +36,14 @@ SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config
       unpacker_(memory_.max_payload_size()),
       action_(spine_default_servo_action()) {
   publish_state();
+  if (config.observation_delay_steps < 0 || config.observation_delay_steps > 100000) {
+    throw SpineError("observation delay must be in [0, 100000] steps, got " +
+                     std::to_string(config.observation_delay_steps));
+  }
+  if (!(config.cycle_jitter >= 0.0 && std::isfinite(config.cycle_jitter))) {
+    throw SpineError("cycle jitter must be finite and >= 0");
+  }
+  history_.resize(static_cast<std::size_t>(config.observation_delay_steps) + 1);
   if (config.real_time && !(config.frequency > 0.0 && std::isfinite(config.frequency))) {
     throw SpineError("spine frequency must be positive and finite, got " +
                      std::to_string(config.frequency));
@@ -90,6 +100,7 @@ void SpineServer::process_state() {
       if (config_.real_time && simulation_ready_) {
         if (brake_step_) {
           brake_step_();
+          remember_observation();
           nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
           if (observer_) observer_(simulation_.observation(), stop_action_, false);
         } else {
@@ -120,6 +131,7 @@ void SpineServer::reset_from_payload() {
   if (set_settings_) set_settings_(settings);
   simulation_.reset(state);
   simulation_ready_ = true;
+  std::fill(history_.begin(), history_.end(), simulation_.observation());
   if (observer_) observer_(simulation_.observation(), action_, true);
 }
 
@@ -128,14 +140,21 @@ void SpineServer::step_from_payload() {
   read_servo_action(action_dictionary_, action_, &config_.maximum_torques);
 }
 
+void SpineServer::remember_observation() {
+  history_[history_next_] = simulation_.observation();
+  history_next_ = (history_next_ + 1) % history_.size();
+}
+
 void SpineServer::advance(const ServoAction& action) {
   simulation_.step(action);
+  remember_observation();
   nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
   if (observer_) observer_(simulation_.observation(), action, false);
 }
 
 void SpineServer::write_observation() {
-  write_observation_msgpack(simulation_.observation(), buffer_);
+  // The oldest kept: the newest when there is no delay.
+  write_observation_msgpack(history_[history_next_], buffer_);
   memory_.write_payload({buffer_.data(), buffer_.size()});
 }
 
@@ -145,6 +164,8 @@ void SpineServer::run(const std::atomic<bool>& interrupt) {
       std::chrono::duration<double>(1.0 / config_.frequency));
   auto next_cycle = Clock::now();
   int idle_cycles = 0;
+  std::mt19937_64 jitter_generator(config_.jitter_seed);
+  std::uniform_real_distribution<double> jitter(0.0, config_.cycle_jitter);
   while (!machine_.is_over()) {
     if (interrupt.load(std::memory_order_relaxed)) machine_.on_interrupt();
     const std::uint32_t request = memory_.request();
@@ -155,7 +176,13 @@ void SpineServer::run(const std::atomic<bool>& interrupt) {
       next_cycle += period;
       const auto now = Clock::now();
       if (next_cycle < now - 10 * period) next_cycle = now;  // fell behind: don't burst
-      std::this_thread::sleep_until(next_cycle);
+      if (config_.cycle_jitter > 0.0) {
+        std::this_thread::sleep_until(next_cycle +
+                                      std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(jitter(jitter_generator))));
+      } else {
+        std::this_thread::sleep_until(next_cycle);
+      }
     } else if (had_request || machine_.state() == SpineState::kShutdown) {
       idle_cycles = 0;
     } else if (++idle_cycles < kSpinningIdleCycles) {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <msgpack.hpp>
 #include <string>
+#include <vector>
 
 #include "sim/servo_law.hpp"
 #include "sim/simulation.hpp"
@@ -42,6 +43,13 @@ struct SpineServerConfig {
   /// Servo gains given to the simulation at a Start whose configuration has no
   /// bullet.torque_control (the configuration is replaced at each Start, not merged).
   ServoGains default_servo_gains{};
+  /// Sim-to-real timing: the observation written to the agent is the one of this many
+  /// simulation steps ago (the robot's observations are about one pi3hat cycle, ~1 ms, old).
+  int observation_delay_steps = 0;
+  /// Sim-to-real timing, real-time mode: each cycle starts up to this late, uniformly
+  /// drawn, without shifting the schedule [s].
+  double cycle_jitter = 0.0;
+  std::uint64_t jitter_seed = 0;  ///< Seed of the jitter's draws.
 };
 
 /// Serves a Simulation over the spine link. Creates the shared memory at construction
@@ -111,6 +119,7 @@ class SpineServer {
   void step_from_payload();
   void advance(const ServoAction& action);
   void write_observation();
+  void remember_observation();
   void publish_state() { published_state_.store(machine_.state(), std::memory_order_release); }
 
   Simulation& simulation_;
@@ -128,6 +137,10 @@ class SpineServer {
   msgpack::sbuffer buffer_;
   bool simulation_ready_ = false;
   std::string error_;
+  /// The last observation_delay_steps + 1 observations, a ring; history_next_ is the
+  /// oldest (the one written to the agent).
+  std::vector<Observation> history_;
+  std::size_t history_next_ = 0;
   std::atomic<SpineState> published_state_;
   std::atomic<std::uint64_t> nb_cycles_{0};
   std::atomic<std::uint64_t> nb_simulation_steps_{0};

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 #include "fake_simulation.hpp"
@@ -12,6 +15,7 @@
 #include "spine/observation_reader.hpp"
 #include "spine/reset_config.hpp"
 #include "spine/servo_action_message.hpp"
+#include "spine/spine_error.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -357,6 +361,68 @@ TEST_F(SpineServerTest, RunStopsOnInterruptAndDestructorUnlinks) {
   EXPECT_TRUE(std::filesystem::exists(path));
   server_.reset();
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+TEST_F(SpineServerTest, ObservationDelaySendsOlderObservations) {
+  config_.observation_delay_steps = 3;
+  make_server(false);
+  start();
+  ServoAction action = spine_default_servo_action();
+  act(action);
+  EXPECT_DOUBLE_EQ(read_reply().time, 0.0);  // 1 step done, 3 steps of delay: the reset's
+  act(action);
+  act(action);
+  act(action);
+  EXPECT_NEAR(read_reply().time, 0.005, 1e-12);  // 4 steps done, the first one's
+  EXPECT_NEAR(simulation_.observation().time, 0.020, 1e-12);
+}
+
+TEST(SpineServer, RefusesANegativeDelayOrJitter) {
+  FakeSimulation simulation;
+  SpineServerConfig config;
+  config.shm_name = testing::unique_shm_name("bad_timing");
+  config.observation_delay_steps = -1;
+  EXPECT_THROW({ SpineServer server(simulation, config); }, SpineError);
+  config.observation_delay_steps = 0;
+  config.cycle_jitter = -0.001;
+  EXPECT_THROW({ SpineServer server(simulation, config); }, SpineError);
+}
+
+TEST(SpineServer, CycleJitterMakesCyclesLate) {
+  // Mean |interval - period| between the cycles' simulation steps on a 50 Hz schedule,
+  // without and with 12 ms of jitter: with it, |U1 - U2| of two U(0, 12 ms) draws, 4 ms on
+  // average, on top of whatever the machine's own delays are (up to ~1.5 ms when loaded).
+  const auto mean_deviation = [](double jitter) {
+    FakeSimulation simulation;
+    SpineServerConfig config;
+    config.shm_name = testing::unique_shm_name("jitter");
+    config.frequency = 50.0;
+    config.cycle_jitter = jitter;
+    SpineServer server(simulation, config);
+    SharedMemory agent = SharedMemory::open(config.shm_name);
+    msgpack::sbuffer start_config;
+    write_start_config_msgpack(ResetState{}, {}, start_config);
+    agent.write_payload({start_config.data(), start_config.size()});
+    agent.set_request(Request::kStart);
+    std::vector<std::chrono::steady_clock::time_point> steps;
+    steps.reserve(1000);
+    std::atomic<bool> interrupt{false};
+    server.set_simulation_observer([&](const Observation&, const ServoAction&, bool reset) {
+      if (reset) return;
+      steps.push_back(std::chrono::steady_clock::now());
+      if (steps.size() == 40) interrupt = true;
+    });
+    server.run(interrupt);
+    double total = 0.0;
+    for (std::size_t k = 1; k < steps.size(); ++k) {
+      total += std::abs(std::chrono::duration<double>(steps[k] - steps[k - 1]).count() - 0.02);
+    }
+    return total / double(steps.size() - 1);
+  };
+  const double steady = mean_deviation(0.0);
+  const double jittered = mean_deviation(0.012);
+  EXPECT_GT(jittered - steady, 0.002) << steady << " vs " << jittered;
+  EXPECT_LT(jittered - steady, 0.007) << steady << " vs " << jittered;
 }
 
 }  // namespace

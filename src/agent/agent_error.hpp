@@ -1,0 +1,23 @@
+#pragma once
+/// @file
+/// The errors of the robot runner (`upkie-rl-agent`).
+
+#include <stdexcept>
+
+namespace upkie_rl {
+
+/// Raised when the runner cannot run: a bad option, checkpoint or environment, or a
+/// supervisor limit passed (SupervisorTrip).
+class AgentError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Raised inside a cycle when the supervisor finds the robot or the policy outside its
+/// limits; the runner then goes to the stopping state. The message names the limit.
+class SupervisorTrip : public AgentError {
+ public:
+  using AgentError::AgentError;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,95 @@
+/// @file
+/// Entry point of `upkie-rl-agent`, the robot runner: a trained policy on a spine (the
+/// robot's, or `upkie-rl spine`) under the safety supervisor, without Python, libtorch or a
+/// physics engine.
+
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "agent/policy_runner.hpp"
+#include "apps/interrupt_handlers.hpp"
+
+namespace {
+
+void add_limit_options(CLI::App& app, upkie_rl::SupervisorLimits& limits) {
+  app.add_option("--max-pitch", limits.max_pitch, "Attitude limit: |pitch| [rad]")
+      ->capture_default_str();
+  app.add_option("--max-roll", limits.max_roll, "Attitude limit: |roll| [rad]")
+      ->capture_default_str();
+  app.add_option("--joint-position-margin", limits.joint_position_margin,
+                 "Measured joint angle allowed beyond the joint's limits [rad]")
+      ->capture_default_str();
+  app.add_option("--joint-velocity-factor", limits.joint_velocity_factor,
+                 "Measured joint velocity allowed, as a fraction of the joint's limit")
+      ->capture_default_str();
+  app.add_option("--velocity-command-rate", limits.max_velocity_command_rate,
+                 "Rate limit of velocity commands [rad/s^2]")
+      ->capture_default_str();
+  app.add_option("--position-command-rate", limits.max_position_command_rate,
+                 "Rate limit of position commands [rad/s]")
+      ->capture_default_str();
+  app.add_option("--max-torque", limits.max_torque,
+                 "Cap of every command's maximum torque [N.m], never above the joint's "
+                 "effort (0: the effort)")
+      ->capture_default_str();
+  app.add_option("--spine-timeout", limits.spine_timeout,
+                 "The spine is silent after this long without an answer [s]")
+      ->capture_default_str();
+  app.add_option("--max-deadline-misses", limits.max_consecutive_deadline_misses,
+                 "Stop after this many missed deadlines in a row")
+      ->capture_default_str();
+  app.add_option("--max-cycle-periods", limits.max_cycle_periods,
+                 "Stop after one cycle longer than this many periods")
+      ->capture_default_str();
+  app.add_option("--stop-cycles", limits.nb_stop_cycles,
+                 "Cycles of stop commands sent before the Stop request")
+      ->capture_default_str();
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{
+      "upkie-rl-agent: runs a policy of `upkie-rl train` on Upkie's spine (the robot's, or "
+      "`upkie-rl spine`) under a safety supervisor. Ctrl-C or SIGTERM stops it cleanly."};
+  upkie_rl::RunnerOptions options;
+  app.add_option("--model", options.model, "Checkpoint (.ckpt) of `upkie-rl train`")->required();
+  app.add_option("--shm-name", options.shm_name, "Shared-memory name of the spine")
+      ->capture_default_str();
+  app.add_option("--duration", options.duration, "Run for this long [s], 0 until stopped")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--record", options.record,
+                 "Flight record: every cycle to a CSV file (`upkie-rl view --replay` reads it)");
+  app.add_flag("--dry-run", options.dry_run,
+               "Send only stop commands; log the commands the policy would send");
+  app.add_option("--open-tries", options.open_tries, "Attempts at opening the spine, 1 s apart")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  add_limit_options(app, options.limits);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+  const upkie_rl::apps::InterruptHandlers handlers;
+  const upkie_rl::RunSummary summary =
+      upkie_rl::run_policy(options, upkie_rl::apps::interrupt_requested);
+  std::cout << summary.to_string() << std::endl;
+  return summary.completed ? 0 : 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Every failure ends as one line and status 1; a run the supervisor stopped, status 2.
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::cerr << "upkie-rl-agent: error: " << error.what() << std::endl;
+  } catch (...) {
+    std::cerr << "upkie-rl-agent: error: unknown exception" << std::endl;
+  }
+  return 1;
+}

@@ -1,0 +1,41 @@
+#pragma once
+/// @file
+/// The record files of `upkie-rl rollout --record` (envs/episode_recorder.hpp) read back for
+/// `upkie-rl render` and `upkie-rl view`.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "envs/episode_recorder.hpp"
+#include "render/robot_renderer.hpp"
+
+namespace upkie_rl::apps {
+
+/// What `upkie-rl render` and `upkie-rl view` need of one row of a record file.
+struct RecordedStep {
+  int episode = 0;
+  int step = 0;
+  double time = 0.0;    ///< [s]
+  double reward = 0.0;  ///< Of the step taken from this state.
+  RobotPose pose;
+  /// As measured; files written before these columns existed give the pitch of the
+  /// ground-truth orientation and base_x.
+  double pitch = 0.0;
+  double ground_position = 0.0;
+  std::vector<double> action;  ///< In the order of RecordFile::action_names.
+};
+
+/// The rows of a record file, and the names of its action columns (without "action.").
+struct RecordFile {
+  std::vector<std::string> action_names;
+  std::vector<RecordedStep> steps;
+};
+
+/// Reads a record file written by EpisodeRecorder (any environment).
+/// @throws std::runtime_error naming the file, and the line and column at fault: a missing
+///         column, a value that is not a number, a row of the wrong length, no ground truth
+///         (a spine run), or no rows at all.
+RecordFile read_record_file(const std::filesystem::path& path);
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,234 @@
+// upkie-rl-agent against `upkie-rl spine` in real time: it balances the test policies, and
+// every supervisor path (spine killed, spine frozen, robot pushed over, NaN policy output,
+// corrupted checkpoint, SIGTERM) ends in stopping with the stop commands sent and a clear
+// message, never a crash.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/mman.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/background_process.hpp"
+#include "common/temp_files.hpp"
+#include "policy/checkpoint_file.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using testing::BackgroundProcess;
+using testing::temp_path;
+
+const std::string kPolicies = std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/";
+const std::string kPendulum = kPolicies + "pendulum_bullet_seed0.ckpt";
+const std::string kServosBalance = kPolicies + "servos_balance_mujoco_seed0.ckpt";
+constexpr std::uint32_t kStopRequest = 3;
+
+/// A real-time `upkie-rl spine` on its own shared memory, removed at the end.
+class Spine {
+ public:
+  explicit Spine(const std::string& tag, std::vector<std::string> extra = {},
+                 const std::string& backend = "bullet")
+      : shm_name_("/upkie_rl_agent_" + tag + std::to_string(::getpid())),
+        process_(arguments(shm_name_, backend, std::move(extra)), "agent_spine_" + tag) {
+    for (int i = 0; i < 3000 && !std::filesystem::exists(path()); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+  ~Spine() {
+    process_.wait(SIGINT);
+    std::filesystem::remove(path());  // left by a killed spine
+  }
+  Spine(const Spine&) = delete;
+  Spine& operator=(const Spine&) = delete;
+
+  const std::string& shm_name() const { return shm_name_; }
+  std::filesystem::path path() const { return "/dev/shm" + shm_name_; }
+  BackgroundProcess& process() { return process_; }
+
+  /// The request word of the shared memory.
+  std::uint32_t request() const {
+    std::ifstream in(path(), std::ios::binary);
+    std::uint32_t word = 0;
+    in.read(reinterpret_cast<char*>(&word), sizeof(word));
+    return word;
+  }
+
+ private:
+  static std::vector<std::string> arguments(const std::string& shm_name, const std::string& backend,
+                                            std::vector<std::string> extra) {
+    std::vector<std::string> args = {UPKIE_RL_CLI_PATH, "spine",     "--shm-name",
+                                     shm_name,          "--backend", backend};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+
+  std::string shm_name_;
+  BackgroundProcess process_;
+};
+
+/// upkie-rl-agent with `model` on `spine`, in the background.
+std::unique_ptr<BackgroundProcess> start_agent(const Spine& spine, const std::string& model,
+                                               const std::string& tag,
+                                               std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {UPKIE_RL_AGENT_PATH, "--model", model, "--shm-name",
+                                   spine.shm_name()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return std::make_unique<BackgroundProcess>(args, "agent_" + tag);
+}
+
+/// Waits until the agent's log says it is running (at most 20 s).
+bool wait_running(const BackgroundProcess& agent) {
+  for (int i = 0; i < 2000; ++i) {
+    if (agent.output().find("starting -> running") != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+/// The log of a run the supervisor stopped: stopping, stop commands, stopped, summary.
+void expect_supervised_stop(const std::string& output, const std::string& reason) {
+  EXPECT_NE(output.find("-> stopping: " + reason), std::string::npos) << output;
+  EXPECT_NE(output.find("Stop request"), std::string::npos) << output;
+  EXPECT_NE(output.find("stopping -> stopped: detached"), std::string::npos) << output;
+  EXPECT_NE(output.find("summary: "), std::string::npos) << output;
+}
+
+void expect_balances(const std::string& model, const std::string& backend) {
+  Spine spine("balance_" + backend, {}, backend);
+  auto agent = start_agent(spine, model, "balance_" + backend, {"--duration", "10"});
+  const int status = agent->wait();
+  const std::string output = agent->output();
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("running -> stopping: duration of 10 s reached"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
+  // 10 s at 200 Hz: 2000 cycles at most; a loaded 2-core machine runs some late.
+  const auto at = output.find("summary: ");
+  ASSERT_NE(at, std::string::npos) << output;
+  const long cycles = std::stol(output.substr(at + 9));
+  EXPECT_GT(cycles, 1500) << output;
+  EXPECT_LT(cycles, 2010) << output;
+}
+
+TEST(AgentRunner, BalancesThePendulumPolicyTenSeconds) { expect_balances(kPendulum, "bullet"); }
+
+TEST(AgentRunner, BalancesTheServosBalancePolicyTenSeconds) {
+  expect_balances(kServosBalance, "mujoco");
+}
+
+TEST(AgentRunner, KilledSpineStopsWithAClearMessage) {
+  Spine spine("killed");
+  auto agent = start_agent(spine, kPendulum, "killed");
+  ASSERT_TRUE(wait_running(*agent)) << agent->output();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  spine.process().kill();
+  EXPECT_EQ(agent->wait(), 2);
+  const std::string output = agent->output();
+  expect_supervised_stop(output, "spine did not process request within 100 ms");
+  EXPECT_NE(output.find("writing Stop"), std::string::npos) << output;
+  EXPECT_EQ(spine.request(), kStopRequest);
+}
+
+TEST(AgentRunner, FrozenSpineStopsAndFindsStopWhenResumed) {
+  Spine spine("frozen");
+  auto agent = start_agent(spine, kPendulum, "frozen");
+  ASSERT_TRUE(wait_running(*agent)) << agent->output();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(spine.process().pid(), SIGSTOP);
+  EXPECT_EQ(agent->wait(), 2);
+  expect_supervised_stop(agent->output(), "spine did not process request within 100 ms");
+  EXPECT_EQ(spine.request(), kStopRequest);  // what the spine reads when it resumes
+  ::kill(spine.process().pid(), SIGCONT);
+}
+
+TEST(AgentRunner, PushedOverRobotTripsTheAttitudeLimit) {
+  Spine spine("pushed", {"--push-force", "300", "--push-time", "1", "--push-duration", "0.3"});
+  auto agent = start_agent(spine, kPendulum, "pushed", {"--duration", "10"});
+  EXPECT_EQ(agent->wait(), 2);
+  const std::string output = agent->output();
+  EXPECT_NE(output.find("running -> stopping"), std::string::npos) << output;
+  EXPECT_TRUE(output.find("limit") != std::string::npos ||
+              output.find("task termination") != std::string::npos)
+      << output;
+  expect_supervised_stop(output, "");
+  EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
+}
+
+TEST(AgentRunner, PolicyOutputtingNanStops) {
+  CheckpointFile file = read_checkpoint_file(kPendulum);
+  for (float& value : file.tensors.at("policy.parameters").values) {
+    value = std::numeric_limits<float>::quiet_NaN();
+  }
+  const auto crafted = temp_path("agent_nan_policy.ckpt");
+  write_checkpoint_file(file, crafted);
+  Spine spine("nan");
+  auto agent = start_agent(spine, crafted.string(), "nan", {"--duration", "5"});
+  EXPECT_EQ(agent->wait(), 2);
+  const std::string output = agent->output();
+  expect_supervised_stop(output, "policy output: ground_velocity is not finite");
+  EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
+}
+
+TEST(AgentRunner, CorruptedCheckpointIsRefusedBeforeAnythingStarts) {
+  std::string bytes = testing::read_bytes(kPendulum);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x5a);
+  const auto corrupted = temp_path("agent_corrupted.ckpt");
+  testing::write_bytes(corrupted, bytes);
+  Spine spine("corrupted");
+  auto agent = start_agent(spine, corrupted.string(), "corrupted");
+  EXPECT_EQ(agent->wait(), 2);
+  const std::string output = agent->output();
+  EXPECT_NE(output.find("idle -> stopping: "), std::string::npos) << output;
+  EXPECT_NE(output.find(corrupted.string()), std::string::npos) << output;
+  EXPECT_NE(output.find("Stop request sent to the spine"), std::string::npos) << output;
+  EXPECT_EQ(output.find("-> running"), std::string::npos) << output;
+}
+
+TEST(AgentRunner, SigtermTakesTheStoppingPath) {
+  Spine spine("sigterm");
+  auto agent = start_agent(spine, kPendulum, "sigterm");
+  ASSERT_TRUE(wait_running(*agent)) << agent->output();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(agent->wait(SIGTERM), 0);
+  const std::string output = agent->output();
+  expect_supervised_stop(output, "interrupted (SIGINT or SIGTERM)");
+  EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
+}
+
+TEST(AgentRunner, DryRunLogsCommandsAndSendsOnlyStops) {
+  // With the policy's commands the robot balances 10 s (above); without them, held by the
+  // stop commands alone, it falls within a few seconds: proof that they were not sent.
+  Spine spine("dry");
+  auto agent = start_agent(spine, kPendulum, "dry", {"--duration", "8", "--dry-run"});
+  EXPECT_EQ(agent->wait(), 2);
+  const std::string output = agent->output();
+  EXPECT_NE(output.find("dry run, cycle 0, not sent: left_hip: position"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("dry run, cycle 200, not sent: "), std::string::npos) << output;
+  expect_supervised_stop(output, "attitude limit: pitch");
+}
+
+TEST(AgentRunner, FrozenRunnerTripsTheLoopOverrun) {
+  Spine spine("overrun");
+  auto agent = start_agent(spine, kPendulum, "overrun", {"--spine-timeout", "5"});
+  ASSERT_TRUE(wait_running(*agent)) << agent->output();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(agent->pid(), SIGSTOP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  ::kill(agent->pid(), SIGCONT);
+  EXPECT_EQ(agent->wait(), 2);
+  expect_supervised_stop(agent->output(), "loop overrun: one cycle took");
+}
+
+}  // namespace
+}  // namespace upkie_rl
