@@ -57,12 +57,15 @@ fi
 
 if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
 
-missing=()
-for package in "${DEBIAN_PACKAGES[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$package")
-  fi
-done
+# The packages among the arguments that are not installed, one per line.
+missing_packages() {
+  for package in "$@"; do
+    if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+      echo "$package"
+    fi
+  done
+}
+mapfile -t missing < <(missing_packages "${DEBIAN_PACKAGES[@]}")
 if [ "${#missing[@]}" -gt 0 ]; then
   echo "install-deps: installing Debian packages: ${missing[*]}"
   $SUDO apt-get update -q
@@ -70,12 +73,7 @@ if [ "${#missing[@]}" -gt 0 ]; then
 else
   echo "install-deps: Debian packages present"
 fi
-missing_arm64=()
-for package in "${ARM64_PACKAGES[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
-    missing_arm64+=("$package")
-  fi
-done
+mapfile -t missing_arm64 < <(missing_packages "${ARM64_PACKAGES[@]}")
 if [ "${#missing_arm64[@]}" -gt 0 ]; then
   echo "install-deps: installing arm64 libraries: ${missing_arm64[*]}"
   if ! dpkg --print-foreign-architectures | grep -qx arm64; then

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "common/background_process.hpp"
+#include "common/shell_output.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -18,24 +19,16 @@ namespace {
 #ifdef UPKIE_RL_PI_BUNDLE
 const std::filesystem::path kBundle = UPKIE_RL_PI_BUNDLE;
 
-std::string command_output(const std::string& command) {
-  std::string output;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return output;
-  char chunk[4096];
-  while (std::fgets(chunk, sizeof(chunk), pipe) != nullptr) output += chunk;
-  ::pclose(pipe);
-  return output;
-}
-
 TEST(PiBundle, HoldsAnAarch64RunnerAndEverythingItNeeds) {
   for (const char* file : {"upkie-rl-agent", "policy.ckpt", "upkie.urdf", "run-agent.sh",
                            "README.md", "lib/libyaml-cpp.so.0.7", "lib/libstdc++.so.6"}) {
     EXPECT_TRUE(std::filesystem::exists(kBundle / file)) << file;
   }
-  const std::string header = command_output("readelf -h " + (kBundle / "upkie-rl-agent").string());
+  const std::string header =
+      testing::shell_output("readelf -h " + (kBundle / "upkie-rl-agent").string());
   EXPECT_NE(header.find("AArch64"), std::string::npos) << header;
-  const std::string dynamic = command_output("readelf -d " + (kBundle / "upkie-rl-agent").string());
+  const std::string dynamic =
+      testing::shell_output("readelf -d " + (kBundle / "upkie-rl-agent").string());
   EXPECT_NE(dynamic.find("[$ORIGIN/lib]"), std::string::npos) << dynamic;
   for (const char* forbidden : {"torch", "Bullet", "mujoco", "EGL", "boost", "spdlog", "fmt"}) {
     EXPECT_EQ(dynamic.find(forbidden), std::string::npos) << forbidden << " in\n" << dynamic;
