@@ -4,13 +4,9 @@
 #include <pybind11/pybind11.h>
 
 #include <pybind11/stl.h>
-#include "render/render_error.hpp"
 
 #include "bindings.hpp"
 #include "envs/registry.hpp"
-#include "model/robot_model.hpp"
-#include "sim/simulation.hpp"
-#include "spine/spine_error.hpp"
 
 namespace py = pybind11;
 
@@ -46,13 +42,9 @@ void bind_registry(py::module_& module) {
 
 PYBIND11_MODULE(_core, module) {
   module.doc() = "upkie-rl environments in C++ (thin bindings; see the upkie_rl package).";
-  // Errors keep their C++ meaning: bad input is ValueError (std::invalid_argument), these
-  // are RuntimeErrors with a name of their own.
-  py::register_exception<upkie_rl::SimulationDivergedError>(module, "SimulationDivergedError",
-                                                            PyExc_RuntimeError);
-  py::register_exception<upkie_rl::SpineError>(module, "SpineError", PyExc_RuntimeError);
-  py::register_exception<upkie_rl::ModelError>(module, "ModelError", PyExc_RuntimeError);
-  py::register_exception<upkie_rl::RenderError>(module, "RenderError", PyExc_RuntimeError);
+  // Errors keep their C++ meaning: bad input is ValueError (std::invalid_argument), the
+  // upkie_rl::Error hierarchy maps onto upkie_rl.Error (error_bindings.cpp).
+  upkie_rl::python::bind_errors(module);
   upkie_rl::python::bind_registry(module);
   upkie_rl::python::bind_env(module);
   upkie_rl::python::bind_vector_env(module);

@@ -59,7 +59,6 @@ class PyPolicy {
 }  // namespace
 
 void bind_policy(py::module_& module) {
-  py::register_exception<CheckpointError>(module, "CheckpointError", PyExc_ValueError);
   py::class_<PyPolicy>(module, "Policy", "A trained policy read from a model or checkpoint.")
       .def(py::init<const std::string&>(), py::arg("path"))
       .def("act", &PyPolicy::act, py::arg("observation").noconvert())

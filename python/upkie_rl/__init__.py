@@ -39,10 +39,13 @@ _load_mujoco_library()
 from . import _core  # noqa: E402
 from ._core import (  # noqa: E402
     CheckpointError,
+    Error,
+    InvalidCommandError,
     ModelError,
     RenderError,
     SimulationDivergedError,
     SpineError,
+    SpineTimeoutError,
 )
 from .env import UpkieEnv  # noqa: E402
 from .policy import Policy, evaluate, load_policy  # noqa: E402
@@ -92,10 +95,14 @@ register()
 
 __all__ = [
     "CheckpointError",
+    "Error",
+    "InvalidCommandError",
     "ModelError",
     "Policy",
+    "RenderError",
     "SimulationDivergedError",
     "SpineError",
+    "SpineTimeoutError",
     "UpkieEnv",
     "UpkieVectorEnv",
     "env_options",

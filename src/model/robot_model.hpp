@@ -15,15 +15,16 @@
 #include <string>
 #include <vector>
 
+#include "model/error.hpp"
 #include "model/joint_order.hpp"
 
 namespace upkie_rl {
 
 /// Raised when a robot description cannot be read; the message names the file and the
 /// element at fault.
-class ModelError : public std::runtime_error {
+class ModelError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// Limits of one joint. Continuous joints have infinite position bounds.

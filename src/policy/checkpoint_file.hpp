@@ -19,12 +19,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/error.hpp"
+
 namespace upkie_rl {
 
 /// Raised for a missing, truncated, corrupted or inconsistent checkpoint.
-class CheckpointError : public std::runtime_error {
+class CheckpointError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// A float32 tensor: its shape and its values in row-major order.

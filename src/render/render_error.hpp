@@ -2,15 +2,15 @@
 /// @file
 /// The error of the render layer.
 
-#include <stdexcept>
+#include "model/error.hpp"
 
 namespace upkie_rl {
 
 /// Raised when a frame or a video cannot be made: no OpenGL context, a bad output path, an
 /// unsupported extension, FFmpeg missing or failing. The message names the cause.
-class RenderError : public std::runtime_error {
+class RenderError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace upkie_rl

@@ -11,15 +11,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/error.hpp"
 #include "rl/distributed_launch.hpp"
 
 namespace upkie_rl {
 
 /// Raised when the processes of a run cannot meet or one of them stops answering. The
 /// message names the operation, the rank and, when known, the rank at fault.
-class DistributedError : public std::runtime_error {
+class DistributedError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 class Communicator {

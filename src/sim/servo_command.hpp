@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "model/error.hpp"
 #include "model/joint_order.hpp"
 
 namespace upkie_rl {
@@ -32,9 +33,9 @@ struct ServoCommand {
 using ServoAction = std::array<ServoCommand, kNumServos>;
 
 /// Raised when a command is not acceptable (a NaN or infinite velocity, torque or gain).
-class InvalidCommandError : public std::invalid_argument {
+class InvalidCommandError : public Error {
  public:
-  using std::invalid_argument::invalid_argument;
+  using Error::Error;
 };
 
 /// Checks that every value that must be finite is: velocity, feedforward_torque, kp_scale,

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/error.hpp"
 #include "sim/observation.hpp"
 #include "sim/reset_state.hpp"
 #include "sim/servo_command.hpp"
@@ -12,9 +13,9 @@
 namespace upkie_rl {
 
 /// Raised when the simulated state stops being finite; the simulation must be reset.
-class SimulationDivergedError : public std::runtime_error {
+class SimulationDivergedError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// A backend that moves the robot: it resets to a state, applies servo commands for one

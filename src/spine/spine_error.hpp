@@ -2,14 +2,14 @@
 /// @file
 /// Errors of the spine link.
 
-#include <stdexcept>
+#include "model/error.hpp"
 
 namespace upkie_rl {
 
 /// A spine link failure: no spine, an invalid request, a malformed or mistyped message.
-class SpineError : public std::runtime_error {
+class SpineError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// The spine did not process a request in time (it is stopped, busy or gone).

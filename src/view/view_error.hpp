@@ -2,16 +2,16 @@
 /// @file
 /// The error of the view layer.
 
-#include <stdexcept>
+#include "model/error.hpp"
 
 namespace upkie_rl {
 
 /// Raised when the viewer cannot start or its input is unusable: a busy or forbidden port,
 /// an address that is not an IPv4/IPv6 literal, a viewer page that was not built, a frame
 /// of the wrong size. The message names the cause.
-class ViewError : public std::runtime_error {
+class ViewError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace upkie_rl

@@ -1,0 +1,99 @@
+// The C++ error hierarchy (model/error.hpp) as Python classes, declared in this one place.
+
+#include <Python.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <exception>
+
+#include "bindings.hpp"
+#include "model/error.hpp"
+#include "model/robot_model.hpp"
+#include "policy/checkpoint_file.hpp"
+#include "render/render_error.hpp"
+#include "sim/servo_command.hpp"
+#include "sim/simulation.hpp"
+#include "spine/spine_error.hpp"
+
+namespace py = pybind11;
+
+namespace upkie_rl::python {
+
+namespace {
+
+/// One Python class of the hierarchy: the C++ class it stands for, its Python parent in
+/// the hierarchy (an index into kErrorClasses, -1 for the root) and the built-in exception
+/// it also derives from, so that code catching ValueError or RuntimeError keeps working.
+struct ErrorClass {
+  const char* name;
+  const char* doc;
+  bool (*matches)(const Error&);
+  int parent;
+  PyObject* const* builtin;
+};
+
+template <class T>
+bool is(const Error& error) {
+  return dynamic_cast<const T*>(&error) != nullptr;
+}
+
+// Parents come before their children; the translator tries the most derived class first.
+// The Python module has no view or rl layer, so ViewError and DistributedError (which
+// only the `upkie-rl` tool raises) are not bound.
+const std::array kErrorClasses = {
+    ErrorClass{"Error", "Base of every error upkie-rl raises on purpose.", &is<Error>, -1,
+               &PyExc_RuntimeError},
+    ErrorClass{"ModelError", "A robot description cannot be read.", &is<ModelError>, 0,
+               &PyExc_RuntimeError},
+    ErrorClass{"SimulationDivergedError", "The simulated state stopped being finite.",
+               &is<SimulationDivergedError>, 0, &PyExc_RuntimeError},
+    ErrorClass{"InvalidCommandError", "A servo command is not acceptable (NaN, infinite).",
+               &is<InvalidCommandError>, 0, &PyExc_ValueError},
+    ErrorClass{"RenderError", "A frame or a video cannot be made.", &is<RenderError>, 0,
+               &PyExc_RuntimeError},
+    ErrorClass{"SpineError", "A spine link failure.", &is<SpineError>, 0, &PyExc_RuntimeError},
+    ErrorClass{"SpineTimeoutError", "The spine did not process a request in time.",
+               &is<SpineTimeoutError>, 5, &PyExc_RuntimeError},
+    ErrorClass{"CheckpointError", "A missing, truncated, corrupted or inconsistent checkpoint.",
+               &is<CheckpointError>, 0, &PyExc_ValueError},
+};
+
+std::array<PyObject*, kErrorClasses.size()> python_classes{};
+
+PyObject* make_class(py::module_& module, const ErrorClass& error) {
+  // The parent class (none for the root), and the built-in exception unless the parent
+  // derives from it already: CheckpointError is (Error, ValueError), SpineError (Error,).
+  py::list bases;
+  if (error.parent >= 0) bases.append(py::handle(python_classes[error.parent]));
+  if (error.parent < 0 || PyObject_IsSubclass(python_classes[error.parent], *error.builtin) != 1) {
+    bases.append(py::handle(*error.builtin));
+  }
+  const std::string qualified = std::string("upkie_rl.") + error.name;
+  PyObject* type =
+      PyErr_NewExceptionWithDoc(qualified.c_str(), error.doc, py::tuple(bases).ptr(), nullptr);
+  if (type == nullptr) throw py::error_already_set();
+  module.add_object(error.name, py::handle(type));  // adds the module's own reference
+  return type;
+}
+
+}  // namespace
+
+void bind_errors(py::module_& module) {
+  for (std::size_t i = 0; i < kErrorClasses.size(); ++i) {
+    python_classes[i] = make_class(module, kErrorClasses[i]);
+  }
+  py::register_exception_translator([](std::exception_ptr pointer) {
+    try {
+      if (pointer) std::rethrow_exception(pointer);
+    } catch (const Error& error) {
+      for (std::size_t i = kErrorClasses.size(); i-- > 0;) {
+        if (kErrorClasses[i].matches(error)) {
+          PyErr_SetString(python_classes[i], error.what());
+          return;
+        }
+      }
+    }
+  });
+}
+
+}  // namespace upkie_rl::python

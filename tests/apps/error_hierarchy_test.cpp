@@ -1,0 +1,56 @@
+// Every domain error derives from the one root, upkie_rl::Error (model/error.hpp).
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <type_traits>
+
+#include "model/error.hpp"
+#include "model/robot_model.hpp"
+#include "policy/checkpoint_file.hpp"
+#include "policy/deployed_policy.hpp"
+#include "render/render_error.hpp"
+#include "rl/communicator.hpp"
+#include "sim/servo_command.hpp"
+#include "sim/simulation.hpp"
+#include "spine/spine_error.hpp"
+#include "view/view_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+template <class... Errors>
+constexpr bool all_derive_from_error() {
+  return (std::is_base_of_v<Error, Errors> && ...);
+}
+
+TEST(ErrorHierarchy, EveryDomainErrorHasTheOneRoot) {
+  static_assert(std::is_base_of_v<std::runtime_error, Error>);
+  static_assert(all_derive_from_error<ModelError, CheckpointError, SimulationDivergedError,
+                                      InvalidCommandError, RenderError, DistributedError, ViewError,
+                                      SpineError, SpineTimeoutError>());
+  // Not an option mistake: those stay std::invalid_argument.
+  static_assert(!std::is_base_of_v<std::invalid_argument, InvalidCommandError>);
+}
+
+TEST(ErrorHierarchy, RealFailuresAreCaughtAsTheRoot) {
+  ServoAction action{};
+  action[0].velocity = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(validate_servo_action(action), Error);
+  const std::filesystem::path garbage =
+      std::filesystem::temp_directory_path() / "upkie_rl_error_hierarchy_test.ckpt";
+  std::ofstream(garbage) << "not a checkpoint";
+  try {
+    DeployedPolicy::load(garbage);
+    FAIL() << "expected an error";
+  } catch (const Error& error) {
+    EXPECT_NE(dynamic_cast<const CheckpointError*>(&error), nullptr);
+    EXPECT_NE(std::string(error.what()).find("bad magic"), std::string::npos);
+  }
+  std::filesystem::remove(garbage);
+}
+
+}  // namespace
+}  // namespace upkie_rl
