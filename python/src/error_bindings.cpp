@@ -9,6 +9,7 @@
 #include "bindings.hpp"
 #include "model/error.hpp"
 #include "model/robot_model.hpp"
+#include "onnx/onnx_error.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "render/render_error.hpp"
 #include "sim/servo_command.hpp"
@@ -56,6 +57,8 @@ const std::array kErrorClasses = {
                &is<SpineTimeoutError>, 5, &PyExc_RuntimeError},
     ErrorClass{"CheckpointError", "A missing, truncated, corrupted or inconsistent checkpoint.",
                &is<CheckpointError>, 0, &PyExc_ValueError},
+    ErrorClass{"OnnxError", "A model that cannot be exported, or an unreadable ONNX file.",
+               &is<OnnxError>, 0, &PyExc_ValueError},
 };
 
 std::array<PyObject*, kErrorClasses.size()> python_classes{};

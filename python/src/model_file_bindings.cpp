@@ -53,7 +53,6 @@ void write_model_checkpoint(const std::string& path, const std::string& header,
 }  // namespace
 
 void bind_model_files(py::module_& module) {
-  py::register_exception<OnnxError>(module, "OnnxError", PyExc_ValueError);
   module.def("read_model_checkpoint", &read_model_checkpoint, py::arg("path"),
              "(header JSON text, {tensor name: float32 array}) of a model or checkpoint.");
   module.def(

@@ -12,6 +12,7 @@ ERRORS = {
     "SpineError": RuntimeError,
     "SpineTimeoutError": RuntimeError,
     "CheckpointError": ValueError,
+    "OnnxError": ValueError,
 }
 
 

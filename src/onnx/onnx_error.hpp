@@ -2,15 +2,15 @@
 /// @file
 /// The error of ONNX export and reading.
 
-#include <stdexcept>
+#include "model/error.hpp"
 
 namespace upkie_rl {
 
 /// Raised for a model that cannot be exported, or an ONNX file that cannot be written or
 /// read (missing, too large, not ONNX, invalid); the message names the file and the problem.
-class OnnxError : public std::runtime_error {
+class OnnxError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 }  // namespace upkie_rl

@@ -9,6 +9,7 @@
 
 #include "model/error.hpp"
 #include "model/robot_model.hpp"
+#include "onnx/onnx_error.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/deployed_policy.hpp"
 #include "render/render_error.hpp"
@@ -30,7 +31,7 @@ TEST(ErrorHierarchy, EveryDomainErrorHasTheOneRoot) {
   static_assert(std::is_base_of_v<std::runtime_error, Error>);
   static_assert(all_derive_from_error<ModelError, CheckpointError, SimulationDivergedError,
                                       InvalidCommandError, RenderError, DistributedError, ViewError,
-                                      SpineError, SpineTimeoutError>());
+                                      SpineError, SpineTimeoutError, OnnxError>());
   // Not an option mistake: those stay std::invalid_argument.
   static_assert(!std::is_base_of_v<std::invalid_argument, InvalidCommandError>);
 }
