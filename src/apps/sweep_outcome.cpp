@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "model/atomic_file.hpp"
+
 namespace upkie_rl::apps {
 
 namespace {
@@ -37,13 +39,7 @@ void write_sweep_outcome(const std::filesystem::path& run_dir, const SweepOutcom
                                  {"std_return", number(outcome.evaluation.std_return)},
                                  {"mean_length", number(outcome.evaluation.mean_length)}}}};
   const std::filesystem::path path = run_dir / kFile;
-  const std::filesystem::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::trunc);
-    out << json.dump(2) << '\n';
-    if (!out.flush()) throw std::runtime_error("cannot write " + partial.string());
-  }
-  std::filesystem::rename(partial, path);
+  write_file_atomically<std::runtime_error>(path, json.dump(2) + '\n');
 }
 
 std::optional<SweepOutcome> read_sweep_outcome(const std::filesystem::path& run_dir) {

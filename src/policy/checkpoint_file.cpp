@@ -1,14 +1,12 @@
 #include "policy/checkpoint_file.hpp"
 
-#include <unistd.h>
-
 #include <bit>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
 
+#include "model/atomic_file.hpp"
 #include "policy/crc32c.hpp"
 
 namespace upkie_rl {
@@ -70,27 +68,7 @@ void write_checkpoint_file(const CheckpointFile& file, const std::filesystem::pa
   bytes += data;
   append(bytes, crc32c(bytes));
 
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  const std::filesystem::path temporary = path.string() + ".tmp." + std::to_string(getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw CheckpointError("cannot create " + temporary.string());
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) throw CheckpointError("cannot write " + temporary.string());
-  }
-  // Flush to disk before the rename so a crash cannot leave a renamed, empty file.
-  if (FILE* handle = std::fopen(temporary.c_str(), "rb")) {
-    fsync(fileno(handle));
-    std::fclose(handle);
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary);
-    throw CheckpointError("cannot rename " + temporary.string() + " to " + path.string() + ": " +
-                          error.message());
-  }
+  write_file_atomically<CheckpointError>(path, bytes);
 }
 
 CheckpointFile read_checkpoint_file(const std::filesystem::path& path) {

@@ -3,6 +3,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "model/integer_text.hpp"
+
 namespace upkie_rl {
 
 namespace {
@@ -14,18 +16,12 @@ std::optional<std::string> process_variable(const std::string& name) {
 }
 
 int read_integer(const std::string& name, const std::string& text, int minimum, int maximum) {
-  std::size_t used = 0;
-  long value = 0;
-  try {
-    value = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || value < minimum || value > maximum) {
+  const std::optional<int> value = integer_from_text<int>(text);
+  if (!value || *value < minimum || *value > maximum) {
     throw std::invalid_argument(name + "=\"" + text + "\" is not an integer in [" +
                                 std::to_string(minimum) + ", " + std::to_string(maximum) + "]");
   }
-  return static_cast<int>(value);
+  return *value;
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/atomic_file.hpp"
+
 namespace upkie_rl {
 
 namespace {
@@ -73,13 +75,7 @@ std::string read_text(const std::filesystem::path& path) {
 
 /// Writes `text` to `path` through a temporary file, so that a reader never sees half.
 void write_text(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out.flush()) throw std::runtime_error("cannot write " + partial.string());
-  }
-  std::filesystem::rename(partial, path);
+  write_file_atomically<std::runtime_error>(path, text);
 }
 
 // sweep.yaml: the writer and the reader of its keys, side by side.

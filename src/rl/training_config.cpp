@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/integer_text.hpp"
+
 namespace upkie_rl {
 
 namespace {
@@ -28,13 +30,9 @@ std::string trim(const std::string& text) {
 
 template <typename T>
 T parse_integer(const std::string& key, const std::string& raw) {
-  const std::string text = trim(raw);
-  T value{};
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-    bad_value(key, raw, "an integer");
-  }
-  return value;
+  const std::optional<T> value = integer_from_text<T>(raw);
+  if (!value) bad_value(key, raw, "an integer");
+  return *value;
 }
 
 double parse_double(const std::string& key, const std::string& raw) {

@@ -11,11 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "sim/tire_contact.hpp"
+
 namespace upkie_rl {
 namespace {
-
-/// A tire closer to the floor than this counts as touching it [m].
-constexpr double kFloorContactDistance = 1e-3;
 
 /// Sides of the convex hull Bullet's URDF importer builds for a cylinder.
 constexpr int kCylinderHullSides = 32;
@@ -336,7 +335,7 @@ bool BulletSimulation::tire_touches_floor() const {
         body0 == world_->ground.get() ? body1 : (body1 == world_->ground.get() ? body0 : nullptr);
     if (other == nullptr || (other != world_->tires[0] && other != world_->tires[1])) continue;
     for (int p = 0; p < manifold->getNumContacts(); ++p) {
-      if (manifold->getContactPoint(p).getDistance() < kFloorContactDistance) return true;
+      if (manifold->getContactPoint(p).getDistance() < kTireContactDistance) return true;
     }
   }
   return false;

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/tire_contact.hpp"
+
 namespace upkie_rl {
 
 void MujocoModelDeleter::operator()(mjModel* model) const { mj_deleteModel(model); }
@@ -16,9 +18,6 @@ void MujocoDataDeleter::operator()(mjData* data) const { mj_deleteData(data); }
 namespace {
 
 constexpr const char* kFloorName = "floor";
-
-/// A tire closer to the floor than this counts as touching it [m].
-constexpr double kTireContactDistance = 1e-3;
 
 /// Deletes an mjSpec on every path out of build_mujoco_model.
 struct SpecDeleter {

@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "sim/tire_contact.hpp"
+
 namespace upkie_rl {
 namespace {
 
@@ -136,7 +138,8 @@ bool MujocoSimulation::tire_touches_floor() const {
     const int other = contact.geom[0] == index.floor_geom   ? contact.geom[1]
                       : contact.geom[1] == index.floor_geom ? contact.geom[0]
                                                             : -1;
-    if ((other == index.tire_geoms[0] || other == index.tire_geoms[1]) && contact.dist < 1e-3) {
+    if ((other == index.tire_geoms[0] || other == index.tire_geoms[1]) &&
+        contact.dist < kTireContactDistance) {
       return true;
     }
   }
