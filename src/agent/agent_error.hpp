@@ -2,15 +2,15 @@
 /// @file
 /// The errors of the robot runner (`upkie-rl-agent`).
 
-#include <stdexcept>
+#include "model/error.hpp"
 
 namespace upkie_rl {
 
 /// Raised when the runner cannot run: a bad option, checkpoint or environment, or a
 /// supervisor limit passed (SupervisorTrip).
-class AgentError : public std::runtime_error {
+class AgentError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 /// Raised inside a cycle when the supervisor finds the robot or the policy outside its

@@ -7,6 +7,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "agent/agent_error.hpp"
 #include "model/error.hpp"
 #include "model/robot_model.hpp"
 #include "onnx/onnx_error.hpp"
@@ -31,7 +32,8 @@ TEST(ErrorHierarchy, EveryDomainErrorHasTheOneRoot) {
   static_assert(std::is_base_of_v<std::runtime_error, Error>);
   static_assert(all_derive_from_error<ModelError, CheckpointError, SimulationDivergedError,
                                       InvalidCommandError, RenderError, DistributedError, ViewError,
-                                      SpineError, SpineTimeoutError, OnnxError>());
+                                      SpineError, SpineTimeoutError, OnnxError, AgentError,
+                                      SupervisorTrip>());
   // Not an option mistake: those stay std::invalid_argument.
   static_assert(!std::is_base_of_v<std::invalid_argument, InvalidCommandError>);
 }
