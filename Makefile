@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
 
 all: build
 
@@ -90,22 +90,34 @@ sanitize-thread: deps
 	cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS) \
 	  -E '^(Communicator|DistributedTrain)\.'
 
-# libFuzzer + ASan on the spine's message decoding and server cycle; FUZZ_RUNS inputs each.
+# libFuzzer + ASan on the spine's message decoding and server cycle, the training
+# configuration and its --set overrides, and the checkpoint gate past the CRC: FUZZ_RUNS
+# inputs each, or FUZZ_SECONDS each when set (`make fuzz-long`: an hour each). The corpora
+# also run as ctests of every ordinary build (FuzzRegression.*).
 FUZZ_DIR ?= build-fuzz
 FUZZ_RUNS ?= 1000000
-# The server fuzzer's stdout (the spine's error log, one line per refused message) is
-# dropped; libFuzzer reports on stderr.
+FUZZ_SECONDS ?=
+FUZZ_LIMIT = $(if $(FUZZ_SECONDS),-max_total_time=$(FUZZ_SECONDS),-runs=$(FUZZ_RUNS))
+FUZZ_TARGETS = spine_message_fuzzer:corpus:65536 spine_server_fuzzer:server_corpus:8192 \
+  training_config_fuzzer:config_corpus:16384 checkpoint_fuzzer:checkpoint_corpus:262144
+# A fuzzer's stdout (the spine's error log, one line per refused message) is dropped;
+# libFuzzer reports on stderr.
 fuzz:
 	UPKIE_RL_FUZZ=1 bash scripts/install-deps.sh
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DUPKIE_RL_BUILD_FUZZ=ON \
 	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF
-	cmake --build $(FUZZ_DIR) -j $(JOBS) --target spine_message_fuzzer spine_server_fuzzer
-	mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/server_corpus
-	$(FUZZ_DIR)/fuzz/spine_message_fuzzer -runs=$(FUZZ_RUNS) -max_len=65536 \
-	  -print_final_stats=1 $(FUZZ_DIR)/corpus fuzz/corpus
-	$(FUZZ_DIR)/fuzz/spine_server_fuzzer -runs=$(FUZZ_RUNS) -max_len=8192 \
-	  -print_final_stats=1 $(FUZZ_DIR)/server_corpus fuzz/server_corpus >/dev/null
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(foreach t,$(FUZZ_TARGETS),$(word 1,$(subst :, ,$(t))))
+	set -e; for entry in $(FUZZ_TARGETS); do \
+	  name=$${entry%%:*}; rest=$${entry#*:}; corpus=$${rest%%:*}; max_len=$${rest#*:}; \
+	  mkdir -p $(FUZZ_DIR)/corpus_$$name; \
+	  echo "fuzzing $$name"; \
+	  $(FUZZ_DIR)/fuzz/$$name $(FUZZ_LIMIT) -max_len=$$max_len -timeout=10 -rss_limit_mb=4096 \
+	    -print_final_stats=1 $(FUZZ_DIR)/corpus_$$name fuzz/$$corpus >/dev/null; \
+	done
+
+fuzz-long:
+	$(MAKE) fuzz FUZZ_SECONDS=3600
 
 # The robot's bundle: upkie-rl-agent cross-compiled for aarch64 (Raspberry Pi 4), its arm64
 # libraries, a policy (PI_POLICY), the URDF, a run script and a README, in $(PI_DIR)/bundle.

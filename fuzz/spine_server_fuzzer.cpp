@@ -52,13 +52,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   config.shm_size = 64 * 1024;
   config.real_time = (size > 0 && (data[0] & 1) != 0);
   // Gains reaching the simulation must have been validated: anything else is a bug.
-  const auto set_servo_gains = [](const upkie_rl::ServoGains& gains) {
+  const auto set_settings = [](const upkie_rl::SpineStartSettings& settings) {
+    const upkie_rl::ServoGains& gains = settings.servo_gains;
     if (!(std::isfinite(gains.kp) && gains.kp >= 0.0 && std::isfinite(gains.kd) &&
           gains.kd >= 0.0)) {
       std::abort();
     }
   };
-  upkie_rl::SpineServer server(simulation, config, {}, set_servo_gains);
+  upkie_rl::SpineServer server(simulation, config, {}, set_settings);
   upkie_rl::SharedMemory agent = upkie_rl::SharedMemory::open(name);
 
   std::size_t offset = size > 0 ? 1 : 0;

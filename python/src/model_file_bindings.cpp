@@ -22,7 +22,7 @@ namespace {
 // (header as JSON text, {name: float32 array}) of a checkpoint, checked as a model.
 py::tuple read_model_checkpoint(const std::string& path) {
   CheckpointFile file = read_checkpoint_file(path);
-  DeployedPolicy::from_checkpoint(file, "model " + path);  // Refuses what is not a model.
+  DeployedPolicy::from_checkpoint(file, "checkpoint " + path);  // The checkpoint gate.
   py::dict tensors;
   for (auto& [name, tensor] : file.tensors) {
     py::array_t<float> array(tensor.shape);

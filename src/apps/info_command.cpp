@@ -33,7 +33,7 @@ std::string describe_space(const nlohmann::json& json) {
 
 void print_checkpoint(const std::filesystem::path& path) {
   const CheckpointFile file = read_checkpoint_file(path);
-  const DeployedPolicy policy = DeployedPolicy::from_checkpoint(file, "model " + path.string());
+  const DeployedPolicy policy = DeployedPolicy::from_checkpoint(file, "checkpoint " + path.string());
   std::cout << "format: upkie-rl checkpoint\n"
             << "observation_space: " << describe_space(file.header.at("observation_space")) << "\n"
             << "action_space: " << describe_space(file.header.at("action_space")) << "\n"

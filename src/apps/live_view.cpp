@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "apps/option_checks.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "model/robot_model.hpp"
 #include "view/view_frame.hpp"
@@ -24,11 +25,21 @@ void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pac
                   "Wait for this many browsers before the first step")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
+  command
+      .add_option("--view-max-connections", options.max_connections,
+                  "Open connections the viewer accepts; more are closed at once")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  command
+      .add_option("--view-idle-timeout", options.idle_timeout,
+                  "Seconds a connection may stay silent before the viewer closes it")
+      ->check(finite_range(0.1, 3600.0))
+      ->capture_default_str();
   if (pacing) {
     command
         .add_option("--view-speed", options.speed,
                     "Simulated seconds per second while viewing; 0: as fast as possible")
-        ->check(CLI::Range(0.0, 1000.0))
+        ->check(finite_range(0.0, 1000.0))
         ->capture_default_str();
   }
 }
@@ -46,6 +57,8 @@ LiveView::LiveView(const LiveViewOptions& options, const std::string& title, dou
   ViewServerConfig config;
   config.host = options.host;
   config.port = options.port;
+  config.max_connections = static_cast<std::size_t>(options.max_connections);
+  config.idle_timeout = options.idle_timeout;
   server_ = std::make_unique<ViewServer>(
       config, view_session_json(session, RobotModel::default_urdf_path().string()), frames_);
   std::cout << "viewer: " << server_->url() << std::endl;

@@ -27,9 +27,14 @@ struct LiveViewOptions {
   double speed = 1.0;
   /// Wait for this many browsers before the first step.
   int wait_clients = 0;
+  /// Open connections the viewer accepts (ViewServerConfig::max_connections).
+  int max_connections = 128;
+  /// Seconds an HTTP connection may stay silent (ViewServerConfig::idle_timeout).
+  double idle_timeout = 10.0;
 };
 
-/// Adds --view, --view-host, --view-port, --view-wait and (when `pacing`) --view-speed.
+/// Adds --view, --view-host, --view-port, --view-wait, --view-max-connections,
+/// --view-idle-timeout and (when `pacing`) --view-speed.
 void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pacing);
 
 /// A live viewer of one robot.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/record_file.hpp"
 #include "apps/live_view.hpp"
 #include "apps/policy_controller.hpp"
@@ -178,7 +179,8 @@ void add_rollout_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value (repeatable)");
-  command->add_option("--record", options->record_path, "Write one CSV row per step to this file");
+  command->add_option("--record", options->record_path, "Write one CSV row per step to this file")
+      ->check(kNonEmptyPath);
   add_video_options(*command, options->video);
   add_live_view_options(*command, options->view, true);
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "apps/commands.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/live_view.hpp"
 #include "model/robot_model.hpp"
@@ -21,8 +22,25 @@
 namespace upkie_rl::apps {
 namespace {
 
+/// An octal permission mode such as "0660", at most 0666.
+unsigned parse_shm_mode(const std::string& text) {
+  std::size_t used = 0;
+  unsigned long mode = 0;
+  try {
+    mode = std::stoul(text, &used, 8);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || mode > 0666 || (mode & 0600) != 0600) {
+    throw std::invalid_argument("--shm-mode: '" + text +
+                                "' is not an octal mode between 0600 and 0666");
+  }
+  return static_cast<unsigned>(mode);
+}
+
 struct SpineOptions {
   std::string shm_name = "/upkie";
+  std::string shm_mode = "0600";
   double spine_frequency = 1000.0;
   int nb_substeps = 0;
   std::string backend = "bullet";
@@ -105,6 +123,7 @@ void run_spine(const SpineOptions& options) {
 
   SpineServerConfig config;
   config.shm_name = options.shm_name;
+  config.shm_mode = parse_shm_mode(options.shm_mode);
   config.real_time = real_time;
   config.frequency = options.spine_frequency;
   config.default_servo_gains = simulation.servo_gains();
@@ -172,10 +191,15 @@ void add_spine_command(CLI::App& app) {
       "or the upkie Python package). Ctrl-C stops it and removes the shared memory.");
   command->add_option("--shm-name", options->shm_name, "Shared-memory name")->capture_default_str();
   command
+      ->add_option("--shm-mode", options->shm_mode,
+                   "Permissions of the shared memory, octal: 0600 lets only this user's agents "
+                   "drive the robot; 0660 adds the group, 0666 everyone")
+      ->capture_default_str();
+  command
       ->add_option("--spine-frequency", options->spine_frequency,
                    "Cycles per second in real time, and 1/physics timestep [Hz]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_range(1.0, 100000.0));
   command
       ->add_option("--nb-substeps", options->nb_substeps,
                    "0: real-time loop; K > 0: advance only on actions, K physics steps each")

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/live_view.hpp"
 #include "apps/progress_bar.hpp"
+#include "apps/rendezvous_watchdog.hpp"
 #include "envs/registry.hpp"
 #include "policy/crc32c.hpp"
 #include "rl/communicator.hpp"
@@ -30,6 +32,7 @@ struct TrainOptions {
   std::uint64_t seed = 0;
   CLI::Option* seed_option = nullptr;  // set when --seed was given
   std::string resume;
+  bool force_run_dir = false;
   bool quiet = false;
   LiveViewOptions view;
   int view_env = 0;
@@ -46,6 +49,14 @@ std::shared_ptr<Communicator> join_world(const TrainOptions& options, Distribute
   CommunicatorOptions communicator_options;
   communicator_options.timeout =
       std::chrono::milliseconds(static_cast<std::int64_t>(1000.0 * options.distributed_timeout));
+  const std::string where = launch.master_addr + ":" + std::to_string(launch.master_port);
+  RendezvousWatchdog watchdog(
+      communicator_options.timeout + std::chrono::seconds(2),
+      "rank " + std::to_string(launch.rank) + " of " + std::to_string(launch.world_size) +
+          ": no rendezvous at " + where + " within --dist-timeout " +
+          std::to_string(static_cast<int>(options.distributed_timeout)) +
+          " s: is rank 0 running, is the port free of other programs, is each rank in [0, " +
+          std::to_string(launch.world_size) + ") used once?");
   return connect_communicator(launch, communicator_options);
 }
 
@@ -57,6 +68,21 @@ std::string weights_checksum(const TrainingRun& run) {
                 crc32c({static_cast<const std::byte*>(weights.data_ptr()),
                         static_cast<std::size_t>(weights.numel()) * weights.element_size()}));
   return text;
+}
+
+/// One step of the viewed environment to the viewer.
+void publish_step(LiveView& viewer, const Observation& observation, std::span<const float> action,
+                  double reward, bool episode_ended, int& episode, int& step,
+                  double& episode_return) {
+  if (episode_ended) {
+    viewer.start_episode(++episode);
+    step = 0;
+    episode_return = 0.0;
+  } else {
+    ++step;
+    episode_return += reward;
+  }
+  viewer.publish(observation, step, episode_return, action);
 }
 
 /// Streams environment `index` of the run to a LiveView, as fast as the run goes: frames the
@@ -71,18 +97,20 @@ std::unique_ptr<LiveView> view_training(const TrainOptions& options, TrainingRun
                                          timestep, run.ppo().env().action_space().names);
   LiveView* viewer = view.get();
   run.observe_env(static_cast<std::size_t>(options.view_env),
-                  [viewer, episode = 0, step = 0, episode_return = 0.0](
+                  [viewer, episode = 0, step = 0, episode_return = 0.0, failed = false](
                       const Observation& observation, std::span<const float> action, double reward,
                       bool episode_ended) mutable {
-                    if (episode_ended) {
-                      viewer->start_episode(++episode);
-                      step = 0;
-                      episode_return = 0.0;
-                    } else {
-                      ++step;
-                      episode_return += reward;
+                    if (failed) return;
+                    // The training never stops because of the viewer: its failure is
+                    // reported once and the viewer is left behind.
+                    try {
+                      publish_step(*viewer, observation, action, reward, episode_ended, episode,
+                                   step, episode_return);
+                    } catch (const std::exception& error) {
+                      failed = true;
+                      std::cerr << "viewer: " << error.what()
+                                << "; the training goes on without it" << std::endl;
                     }
-                    viewer->publish(observation, step, episode_return, action);
                   });
   viewer->wait_for_browsers();
   return view;
@@ -106,7 +134,7 @@ void run_train(const TrainOptions& options) {
     }
     std::optional<std::filesystem::path> run_dir;
     if (!options.run_dir.empty()) run_dir = options.run_dir;
-    run = TrainingRun::resume(options.resume, run_dir, communicator);
+    run = TrainingRun::resume(options.resume, run_dir, communicator, options.force_run_dir);
     std::cerr << "resuming " << options.resume << " at " << run->ppo().num_timesteps() << " steps"
               << std::endl;
   } else {
@@ -190,6 +218,9 @@ void add_train_command(CLI::App& app) {
       command->add_option("--seed", options->seed, "Random seed (overrides the config's)");
   command->add_option("--resume", options->resume, "Continue a run from one of its checkpoints")
       ->check(CLI::ExistingFile);
+  command->add_flag("--force-run-dir", options->force_run_dir,
+                    "With --resume: continue in --run-dir even when it is another run's "
+                    "non-empty directory");
   command->add_flag("--quiet", options->quiet, "No progress bar");
   options->view.speed = 0.0;  // the training never waits for the viewer
   add_live_view_options(*command, options->view, false);
@@ -197,7 +228,7 @@ void add_train_command(CLI::App& app) {
       ->add_option("--dist-timeout", options->distributed_timeout,
                    "Distributed runs (torchrun, srun): seconds a rank waits for the others "
                    "before it stops with an error")
-      ->check(CLI::Range(1.0, 86400.0))
+      ->check(finite_range(1.0, 86400.0))
       ->capture_default_str();
   command->add_option("--view-env", options->view_env, "Environment of the run --view shows")
       ->check(CLI::NonNegativeNumber)

@@ -1,5 +1,7 @@
 #include "apps/video_recorder.hpp"
 
+#include "apps/option_checks.hpp"
+
 #include <cmath>
 #include <cstdio>
 
@@ -21,8 +23,10 @@ VideoRecorder::VideoRecorder(std::shared_ptr<const RobotModel> model, const Vide
       writer_(options.path, options.width, options.height, options.fps) {}
 
 void add_video_options(CLI::App& command, VideoOptions& options) {
-  command.add_option("--video", options.path,
-                     "Write a video of the episodes: out.mp4 (H.264) or out.gif, real time");
+  command
+      .add_option("--video", options.path,
+                  "Write a video of the episodes: out.mp4 (H.264) or out.gif, real time")
+      ->check(kNonEmptyPath);
   command.add_option("--video-fps", options.fps, "Video frames per second")
       ->check(CLI::IsMember({30, 60}))
       ->capture_default_str();

@@ -251,7 +251,7 @@ void export_onnx_file(const std::filesystem::path& model_path,
                       const std::filesystem::path& onnx_path) {
   const CheckpointFile file = read_checkpoint_file(model_path);
   const DeployedPolicy policy =
-      DeployedPolicy::from_checkpoint(file, "model " + model_path.string());
+      DeployedPolicy::from_checkpoint(file, "checkpoint " + model_path.string());
   export_onnx(policy, model_provenance(file.header), onnx_path);
 }
 

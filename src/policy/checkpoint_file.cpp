@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "model/atomic_file.hpp"
+#include "model/bounded_json.hpp"
 #include "policy/crc32c.hpp"
 
 namespace upkie_rl {
@@ -73,10 +74,25 @@ void write_checkpoint_file(const CheckpointFile& file, const std::filesystem::pa
 
 CheckpointFile read_checkpoint_file(const std::filesystem::path& path) {
   const std::string where = "checkpoint " + path.string();
-  if (std::filesystem::is_directory(path)) throw CheckpointError(where + ": is a directory");
+  std::error_code status_error;
+  const auto status = std::filesystem::status(path, status_error);
+  if (std::filesystem::is_directory(status)) throw CheckpointError(where + ": is a directory");
+  // A FIFO or a device (/dev/zero) would block or never end.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw CheckpointError(where + ": not a regular file");
+  }
+  if (std::filesystem::exists(status) &&
+      std::filesystem::file_size(path, status_error) > kMaxCheckpointBytes) {
+    throw CheckpointError(where + ": larger than the limit of " +
+                          std::to_string(kMaxCheckpointBytes) + " bytes");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CheckpointError(where + ": cannot open file");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_checkpoint_bytes(bytes, where);
+}
+
+CheckpointFile parse_checkpoint_bytes(std::string_view bytes, const std::string& where) {
   if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
     throw CheckpointError(where + ": not an upkie-rl checkpoint (bad magic)");
   }
@@ -92,9 +108,19 @@ CheckpointFile read_checkpoint_file(const std::filesystem::path& path) {
   if (header_size > bytes.size() - header_begin - 4) {
     throw CheckpointError(where + ": header size exceeds the file");
   }
+  if (header_size > kMaxCheckpointHeaderBytes) {
+    throw CheckpointError(where + ": header of " + std::to_string(header_size) +
+                          " bytes exceeds the limit of " +
+                          std::to_string(kMaxCheckpointHeaderBytes));
+  }
   CheckpointFile file;
   try {
-    file.header = nlohmann::json::parse(bytes.substr(header_begin, header_size));
+    file.header = parse_bounded_json(bytes.substr(header_begin, header_size), "header");
+  } catch (const std::invalid_argument& error) {
+    throw CheckpointError(where + ": " + error.what());
+  }
+  if (!file.header.is_object()) throw CheckpointError(where + ": header is not a JSON object");
+  try {
     std::size_t position = header_begin + header_size;
     const std::size_t end = bytes.size() - 4;
     for (const auto& entry : file.header.at("tensors")) {

@@ -15,6 +15,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,12 @@
 #include "model/error.hpp"
 
 namespace upkie_rl {
+
+/// Largest checkpoint file read (the largest network, kMaxParameters, with its two Adam
+/// moments is 768 MB).
+inline constexpr std::uintmax_t kMaxCheckpointBytes = std::uintmax_t{2} << 30;
+/// Largest JSON header (normalisation statistics of the widest observation are ~2 MB).
+inline constexpr std::uint64_t kMaxCheckpointHeaderBytes = std::uint64_t{16} << 20;
 
 /// Raised for a missing, truncated, corrupted or inconsistent checkpoint.
 class CheckpointError : public Error {
@@ -66,8 +73,14 @@ const Tensor& find_tensor(const std::map<std::string, Tensor>& tensors, const st
 /// whose values do not match its shape.
 void write_checkpoint_file(const CheckpointFile& file, const std::filesystem::path& path);
 
-/// Reads and verifies a checkpoint file. Throws CheckpointError naming the file and the
-/// problem (not found, not a checkpoint, truncated, bad CRC, malformed header, tensor sizes).
+/// Reads and verifies a checkpoint file's structure: a regular file of at most
+/// kMaxCheckpointBytes, magic, CRC, a JSON object header of at most
+/// kMaxCheckpointHeaderBytes nested at most kMaxJsonDepth deep, tensor sizes. Throws
+/// CheckpointError naming the file and the problem. The contents are checked by
+/// policy/checkpoint_gate.hpp, the reader every consumer uses.
 CheckpointFile read_checkpoint_file(const std::filesystem::path& path);
+
+/// read_checkpoint_file's checks on a file's bytes (for fuzzing); `where` names it.
+CheckpointFile parse_checkpoint_bytes(std::string_view bytes, const std::string& where);
 
 }  // namespace upkie_rl

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "policy/checkpoint_gate.hpp"
 #include "policy/space_json.hpp"
 
 namespace upkie_rl {
@@ -21,11 +22,12 @@ void check_size(std::size_t size, std::size_t expected, const char* what) {
 }  // namespace
 
 DeployedPolicy DeployedPolicy::load(const std::filesystem::path& path) {
-  return from_checkpoint(read_checkpoint_file(path), "model " + path.string());
+  return from_checkpoint(read_checkpoint_file(path), "checkpoint " + path.string());
 }
 
 DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
                                                const std::string& where) {
+  check_checkpoint(file, where);
   DeployedPolicy policy;
   try {
     const nlohmann::json& header = file.header;

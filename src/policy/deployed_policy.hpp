@@ -21,11 +21,13 @@ namespace upkie_rl {
 /// One loaded policy. Not thread-safe: act() reuses buffers made at load.
 class DeployedPolicy {
  public:
-  /// Reads a model or checkpoint. Throws CheckpointError naming the file and the problem
-  /// (missing, truncated, corrupted, not a model, inconsistent sizes).
+  /// Reads a model or checkpoint through the checkpoint gate (policy/checkpoint_gate.hpp).
+  /// Throws CheckpointError naming the file and the problem (missing, truncated, corrupted,
+  /// not a model, unknown version, inconsistent sizes, non-finite values).
   static DeployedPolicy load(const std::filesystem::path& path);
 
-  /// From a checkpoint file's contents; `where` names it in errors.
+  /// From a checkpoint file's contents, checked by check_checkpoint; `where` names it in
+  /// errors.
   static DeployedPolicy from_checkpoint(const CheckpointFile& file, const std::string& where);
 
   /// Environment id the policy was trained on.

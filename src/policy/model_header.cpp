@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "policy/checkpoint_file.hpp"
+#include "policy/network_limits.hpp"
 
 namespace upkie_rl {
 
@@ -24,11 +25,12 @@ PolicyShape policy_shape_from_json(const nlohmann::json& json) {
   shape.critic_hidden_sizes = json.at("critic_hidden_sizes").get<std::vector<std::int64_t>>();
   shape.activation = parse_activation(json.at("activation").get<std::string>());
   // Bounded so that a damaged header cannot ask for an absurd allocation.
-  auto valid = [](std::int64_t size) { return size > 0 && size <= 1'000'000; };
-  if (!valid(shape.observation_size) || !valid(shape.action_size) ||
-      !std::all_of(shape.actor_hidden_sizes.begin(), shape.actor_hidden_sizes.end(), valid) ||
-      !std::all_of(shape.critic_hidden_sizes.begin(), shape.critic_hidden_sizes.end(), valid)) {
-    throw CheckpointError("policy sizes must be in [1, 1000000]");
+  try {
+    check_network_size(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
+                       shape.critic_hidden_sizes, "policy.actor_hidden_sizes",
+                       "policy.critic_hidden_sizes");
+  } catch (const std::invalid_argument& error) {
+    throw CheckpointError(std::string("policy: ") + error.what());
   }
   return shape;
 }

@@ -30,7 +30,8 @@ struct PolicyShape {
 
 nlohmann::json policy_shape_to_json(const PolicyShape& shape);
 
-/// Inverse of policy_shape_to_json. Throws CheckpointError on sizes outside [1, 1000000],
+/// Inverse of policy_shape_to_json. Throws CheckpointError on sizes outside
+/// policy/network_limits.hpp,
 /// std::invalid_argument on an unknown activation, nlohmann::json errors on missing keys.
 PolicyShape policy_shape_from_json(const nlohmann::json& json);
 

@@ -1,5 +1,7 @@
 #include "rl/checkpoint.hpp"
 
+#include "policy/checkpoint_gate.hpp"
+
 namespace upkie_rl {
 
 const torch::Tensor& Checkpoint::tensor(const std::string& name, std::int64_t numel) const {
@@ -19,7 +21,7 @@ void save_checkpoint(const Checkpoint& checkpoint, const std::filesystem::path& 
 }
 
 Checkpoint load_checkpoint(const std::filesystem::path& path) {
-  CheckpointFile file = read_checkpoint_file(path);
+  CheckpointFile file = read_checked_checkpoint(path);
   Checkpoint checkpoint;
   checkpoint.header = std::move(file.header);
   for (auto& [name, tensor] : file.tensors) {

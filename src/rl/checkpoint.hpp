@@ -28,7 +28,7 @@ struct Checkpoint {
 /// Writes `checkpoint` to `path` atomically (see write_checkpoint_file).
 void save_checkpoint(const Checkpoint& checkpoint, const std::filesystem::path& path);
 
-/// Reads and verifies a checkpoint (see read_checkpoint_file).
+/// Reads a checkpoint through the checkpoint gate (read_checked_checkpoint).
 Checkpoint load_checkpoint(const std::filesystem::path& path);
 
 }  // namespace upkie_rl

@@ -22,8 +22,11 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-const TrainingConfig& validated(const TrainingConfig& config) {
+// Checked before the policy and the rollout buffer are allocated.
+const TrainingConfig& validated(const TrainingConfig& config, const VectorEnv& env) {
   config.validate();
+  config.check_allocations(static_cast<std::int64_t>(env.observation_space().size()),
+                           static_cast<std::int64_t>(env.action_space().size()));
   return config;
 }
 
@@ -37,7 +40,7 @@ std::int64_t checked_size(std::size_t size, const char* what) {
 
 Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
     : env_(env),
-      config_(validated(config)),
+      config_(validated(config, env)),
       observation_size_(checked_size(env.observation_space().size(), "observation space")),
       action_size_(checked_size(env.action_space().size(), "action space")),
       num_envs_(static_cast<std::int64_t>(env.num_envs())),

@@ -1,5 +1,7 @@
 #include "rl/ppo_checkpoint.hpp"
 
+#include "policy/checkpoint_gate.hpp"
+
 namespace upkie_rl {
 
 namespace {
@@ -18,7 +20,7 @@ Checkpoint make_ppo_checkpoint(const Ppo& ppo, const nlohmann::json& normalizati
   Checkpoint checkpoint;
   checkpoint.header = extra;
   checkpoint.header["format"] = kCheckpointFormat;
-  checkpoint.header["version"] = 1;
+  checkpoint.header["version"] = kCheckpointVersion;
   checkpoint.header["config"] = to_yaml(ppo.config());
   checkpoint.header["counters"] = ppo.counters_state();
   checkpoint.header["optimizer"] = {{"step_count", ppo.optimizer().step_count()}};
@@ -34,8 +36,10 @@ Checkpoint make_ppo_checkpoint(const Ppo& ppo, const nlohmann::json& normalizati
 
 void restore_ppo_checkpoint(Ppo& ppo, const Checkpoint& checkpoint) {
   const nlohmann::json& header = checkpoint.header;
-  if (header.value("format", "") != kCheckpointFormat || header.value("version", 0) != 1) {
-    throw CheckpointError("not an upkie-rl checkpoint of version 1");
+  if (header.value("format", "") != kCheckpointFormat ||
+      header.value("version", 0) != kCheckpointVersion) {
+    throw CheckpointError("not an upkie-rl checkpoint of version " +
+                          std::to_string(kCheckpointVersion));
   }
   if (!header.contains("policy") || header.at("policy") != policy_shape(ppo)) {
     throw CheckpointError("the checkpoint's policy " +

@@ -1,6 +1,9 @@
 #include "rl/scalar_csv_writer.hpp"
 
+#include <unistd.h>
+
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -52,8 +55,8 @@ ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
   if (resume_from_step && std::filesystem::exists(path)) {
     std::ifstream existing(path);
     std::string line;
-    std::getline(existing, line);
-    if (line != join(columns_)) {
+    // An empty file (left by an older version killed while it rewrote the log) has no rows.
+    if (std::getline(existing, line) && !line.empty() && line != join(columns_)) {
       throw std::runtime_error(path.string() + ": existing header differs from the logged tags");
     }
     while (std::getline(existing, line)) {
@@ -71,11 +74,35 @@ ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
       }
     }
   }
-  file_.open(path, std::ios::trunc);
+  if (!resume_from_step) {
+    file_.open(path, std::ios::trunc);
+    if (!file_) throw std::runtime_error("cannot write " + path.string());
+    file_ << join(columns_) << '\n';
+    file_.flush();
+    return;
+  }
+  // The kept rows go to a file aside that replaces the old one in one rename: killed at any
+  // moment, the log is either the old one or the new one, never cut.
+  const std::filesystem::path aside = path.string() + ".tmp." + std::to_string(getpid());
+  {
+    std::ofstream out(aside, std::ios::trunc);
+    out << join(columns_) << '\n';
+    for (const std::string& line : kept) out << line << '\n';
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + aside.string());
+  }
+  if (FILE* handle = std::fopen(aside.c_str(), "rb")) {
+    fsync(fileno(handle));
+    std::fclose(handle);
+  }
+  std::error_code error;
+  std::filesystem::rename(aside, path, error);
+  if (error) {
+    std::filesystem::remove(aside, error);
+    throw std::runtime_error("cannot replace " + path.string() + ": " + error.message());
+  }
+  file_.open(path, std::ios::app);
   if (!file_) throw std::runtime_error("cannot write " + path.string());
-  file_ << join(columns_) << '\n';
-  for (const std::string& line : kept) file_ << line << '\n';
-  file_.flush();
 }
 
 void ScalarCsvWriter::write_row(std::span<const ScalarValue> scalars) {

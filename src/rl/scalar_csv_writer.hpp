@@ -19,8 +19,9 @@ class ScalarCsvWriter {
  public:
   /// Opens `path` with these columns; the first column must be the step counter. With
   /// `resume_from_step`, rows of an existing file up to that step are kept (rows after it
-  /// belong to the part of the run being redone) and new rows are appended; otherwise the
-  /// file is created anew. Throws std::runtime_error if the file cannot be written or the
+  /// belong to the part of the run being redone) and new rows are appended; the kept rows
+  /// are written to a file aside that is renamed over the old one, so the existing file is
+  /// never cut in place. Otherwise the file is created anew. Throws std::runtime_error if the file cannot be written or the
   /// existing header differs.
   ScalarCsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
                   std::optional<std::int64_t> resume_from_step = std::nullopt);

@@ -10,6 +10,10 @@
 #include <stdexcept>
 
 #include "model/integer_text.hpp"
+#include "model/setting_bounds.hpp"
+#include "policy/network_limits.hpp"
+#include "vec/make_vector_env.hpp"
+#include "vec/vec_normalize.hpp"
 
 namespace upkie_rl {
 
@@ -242,32 +246,62 @@ void TrainingConfig::validate() const {
   auto require = [](bool condition, const std::string& key, const std::string& what) {
     if (!condition) throw std::invalid_argument("config key '" + key + "': " + what);
   };
+  auto integer = [](const std::string& key, std::int64_t value, std::int64_t min,
+                    std::int64_t max) { check_setting("config key '" + key + "'", value, min, max); };
+  auto real = [](const std::string& key, double value, double min, double max,
+                 LowerBound lower = LowerBound::kIncluded) {
+    check_setting("config key '" + key + "'", value, min, max, lower);
+  };
+  constexpr auto kExcluded = LowerBound::kExcluded;
   require(!env_id.empty(), "env.id", "must not be empty");
-  require(num_envs >= 1, "env.num_envs", "must be at least 1");
-  require(env_threads >= 0, "env.threads", "must be >= 0");
-  require(curriculum_steps >= 0, "env.curriculum_steps", "must be >= 0");
-  require(normalize.clip_observations > 0, "normalize.clip_observations", "must be > 0");
-  require(normalize.clip_rewards > 0, "normalize.clip_rewards", "must be > 0");
-  require(normalize.gamma > 0 && normalize.gamma <= 1, "normalize.gamma", "must be in (0, 1]");
-  require(normalize.epsilon > 0, "normalize.epsilon", "must be > 0");
-  require(!policy.actor_hidden_sizes.empty(), "policy.actor_hidden_sizes", "must not be empty");
-  require(!policy.critic_hidden_sizes.empty(), "policy.critic_hidden_sizes", "must not be empty");
-  require(ppo.total_timesteps >= 1, "ppo.total_timesteps", "must be at least 1");
+  integer("env.num_envs", num_envs, 1, static_cast<std::int64_t>(kMaxVectorEnvs));
+  integer("env.threads", env_threads, 0, static_cast<std::int64_t>(kMaxEnvThreads));
+  integer("env.curriculum_steps", curriculum_steps, 0, kMaxTimesteps);
+  real("normalize.clip_observations", normalize.clip_observations, 0, kMaxNormalizationClip,
+       kExcluded);
+  real("normalize.clip_rewards", normalize.clip_rewards, 0, kMaxNormalizationClip, kExcluded);
+  real("normalize.gamma", normalize.gamma, 0, 1, kExcluded);
+  real("normalize.epsilon", normalize.epsilon, 0, 1, kExcluded);
+  check_hidden_sizes("config key 'policy.actor_hidden_sizes'", policy.actor_hidden_sizes);
+  check_hidden_sizes("config key 'policy.critic_hidden_sizes'", policy.critic_hidden_sizes);
+  real("policy.log_std_init", policy.log_std_init, -20, 5);
+  integer("ppo.total_timesteps", ppo.total_timesteps, 1, kMaxTimesteps);
   require(ppo.n_steps >= num_envs, "ppo.n_steps", "must be at least env.num_envs");
+  integer("ppo.n_steps", ppo.n_steps, num_envs, kMaxRolloutSteps);
   require(ppo.batch_size >= 1, "ppo.batch_size", "must be at least 1");
   require(ppo.batch_size <= steps_per_env() * num_envs, "ppo.batch_size",
           "must not exceed the steps per update");
-  require(ppo.n_epochs >= 1, "ppo.n_epochs", "must be at least 1");
-  require(ppo.gamma > 0 && ppo.gamma <= 1, "ppo.gamma", "must be in (0, 1]");
-  require(ppo.gae_lambda >= 0 && ppo.gae_lambda <= 1, "ppo.gae_lambda", "must be in [0, 1]");
-  require(ppo.clip_range > 0, "ppo.clip_range", "must be > 0");
-  require(ppo.vf_coef >= 0, "ppo.vf_coef", "must be >= 0");
-  require(ppo.max_grad_norm > 0, "ppo.max_grad_norm", "must be > 0");
-  require(ppo.learning_rate_initial > 0, "ppo.learning_rate_initial", "must be > 0");
-  require(ppo.learning_rate_final >= 0, "ppo.learning_rate_final", "must be >= 0");
-  require(ppo.adam_eps > 0, "ppo.adam_eps", "must be > 0");
-  require(checkpoint_every >= 0, "checkpoint_every", "must be >= 0");
-  require(torch_threads >= 1, "torch_threads", "must be at least 1");
+  integer("ppo.n_epochs", ppo.n_epochs, 1, 10'000);
+  real("ppo.gamma", ppo.gamma, 0, 1, kExcluded);
+  real("ppo.gae_lambda", ppo.gae_lambda, 0, 1);
+  real("ppo.clip_range", ppo.clip_range, 0, 100, kExcluded);
+  real("ppo.clip_range_vf", ppo.clip_range_vf, -kMaxClip, kMaxClip);
+  real("ppo.ent_coef", ppo.ent_coef, -1000, 1000);
+  real("ppo.vf_coef", ppo.vf_coef, 0, 1000);
+  real("ppo.max_grad_norm", ppo.max_grad_norm, 0, kMaxClip, kExcluded);
+  real("ppo.learning_rate_initial", ppo.learning_rate_initial, 0, 1, kExcluded);
+  real("ppo.learning_rate_final", ppo.learning_rate_final, 0, 1);
+  real("ppo.adam_eps", ppo.adam_eps, 0, 1, kExcluded);
+  integer("checkpoint_every", checkpoint_every, 0, kMaxTimesteps);
+  integer("torch_threads", torch_threads, 1, kMaxTorchThreads);
+}
+
+void TrainingConfig::check_allocations(std::int64_t observation_size,
+                                       std::int64_t action_size) const {
+  const std::int64_t parameters = check_network_size(
+      observation_size, action_size, policy.actor_hidden_sizes, policy.critic_hidden_sizes,
+      "config key 'policy.actor_hidden_sizes'", "config key 'policy.critic_hidden_sizes'");
+  // Weights, gradients, two Adam moments and a spare copy.
+  check_allocation("config key 'policy.actor_hidden_sizes'",
+                   std::to_string(parameters) + " parameters",
+                   5.0 * 4.0 * static_cast<double>(parameters), "the actor-critic");
+  // Observations, actions, rewards, dones, values, log-probabilities, advantages, returns
+  // and the minibatch permutation, per transition.
+  const double transition_bytes =
+      4.0 * static_cast<double>(observation_size + action_size + 6) + 8.0;
+  check_allocation("config key 'ppo.n_steps'", std::to_string(ppo.n_steps),
+                   transition_bytes * static_cast<double>(steps_per_env() * num_envs),
+                   "the rollout buffer");
 }
 
 TrainingConfig parse_training_config(const std::string& yaml_text) {

@@ -12,6 +12,17 @@
 
 namespace upkie_rl {
 
+/// Largest timestep count of any setting (ppo.total_timesteps, checkpoint_every,
+/// env.curriculum_steps): far beyond any run, far from int64 overflow.
+inline constexpr std::int64_t kMaxTimesteps = 1'000'000'000'000'000;
+/// Largest ppo.n_steps (the rollout buffer is also checked against the machine's memory).
+inline constexpr std::int64_t kMaxRolloutSteps = std::int64_t{1} << 30;
+/// Largest |ppo.clip_range_vf| and ppo.max_grad_norm: a finite float32 far beyond any
+/// useful value (normalize.clip_* use vec's kMaxNormalizationClip).
+inline constexpr double kMaxClip = 1e6;
+/// Most intra-op threads of libtorch (torch_threads).
+inline constexpr std::int64_t kMaxTorchThreads = 256;
+
 /// Separate actor and critic MLPs (SB3 `net_arch=dict(pi=..., vf=...)`).
 struct PolicyConfig {
   std::vector<std::int64_t> actor_hidden_sizes{64, 64};
@@ -78,8 +89,14 @@ struct TrainingConfig {
   /// Steps each environment collects per update: n_steps / num_envs (at least 1).
   std::int64_t steps_per_env() const;
 
-  /// Throws std::invalid_argument naming the key of the first inconsistent value.
+  /// Throws std::invalid_argument naming the key of the first inconsistent or out-of-range
+  /// value, its value and the range (one line). Every number must be finite.
   void validate() const;
+
+  /// Throws std::invalid_argument naming the key when the network or the rollout buffer
+  /// for these space sizes would be too large (policy/network_limits.hpp, and more than half
+  /// of this machine's memory). Called before either is allocated.
+  void check_allocations(std::int64_t observation_size, std::int64_t action_size) const;
 };
 
 /// Parses YAML text. Unknown keys, malformed values and missing sections raise

@@ -14,6 +14,8 @@
 #include "policy/provenance.hpp"
 #include "rl/checkpoint.hpp"
 #include "rl/ppo_checkpoint.hpp"
+#include "rl/rank_agreement.hpp"
+#include "rl/run_directory_lock.hpp"
 #include "rl/torchscript_export.hpp"
 #include "vec/make_vector_env.hpp"
 
@@ -39,6 +41,34 @@ NormalizeConfig normalize_config(const NormalizationConfig& config) {
   out.gamma = config.gamma;
   out.epsilon = config.epsilon;
   return out;
+}
+
+/// Whether `run_dir` holds a checkpoint or a final model (a run worth keeping).
+bool holds_checkpoints(const std::filesystem::path& run_dir) {
+  std::error_code error;
+  for (const std::filesystem::path& directory : {run_dir, run_dir / "checkpoints"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+      if (entry.path().extension() == ".ckpt") return true;
+    }
+  }
+  return false;
+}
+
+/// The run directory a checkpoint belongs to: the parent of its checkpoints/ folder, or
+/// the folder of a final model.
+std::filesystem::path own_run_dir(const std::filesystem::path& checkpoint) {
+  const std::filesystem::path directory = checkpoint.parent_path();
+  return directory.filename() == "checkpoints" ? directory.parent_path() : directory;
+}
+
+/// Whether resuming `checkpoint` in `run_dir` would write into another, non-empty run.
+bool is_other_run(const std::filesystem::path& checkpoint, const std::filesystem::path& run_dir) {
+  std::error_code error;
+  if (!std::filesystem::exists(run_dir, error) || std::filesystem::is_empty(run_dir, error)) {
+    return false;
+  }
+  const std::filesystem::path own = own_run_dir(checkpoint);
+  return !std::filesystem::equivalent(own.empty() ? "." : own, run_dir, error);
 }
 
 std::string checkpoint_name(std::int64_t timesteps) {
@@ -87,9 +117,19 @@ TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::pa
     : TrainingRun(ResumeTag{}, config, run_dir, std::move(communicator)) {
   if (!writes_outputs()) return;
   if (std::filesystem::exists(run_dir_ / "config.yaml")) {
-    throw std::runtime_error("run directory " + run_dir_.string() +
-                             " already holds a run; choose another --run-dir or --resume a "
-                             "checkpoint");
+    if (holds_checkpoints(run_dir_)) {
+      throw std::runtime_error("run directory " + run_dir_.string() +
+                               " already holds a run; choose another --run-dir or --resume a "
+                               "checkpoint");
+    }
+    // A run killed before its first checkpoint: nothing to resume, so it starts over and
+    // its logs, which describe steps about to be redone, go.
+    for (const auto& entry : std::filesystem::directory_iterator(run_dir_)) {
+      const std::string name = entry.path().filename().string();
+      if (name == "progress.csv" || name.rfind("events.out.tfevents.", 0) == 0) {
+        std::filesystem::remove(entry.path());
+      }
+    }
   }
   std::filesystem::create_directories(run_dir_);
   std::ofstream file(run_dir_ / "config.yaml");
@@ -103,6 +143,12 @@ TrainingRun::TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path
       run_dir_(std::move(run_dir)),
       communicator_(communicator ? std::move(communicator) : std::make_shared<SoloCommunicator>()) {
   config_.validate();
+  // Before anything whose shape depends on the settings meets the other ranks.
+  check_ranks_agree(agreement_settings(config_), *communicator_);
+  if (writes_outputs()) {
+    lock_ = std::make_unique<RunDirectoryLock>(run_dir_);
+    remove_stale_temporaries(run_dir_);
+  }
   // The networks are tiny (minibatches of 128 through 64x64 layers): intra-op threads
   // would cost more in synchronisation than they save, and the cores are needed by the
   // environment workers. One thread also makes reductions independent of the machine.
@@ -141,7 +187,14 @@ void TrainingRun::observe_env(std::size_t index, EnvObserver observer) {
 
 std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& checkpoint_path,
                                                  std::optional<std::filesystem::path> run_dir,
-                                                 std::shared_ptr<Communicator> communicator) {
+                                                 std::shared_ptr<Communicator> communicator,
+                                                 bool allow_other_run_dir) {
+  if (run_dir && !allow_other_run_dir && is_other_run(checkpoint_path, *run_dir)) {
+    throw std::invalid_argument("run directory " + run_dir->string() +
+                                " is not empty and is not the checkpoint's run (" +
+                                own_run_dir(checkpoint_path).string() +
+                                "); choose an empty one, or pass --force-run-dir");
+  }
   const Checkpoint checkpoint = load_checkpoint(checkpoint_path);
   TrainingConfig config;
   try {
@@ -150,10 +203,7 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
     throw CheckpointError("checkpoint " + checkpoint_path.string() +
                           ": bad configuration: " + error.what());
   }
-  if (!run_dir) {
-    const std::filesystem::path directory = checkpoint_path.parent_path();
-    run_dir = directory.filename() == "checkpoints" ? directory.parent_path() : directory;
-  }
+  if (!run_dir) run_dir = own_run_dir(checkpoint_path);
   std::unique_ptr<TrainingRun> run(
       new TrainingRun(ResumeTag{}, config, *run_dir, std::move(communicator)));
   if (run->writes_outputs()) std::filesystem::create_directories(run->run_dir_);
@@ -233,9 +283,12 @@ std::filesystem::path TrainingRun::train(
   const std::int64_t total = config_.ppo.total_timesteps;
   const std::int64_t every = config_.checkpoint_every;
   const std::int64_t start_timesteps = ppo_->num_timesteps();
-  std::int64_t next_checkpoint =
-      every > 0 ? (checkpoints_saved_ + 1) * every : std::numeric_limits<std::int64_t>::max();
-  while (next_checkpoint <= start_timesteps) next_checkpoint += every;
+  // The first multiple of `every` past both the saved checkpoints and the start, computed
+  // rather than stepped to: a resumed counter may be far ahead (the gate bounds it).
+  std::int64_t next_checkpoint = std::numeric_limits<std::int64_t>::max();
+  if (every > 0) {
+    next_checkpoint = std::max(checkpoints_saved_ + 1, start_timesteps / every + 1) * every;
+  }
   const auto start = Clock::now();
   env_->set_randomization_scale(config_.randomization_scale(ppo_->num_timesteps()));
   start_segment();
@@ -288,7 +341,7 @@ std::filesystem::path TrainingRun::train(
     if (progress.timesteps >= next_checkpoint && progress.timesteps < total) {
       if (events) events->flush();
       save_checkpoint_now();
-      while (next_checkpoint <= progress.timesteps) next_checkpoint += every;
+      next_checkpoint = (progress.timesteps / every + 1) * every;
       // Start fresh episodes so that a run resumed from this checkpoint continues
       // exactly like this one.
       start_segment();

@@ -24,6 +24,7 @@
 #include <optional>
 
 #include "rl/ppo.hpp"
+#include "rl/run_directory_lock.hpp"
 #include "rl/scalar_csv_writer.hpp"
 #include "rl/tensorboard_writer.hpp"
 #include "rl/training_config.hpp"
@@ -48,8 +49,11 @@ struct TrainingProgress {
 
 class TrainingRun {
  public:
-  /// Prepares a new run in `run_dir` (created if needed). Throws std::invalid_argument on
-  /// a bad config or environment, std::runtime_error if `run_dir` already holds a run.
+  /// Prepares a new run in `run_dir` (created if needed) and locks it (RunDirectoryLock)
+  /// until destroyed. Throws std::invalid_argument on a bad config or environment,
+  /// std::runtime_error if `run_dir` already holds a run with a checkpoint or a final model
+  /// or another trainer holds it. A run directory whose run stopped before its first
+  /// checkpoint is started over (its progress.csv and events files are removed).
   ///
   /// With a `communicator` of several ranks, the run is one rank of a data-parallel run
   /// (Ppo::set_communicator): each rank steps config.num_envs environments of its own
@@ -60,12 +64,15 @@ class TrainingRun {
               std::shared_ptr<Communicator> communicator = nullptr);
 
   /// Continues the run saved in `checkpoint`, in `run_dir` (default: the run directory the
-  /// checkpoint belongs to). Throws CheckpointError on a bad checkpoint.
+  /// checkpoint belongs to). Throws CheckpointError on a bad checkpoint,
+  /// std::invalid_argument when `run_dir` is another run's non-empty directory (unless
+  /// `allow_other_run_dir`), std::runtime_error when another trainer holds it.
   /// Every rank of a data-parallel run reads the same checkpoint (rank 0's); the world size
   /// may differ from the one that wrote it.
   static std::unique_ptr<TrainingRun> resume(const std::filesystem::path& checkpoint,
                                              std::optional<std::filesystem::path> run_dir = {},
-                                             std::shared_ptr<Communicator> communicator = nullptr);
+                                             std::shared_ptr<Communicator> communicator = nullptr,
+                                             bool allow_other_run_dir = false);
 
   /// Rank 0 of a data-parallel run, or a run alone: the one that writes.
   bool writes_outputs() const { return communicator_->rank() == 0; }
@@ -109,6 +116,7 @@ class TrainingRun {
 
   TrainingConfig config_;
   std::filesystem::path run_dir_;
+  std::unique_ptr<RunDirectoryLock> lock_;  // rank 0's, from construction to destruction
   VecNormalize* normalize_ = nullptr;  // owned by env_
   std::unique_ptr<VectorEnv> env_;
   std::unique_ptr<Ppo> ppo_;

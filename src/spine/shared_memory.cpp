@@ -1,6 +1,7 @@
 #include "spine/shared_memory.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -31,6 +32,8 @@ class FileDescriptor {
   FileDescriptor(const FileDescriptor&) = delete;
   FileDescriptor& operator=(const FileDescriptor&) = delete;
   int get() const { return fd_; }
+  /// Hands the descriptor over (it is no longer closed here).
+  int release() { return std::exchange(fd_, -1); }
 
  private:
   int fd_;
@@ -42,6 +45,19 @@ char* map(int fd, std::size_t size, const std::string& name) {
     throw SpineError("cannot map shared memory " + name + ": " + errno_text());
   }
   return static_cast<char*>(data);
+}
+
+/// Largest object mapped (as in create).
+constexpr std::size_t kMaxSize = std::size_t{1} << 31;
+
+/// Throws when `path` names an object whose spine is alive (it holds the flock).
+void refuse_live_object(const std::string& path, const std::string& name) {
+  FileDescriptor existing(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (existing.get() < 0) return;  // absent, or not ours to judge: the rename decides
+  if (::flock(existing.get(), LOCK_EX | LOCK_NB) != 0) {
+    throw SpineError("shared memory " + name +
+                     " is in use by a running spine; stop it first or choose another name");
+  }
 }
 
 }  // namespace
@@ -60,9 +76,10 @@ void SharedMemory::validate_name(const std::string& name) {
   }
 }
 
-SharedMemory SharedMemory::create(const std::string& name, std::size_t size) {
+SharedMemory SharedMemory::create(const std::string& name, std::size_t size, unsigned mode) {
   validate_name(name);
-  if (size <= kHeaderSize + 1 || size > (std::size_t{1} << 31)) {
+  if (mode > 0666) throw SpineError("invalid shared-memory mode " + std::to_string(mode));
+  if (size <= kHeaderSize + 1 || size > kMaxSize) {
     throw SpineError("invalid shared-memory size " + std::to_string(size) + " for " + name);
   }
   // The object is built under a private name and renamed into place once sized and
@@ -72,16 +89,18 @@ SharedMemory SharedMemory::create(const std::string& name, std::size_t size) {
   const std::string staging_name = "/upkie_rl_staging_" + std::to_string(::getpid()) + "_" +
                                    std::to_string(creation_count.fetch_add(1));
   ::shm_unlink(staging_name.c_str());  // a leftover of a crashed process with our pid
-  FileDescriptor fd(::shm_open(staging_name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666));
+  FileDescriptor fd(::shm_open(staging_name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0600));
   if (fd.get() < 0) {
     throw SpineError("cannot create shared memory " + name + " (staged as " + staging_name +
                      "): " + errno_text());
   }
   char* data = nullptr;
   try {
-    // The umask strips the group/other write bits that agents of other users need;
-    // fchmod restores them without touching the process-wide umask.
-    ::fchmod(fd.get(), 0666);
+    // Exactly `mode`: the umask would strip bits a widened mode asks for.
+    if (::fchmod(fd.get(), static_cast<mode_t>(mode)) != 0 ||
+        ::flock(fd.get(), LOCK_EX | LOCK_NB) != 0) {
+      throw SpineError("cannot set up shared memory " + name + ": " + errno_text());
+    }
     if (::ftruncate(fd.get(), static_cast<off_t>(size)) != 0) {
       throw SpineError("cannot size shared memory " + name + ": " + errno_text());
     }
@@ -89,6 +108,7 @@ SharedMemory SharedMemory::create(const std::string& name, std::size_t size) {
     std::memset(data, 0, kHeaderSize);  // request None, empty payload
     const std::string staging_path = std::string(kShmDirectory) + staging_name;
     const std::string final_path = std::string(kShmDirectory) + name;
+    refuse_live_object(final_path, name);
     if (::rename(staging_path.c_str(), final_path.c_str()) != 0) {
       throw SpineError("cannot publish shared memory " + name + " (rename from " + staging_path +
                        "): " + errno_text());
@@ -98,7 +118,7 @@ SharedMemory SharedMemory::create(const std::string& name, std::size_t size) {
     ::shm_unlink(staging_name.c_str());
     throw;
   }
-  return SharedMemory(name, size, data, true);
+  return SharedMemory(name, size, data, true, fd.release());
 }
 
 SharedMemory SharedMemory::open(const std::string& name) {
@@ -112,21 +132,25 @@ SharedMemory SharedMemory::open(const std::string& name) {
     throw SpineError("cannot stat shared memory " + name + ": " + errno_text());
   }
   const auto size = static_cast<std::size_t>(status.st_size);
-  if (size <= kHeaderSize + 1) {
+  if (size <= kHeaderSize + 1 || size > kMaxSize) {
     throw SpineError("shared memory " + name + " has " + std::to_string(size) +
-                     " bytes, too small for the spine layout");
+                     " bytes, outside the spine layout's [" + std::to_string(kHeaderSize + 2) +
+                     ", " + std::to_string(kMaxSize) + "]");
   }
-  return SharedMemory(name, size, map(fd.get(), size, name), false);
+  char* data = map(fd.get(), size, name);
+  return SharedMemory(name, size, data, false, fd.release());
 }
 
-SharedMemory::SharedMemory(std::string name, std::size_t size, char* data, bool owner)
-    : name_(std::move(name)), size_(size), data_(data), owner_(owner) {}
+SharedMemory::SharedMemory(std::string name, std::size_t size, char* data, bool owner,
+                           int descriptor)
+    : name_(std::move(name)), size_(size), data_(data), owner_(owner), descriptor_(descriptor) {}
 
 SharedMemory::SharedMemory(SharedMemory&& other) noexcept
     : name_(std::move(other.name_)),
       size_(std::exchange(other.size_, 0)),
       data_(std::exchange(other.data_, nullptr)),
-      owner_(std::exchange(other.owner_, false)) {}
+      owner_(std::exchange(other.owner_, false)),
+      descriptor_(std::exchange(other.descriptor_, -1)) {}
 
 SharedMemory& SharedMemory::operator=(SharedMemory&& other) noexcept {
   if (this != &other) {
@@ -135,6 +159,7 @@ SharedMemory& SharedMemory::operator=(SharedMemory&& other) noexcept {
     size_ = std::exchange(other.size_, 0);
     data_ = std::exchange(other.data_, nullptr);
     owner_ = std::exchange(other.owner_, false);
+    descriptor_ = std::exchange(other.descriptor_, -1);
   }
   return *this;
 }
@@ -147,9 +172,29 @@ void SharedMemory::release() noexcept {
     data_ = nullptr;
   }
   if (owner_) {
-    ::shm_unlink(name_.c_str());
+    // Only while the name is still ours: never another spine's object.
+    struct stat mine {};
+    struct stat named {};
+    const std::string path = std::string(kShmDirectory) + name_;
+    if (::fstat(descriptor_, &mine) == 0 && ::stat(path.c_str(), &named) == 0 &&
+        mine.st_ino == named.st_ino && mine.st_dev == named.st_dev) {
+      ::shm_unlink(name_.c_str());
+    }
     owner_ = false;
   }
+  if (descriptor_ >= 0) {
+    ::close(descriptor_);  // releases the owner's flock
+    descriptor_ = -1;
+  }
+}
+
+void SharedMemory::check_not_shrunk() const {
+  struct stat status {};
+  if (::fstat(descriptor_, &status) == 0 && static_cast<std::size_t>(status.st_size) >= size_) {
+    return;
+  }
+  throw SpineError("shared memory " + name_ + " shrank to " + std::to_string(status.st_size) +
+                   " bytes under its " + std::to_string(size_) + "-byte mapping");
 }
 
 std::atomic_ref<std::uint32_t> SharedMemory::word(std::size_t offset) const {
@@ -157,15 +202,20 @@ std::atomic_ref<std::uint32_t> SharedMemory::word(std::size_t offset) const {
   return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(data_ + offset));
 }
 
-std::uint32_t SharedMemory::request() const { return word(0).load(std::memory_order_acquire); }
+std::uint32_t SharedMemory::request() const {
+  check_not_shrunk();
+  return word(0).load(std::memory_order_acquire);
+}
 
 void SharedMemory::set_request(Request request) {
+  check_not_shrunk();
   word(0).store(static_cast<std::uint32_t>(request), std::memory_order_release);
 }
 
 std::uint32_t SharedMemory::payload_size() const { return word(4).load(std::memory_order_acquire); }
 
 std::span<const char> SharedMemory::payload() const {
+  check_not_shrunk();
   const std::uint32_t size = payload_size();
   if (size > max_payload_size()) {
     throw SpineError("payload of " + std::to_string(size) + " bytes refused: shared memory " +
@@ -180,6 +230,7 @@ void SharedMemory::write_payload(std::span<const char> bytes) {
                      " bytes does not fit in shared memory " + name_ + " (at most " +
                      std::to_string(max_payload_size()) + ")");
   }
+  check_not_shrunk();
   std::memcpy(data_ + kHeaderSize, bytes.data(), bytes.size());
   word(4).store(static_cast<std::uint32_t>(bytes.size()), std::memory_order_release);
 }

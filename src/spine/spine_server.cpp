@@ -31,7 +31,7 @@ SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config
       config_(config),
       brake_step_(std::move(brake_step)),
       set_settings_(std::move(set_settings)),
-      memory_(SharedMemory::create(config.shm_name, config.shm_size)),
+      memory_(SharedMemory::create(config.shm_name, config.shm_size, config.shm_mode)),
       machine_(config.nb_stop_cycles),
       unpacker_(memory_.max_payload_size()),
       action_(spine_default_servo_action()) {

@@ -25,6 +25,8 @@ namespace upkie_rl {
 struct SpineServerConfig {
   std::string shm_name = "/upkie";                    ///< POSIX shared-memory name.
   std::size_t shm_size = SharedMemory::kDefaultSize;  ///< [bytes]
+  /// Permissions of the shared memory (SharedMemory::create): owner only by default.
+  unsigned shm_mode = SharedMemory::kDefaultMode;
   /// True: a real-time loop at `frequency` where the simulation advances every cycle
   /// whatever the agent does (like the robot); give it a simulation whose step() is one
   /// physics step. False: the simulation advances only on Action requests, by one step()

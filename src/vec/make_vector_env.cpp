@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "model/setting_bounds.hpp"
 #include "vec/sync_vector_env.hpp"
 #include "vec/thread_pool_vector_env.hpp"
 
@@ -11,7 +12,11 @@ namespace upkie_rl {
 std::unique_ptr<VectorEnv> make_vector_env(const std::string& id, const EnvOptions& options,
                                            std::size_t num_envs, std::size_t threads,
                                            AutoresetMode autoreset_mode) {
-  if (num_envs == 0) throw std::invalid_argument("make_vector_env: num_envs must be positive");
+  // Python passes these unchecked; the configuration checked them already under its keys.
+  check_setting("num_envs", static_cast<std::int64_t>(num_envs), 1,
+                static_cast<std::int64_t>(kMaxVectorEnvs));
+  check_setting("num_threads", static_cast<std::int64_t>(threads), 0,
+                static_cast<std::int64_t>(kMaxEnvThreads));
   const EnvFactory factory = make_env_factory(id, options);
   std::vector<std::unique_ptr<Env>> envs;
   envs.reserve(num_envs);

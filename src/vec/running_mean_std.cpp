@@ -82,8 +82,12 @@ void RunningMeanStd::from_json(const nlohmann::json& json, const std::string& na
   std::vector<double> mean = read_vector("mean");
   std::vector<double> var = read_vector("var");
   if (!json.contains("count")) throw std::invalid_argument("missing key " + name + ".count");
-  if (!json.at("count").is_number() || !(json.at("count").get<double>() > 0.0)) {
-    throw std::invalid_argument(name + ".count must be a positive number");
+  if (!json.at("count").is_number() || !(json.at("count").get<double>() > 0.0) ||
+      !std::isfinite(json.at("count").get<double>())) {
+    throw std::invalid_argument(name + ".count must be a finite positive number");
+  }
+  for (double m : mean) {
+    if (!std::isfinite(m)) throw std::invalid_argument(name + ".mean must hold finite numbers");
   }
   for (double v : var) {
     if (!(v >= 0.0) || !std::isfinite(v)) {

@@ -1,23 +1,47 @@
 #include "vec/vec_normalize.hpp"
 
+#include "model/setting_bounds.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace upkie_rl {
 
-namespace {
-
-void check_config(const NormalizeConfig& config) {
-  if (!(config.clip_observations > 0.0) || !(config.clip_rewards > 0.0) ||
-      !(config.gamma > 0.0 && config.gamma <= 1.0) || !(config.epsilon > 0.0)) {
-    throw std::invalid_argument(
-        "VecNormalize: clip_observations, clip_rewards and epsilon must be positive and gamma in "
-        "(0, 1]");
-  }
+void check_normalize_config(const NormalizeConfig& config) {
+  constexpr auto kExcluded = LowerBound::kExcluded;
+  check_setting("normalization clip_observations", config.clip_observations, 0.0,
+                kMaxNormalizationClip, kExcluded);
+  check_setting("normalization clip_rewards", config.clip_rewards, 0.0, kMaxNormalizationClip,
+                kExcluded);
+  check_setting("normalization gamma", config.gamma, 0.0, 1.0, kExcluded);
+  check_setting("normalization epsilon", config.epsilon, 0.0, 1.0, kExcluded);
 }
 
-}  // namespace
+NormalizeConfig normalize_config_from_json(const nlohmann::json& json) {
+  if (!json.is_object()) throw std::invalid_argument("config must be an object");
+  NormalizeConfig config;
+  auto read_bool = [&](const char* key, bool& out) {
+    if (!json.contains(key) || !json.at(key).is_boolean()) {
+      throw std::invalid_argument(std::string("config.") + key + " must be a boolean");
+    }
+    out = json.at(key).get<bool>();
+  };
+  auto read_number = [&](const char* key, double& out) {
+    if (!json.contains(key) || !json.at(key).is_number()) {
+      throw std::invalid_argument(std::string("config.") + key + " must be a number");
+    }
+    out = json.at(key).get<double>();
+  };
+  read_bool("observations", config.observations);
+  read_bool("rewards", config.rewards);
+  read_number("clip_observations", config.clip_observations);
+  read_number("clip_rewards", config.clip_rewards);
+  read_number("gamma", config.gamma);
+  read_number("epsilon", config.epsilon);
+  check_normalize_config(config);
+  return config;
+}
 
 VecNormalize::VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfig& config)
     : venv_(venv ? std::move(venv) : throw std::invalid_argument("VecNormalize: null env")),
@@ -27,7 +51,7 @@ VecNormalize::VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfi
       return_rms_(1),
       merged_observation_rms_(observation_size_),
       merged_return_rms_(1) {
-  check_config(config_);
+  check_normalize_config(config_);
   const std::size_t n = venv_->num_envs();
   returns_.assign(n, 0.0);
   raw_observations_.assign(n * observation_size_, 0.0f);
@@ -125,27 +149,7 @@ void VecNormalize::load_state(const nlohmann::json& state) {
   observations.from_json(state.at("observations"), "observations");
   RunningMeanStd returns(1);
   returns.from_json(state.at("returns"), "returns");
-  const nlohmann::json& json = state.at("config");
-  NormalizeConfig config;
-  auto read_bool = [&](const char* key, bool& out) {
-    if (!json.contains(key) || !json.at(key).is_boolean()) {
-      throw std::invalid_argument(std::string("config.") + key + " must be a boolean");
-    }
-    out = json.at(key).get<bool>();
-  };
-  auto read_number = [&](const char* key, double& out) {
-    if (!json.contains(key) || !json.at(key).is_number()) {
-      throw std::invalid_argument(std::string("config.") + key + " must be a number");
-    }
-    out = json.at(key).get<double>();
-  };
-  read_bool("observations", config.observations);
-  read_bool("rewards", config.rewards);
-  read_number("clip_observations", config.clip_observations);
-  read_number("clip_rewards", config.clip_rewards);
-  read_number("gamma", config.gamma);
-  read_number("epsilon", config.epsilon);
-  check_config(config);
+  const NormalizeConfig config = normalize_config_from_json(state.at("config"));
   observation_rms_ = std::move(observations);
   return_rms_ = std::move(returns);
   merged_observation_rms_ = observation_rms_;

@@ -13,6 +13,9 @@
 
 namespace upkie_rl {
 
+/// Largest clip_observations and clip_rewards (a finite float32 far beyond any useful value).
+inline constexpr double kMaxNormalizationClip = 1e6;
+
 /// Settings of VecNormalize (SB3's defaults, the seed's values).
 struct NormalizeConfig {
   bool observations = true;  ///< Normalise observations.
@@ -22,6 +25,14 @@ struct NormalizeConfig {
   double gamma = 0.99;  ///< Discount of the returns whose variance scales rewards.
   double epsilon = 1e-8;
 };
+
+/// Throws std::invalid_argument naming the setting unless clip_observations and
+/// clip_rewards are in (0, kMaxNormalizationClip], gamma and epsilon in (0, 1].
+void check_normalize_config(const NormalizeConfig& config);
+
+/// The "config" of a VecNormalize state (VecNormalize::state()), checked as above; throws
+/// std::invalid_argument naming a missing or mistyped key.
+NormalizeConfig normalize_config_from_json(const nlohmann::json& json);
 
 /// Observations: obs_n = clip((obs - mean) / sqrt(var + epsilon), ±clip_observations), with
 /// the statistics updated (while training) by every batch of observations the inner env
@@ -33,7 +44,8 @@ struct NormalizeConfig {
 /// episode_returns / episode_lengths stay raw.
 class VecNormalize final : public VectorEnv {
  public:
-  /// @throws std::invalid_argument on a null env or a non-positive clip, gamma or epsilon.
+  /// @throws std::invalid_argument on a null env or a setting out of check_normalize_config's
+  /// ranges.
   VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfig& config);
 
   /// false: statistics frozen, rewards not normalised (evaluation).

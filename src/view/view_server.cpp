@@ -7,6 +7,7 @@
 #include <boost/beast/websocket.hpp>
 #include <cmath>
 #include <condition_variable>
+#include <iostream>
 #include <list>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -36,6 +37,13 @@ void ViewServerConfig::validate() const {
   if (max_frames_per_message == 0) throw ViewError("viewer max_frames_per_message must be > 0");
   if (!(write_timeout > 0.0)) throw ViewError("viewer write_timeout must be positive");
   if (max_clients == 0) throw ViewError("viewer max_clients must be > 0");
+  if (max_connections == 0 || max_connections > 65536) {
+    throw ViewError("viewer max_connections " + std::to_string(max_connections) +
+                    " is not in [1, 65536]");
+  }
+  if (!(idle_timeout > 0.0 && idle_timeout <= 3600.0)) {
+    throw ViewError("viewer idle_timeout must be in (0, 3600] s");
+  }
 }
 
 namespace {
@@ -43,7 +51,9 @@ namespace {
 /// Largest HTTP request or WebSocket message taken from a browser: the page sends nothing
 /// but its requests.
 constexpr std::size_t kMaxRequestBytes = std::size_t{16} * 1024;
-constexpr auto kHttpTimeout = std::chrono::seconds(30);
+/// Wait before accepting again after accept failed (out of file descriptors): the pending
+/// connection stays queued, so an immediate retry would fail at once, again and again.
+constexpr auto kAcceptRetryDelay = std::chrono::milliseconds(200);
 
 }  // namespace
 
@@ -72,15 +82,22 @@ struct ViewServer::Impl {
         page(served_viewer_page()),
         frames(std::move(frames_in)),
         acceptor(io),
-        timer(io) {}
+        timer(io),
+        accept_retry(io) {}
 
   ViewServerConfig config;
   std::string session_json;
   std::string page;
   std::shared_ptr<const FrameBroadcaster> frames;
+  // Open HTTP connections (their streams' deleter counts them out); before `io`, whose
+  // destruction runs those deleters.
+  std::size_t http_connections = 0;
   net::io_context io;
   tcp::acceptor acceptor;
   net::steady_timer timer;
+  net::steady_timer accept_retry;
+  bool ticking = false;  // the frame timer runs only while browsers are connected
+  bool accept_failing = false;
   std::thread thread;
   std::string url;
   int port = 0;
@@ -103,6 +120,13 @@ struct ViewServer::Impl {
 
   void listen();
   void accept();
+  /// config.idle_timeout as a clock duration.
+  SteadyClock::duration idle_timeout() const {
+    return std::chrono::duration_cast<SteadyClock::duration>(
+        std::chrono::duration<double>(config.idle_timeout));
+  }
+  /// Starts the frame timer unless it runs.
+  void start_ticking();
   void read_request(const std::shared_ptr<beast::tcp_stream>& stream,
                     const std::shared_ptr<beast::flat_buffer>& buffer);
   void answer(const std::shared_ptr<beast::tcp_stream>& stream,
@@ -146,8 +170,31 @@ void ViewServer::Impl::listen() {
 void ViewServer::Impl::accept() {
   acceptor.async_accept([this](beast::error_code error, tcp::socket socket) {
     if (error == net::error::operation_aborted) return;
-    if (!error) {
-      auto stream = std::make_shared<beast::tcp_stream>(std::move(socket));
+    if (error) {
+      // Out of descriptors (EMFILE, ENFILE) or the like: refuse for now, retry later; said
+      // once per spell of failures.
+      if (!accept_failing) {
+        std::cerr << "viewer: cannot accept connections (" << error.message()
+                  << "); retrying every " << kAcceptRetryDelay.count() << " ms" << std::endl;
+      }
+      accept_failing = true;
+      accept_retry.expires_after(kAcceptRetryDelay);
+      accept_retry.async_wait([this](beast::error_code wait_error) {
+        if (!wait_error) accept();
+      });
+      return;
+    }
+    accept_failing = false;
+    if (http_connections + clients.size() >= config.max_connections) {
+      beast::error_code ignored;
+      socket.close(ignored);  // over the cap: refused at once, holding nothing
+    } else {
+      ++http_connections;
+      const auto stream = std::shared_ptr<beast::tcp_stream>(
+          new beast::tcp_stream(std::move(socket)), [this](beast::tcp_stream* closed) {
+            delete closed;
+            --http_connections;
+          });
       read_request(stream, std::make_shared<beast::flat_buffer>());
     }
     accept();
@@ -159,7 +206,7 @@ void ViewServer::Impl::read_request(const std::shared_ptr<beast::tcp_stream>& st
   auto parser = std::make_shared<http::request_parser<http::string_body>>();
   parser->header_limit(kMaxRequestBytes);
   parser->body_limit(kMaxRequestBytes);
-  stream->expires_after(kHttpTimeout);
+  stream->expires_after(idle_timeout());
   http::async_read(*stream, *buffer, *parser,
                    [this, stream, buffer, parser](beast::error_code error, std::size_t) {
                      if (error) return;  // closed, timed out or malformed: drop the connection
@@ -203,7 +250,7 @@ void ViewServer::Impl::answer(const std::shared_ptr<beast::tcp_stream>& stream,
   }
   response->prepare_payload();
   if (request.method() == http::verb::head) response->body().clear();
-  stream->expires_after(kHttpTimeout);
+  stream->expires_after(idle_timeout());
   http::async_write(*stream, *response,
                     [this, stream, buffer, response](beast::error_code error, std::size_t) {
                       if (error || !response->keep_alive()) {
@@ -252,6 +299,7 @@ void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
     notify();
     read_messages(client);
     send(client);
+    start_ticking();
   });
 }
 
@@ -289,11 +337,22 @@ void ViewServer::Impl::tick() {
     }
     send(client);
   }
+  // Idle without browsers: no timer, no wake-ups, until the next one connects.
+  if (clients.empty()) {
+    ticking = false;
+    return;
+  }
   timer.expires_after(std::chrono::duration_cast<SteadyClock::duration>(
       std::chrono::duration<double>(config.send_period)));
   timer.async_wait([this](beast::error_code error) {
     if (!error) tick();
   });
+}
+
+void ViewServer::Impl::start_ticking() {
+  if (ticking || !frames) return;
+  ticking = true;
+  tick();
 }
 
 void ViewServer::Impl::send(const std::shared_ptr<ViewClient>& client) {
@@ -355,8 +414,16 @@ ViewServer::ViewServer(const ViewServerConfig& config, std::string session_json,
   config.validate();
   impl_->listen();
   impl_->accept();
-  if (impl_->frames) impl_->tick();
-  impl_->thread = std::thread([this] { impl_->io.run(); });
+  impl_->thread = std::thread([impl = impl_.get()] {
+    // A failure of the viewer must not end the process that publishes (a training): it is
+    // reported and the viewer stops serving.
+    try {
+      impl->io.run();
+    } catch (const std::exception& error) {
+      std::cerr << "viewer: stopped after an error: " << error.what()
+                << " (the run goes on without it)" << std::endl;
+    }
+  });
 }
 
 ViewServer::~ViewServer() {

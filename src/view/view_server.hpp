@@ -27,6 +27,12 @@ struct ViewServerConfig {
   /// A browser that has not taken a message within this time is disconnected [s].
   double write_timeout = 10.0;
   std::size_t max_clients = 64;  ///< WebSocket clients beyond this are refused (HTTP 503).
+  /// Open TCP connections (HTTP and WebSocket together) beyond this are closed as soon as
+  /// accepted, so that idle connections cannot exhaust the process's file descriptors
+  /// (which the training needs for its checkpoints).
+  std::size_t max_connections = 128;
+  /// An HTTP connection that has not sent a whole request within this time is closed [s].
+  double idle_timeout = 10.0;
 
   /// @throws ViewError naming a setting out of range.
   void validate() const;

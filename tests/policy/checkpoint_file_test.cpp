@@ -95,7 +95,7 @@ TEST(CheckpointFile, InconsistentHeadersNameTheProblem) {
   write_bytes(path, craft(R"({"tensors":[{"name":"w","shape":[2]}]})", eight_bytes));
   EXPECT_EQ(read_checkpoint_file(path).tensor("w", 2).values, (std::vector<float>{0.0f, 0.0f}));
   write_bytes(path, craft("{not json", ""));
-  expect_error(path, "malformed header");
+  expect_error(path, "header: malformed JSON");
   write_bytes(path, craft(R"({"k":1})", ""));
   expect_error(path, "malformed header");  // no tensor table
   write_bytes(path, craft(R"({"tensors":[{"name":"w","shape":[3]}]})", eight_bytes));

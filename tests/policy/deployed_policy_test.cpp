@@ -166,7 +166,7 @@ TEST(DeployedPolicy, ForeignOrInconsistentModelsNameTheProblem) {
   ModelFixture model;
   CheckpointFile file = model.file();
   file.header["format"] = "something else";
-  expect_error(file, "not an upkie-rl model");
+  expect_error(file, "not an upkie-rl checkpoint");
   file = model.file();
   file.header.erase("config");
   expect_error(file, "no configuration");
@@ -178,7 +178,7 @@ TEST(DeployedPolicy, ForeignOrInconsistentModelsNameTheProblem) {
   expect_error(file, "policy sizes do not match the stored spaces");
   file = model.file();
   file.header["policy"]["actor_hidden_sizes"] = {5, 0};
-  expect_error(file, "policy sizes must be in");
+  expect_error(file, "policy.actor_hidden_sizes: 0 is outside [1, 65536]");
   file = model.file();
   file.header["policy"]["activation"] = "swish";
   expect_error(file, "unknown activation 'swish'");

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -24,10 +25,9 @@ TEST(SharedMemory, CreateOpenAndUnlink) {
     SharedMemory spine = SharedMemory::create(name);
     EXPECT_TRUE(shm_exists(name));
     const auto permissions = std::filesystem::status("/dev/shm" + name).permissions();
+    // Owner only (issue 26): any process that can write it can drive the robot.
     EXPECT_EQ(permissions & std::filesystem::perms::all,
-              std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
-                  std::filesystem::perms::group_read | std::filesystem::perms::group_write |
-                  std::filesystem::perms::others_read | std::filesystem::perms::others_write);
+              std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
     EXPECT_EQ(spine.size(), SharedMemory::kDefaultSize);
     EXPECT_EQ(spine.request(), 0u);
     EXPECT_EQ(spine.payload_size(), 0u);
@@ -138,6 +138,70 @@ TEST(SharedMemory, ValidatesNames) {
   EXPECT_THROW(SharedMemory::validate_name("/a/b"), SpineError);
   EXPECT_THROW(SharedMemory::validate_name("/" + std::string(300, 'x')), SpineError);
   EXPECT_NO_THROW(SharedMemory::validate_name("/upkie"));
+}
+
+// Fault injection (issue 26, item 4): one owner per spine, private segments, shrinking.
+
+TEST(SharedMemory, SecondSpineOnANameInUseIsRefusedAndTouchesNothing) {
+  const std::string name = testing::unique_shm_name("owned");
+  SharedMemory first = SharedMemory::create(name);
+  first.set_request(Request::kStop);
+  try {
+    SharedMemory second = SharedMemory::create(name);
+    FAIL() << "a second spine took " << name;
+  } catch (const SpineError& error) {
+    EXPECT_NE(std::string(error.what()).find("in use by a running spine"), std::string::npos)
+        << error.what();
+  }
+  // The first spine's object is still there, still its own, still in the same state.
+  SharedMemory agent = SharedMemory::open(name);
+  EXPECT_EQ(agent.request(), static_cast<std::uint32_t>(Request::kStop));
+  EXPECT_EQ(agent.size(), first.size());
+}
+
+TEST(SharedMemory, OwnerDoesNotUnlinkAnObjectThatIsNoLongerItsOwn) {
+  const std::string name = testing::unique_shm_name("renamed");
+  std::optional<SharedMemory> first(SharedMemory::create(name));
+  ::shm_unlink(name.c_str());                        // someone removed it by hand...
+  SharedMemory second = SharedMemory::create(name);  // ...and a new spine took the name
+  first.reset();
+  EXPECT_TRUE(shm_exists(name));
+}
+
+TEST(SharedMemory, SegmentsArePrivateByDefaultAndTheModeWidensThem) {
+  const std::string name = testing::unique_shm_name("mode");
+  {
+    SharedMemory spine = SharedMemory::create(name);
+    EXPECT_EQ(std::filesystem::status("/dev/shm" + name).permissions(),
+              std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  }
+  SharedMemory shared = SharedMemory::create(name, SharedMemory::kDefaultSize, 0660);
+  EXPECT_EQ(static_cast<unsigned>(std::filesystem::status("/dev/shm" + name).permissions()), 0660u);
+}
+
+TEST(SharedMemory, ShrunkSegmentIsAnErrorNotSigbus) {
+  const std::string name = testing::unique_shm_name("shrunk");
+  SharedMemory spine = SharedMemory::create(name, 65536);
+  SharedMemory agent = SharedMemory::open(name);
+  const int fd = ::shm_open(name.c_str(), O_RDWR, 0);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::ftruncate(fd, 0), 0);
+  ::close(fd);
+  EXPECT_THROW(agent.request(), SpineError);
+  EXPECT_THROW(agent.payload(), SpineError);
+  EXPECT_THROW(spine.set_request(Request::kNone), SpineError);
+  const char bytes[4] = {1, 2, 3, 4};
+  EXPECT_THROW(spine.write_payload(bytes), SpineError);
+}
+
+TEST(SharedMemory, ReaderRefusesAnUnmappableSizeBeforeMapping) {
+  const std::string name = testing::unique_shm_name("tiny");
+  const int fd = ::shm_open(name.c_str(), O_RDWR | O_CREAT, 0600);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::ftruncate(fd, 4), 0);
+  ::close(fd);
+  EXPECT_THROW(SharedMemory::open(name), SpineError);
+  ::shm_unlink(name.c_str());
 }
 
 }  // namespace

@@ -1,0 +1,29 @@
+#include "apps/rendezvous_watchdog.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
+namespace upkie_rl::apps {
+
+RendezvousWatchdog::RendezvousWatchdog(std::chrono::milliseconds timeout, std::string message)
+    : thread_([this, timeout, message = std::move(message)] {
+        std::unique_lock lock(mutex_);
+        if (cancelled_changed_.wait_for(lock, timeout, [this] { return cancelled_; })) return;
+        std::fprintf(stderr, "upkie-rl: error: %s\n", message.c_str());
+        std::fflush(stderr);
+        std::_Exit(1);
+      }) {}
+
+RendezvousWatchdog::~RendezvousWatchdog() {
+  cancel();
+  thread_.join();
+}
+
+void RendezvousWatchdog::cancel() {
+  const std::lock_guard lock(mutex_);
+  cancelled_ = true;
+  cancelled_changed_.notify_all();
+}
+
+}  // namespace upkie_rl::apps

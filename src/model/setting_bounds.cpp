@@ -1,0 +1,66 @@
+#include "model/setting_bounds.hpp"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace upkie_rl {
+
+namespace {
+
+/// The shortest text that reads back as `value` ("1e+39", "0.2", "nan", "-inf").
+std::string format_number(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string format_bytes(double bytes) {
+  std::ostringstream out;
+  out.precision(3);
+  out << bytes / 1e9 << " GB";
+  return out.str();
+}
+
+}  // namespace
+
+void check_setting(const std::string& name, double value, double min, double max,
+                   LowerBound lower) {
+  const bool below = lower == LowerBound::kIncluded ? value < min : value <= min;
+  if (std::isfinite(value) && !below && value <= max) return;
+  const std::string range = (lower == LowerBound::kIncluded ? "[" : "(") + format_number(min) +
+                            ", " + format_number(max) + "]";
+  if (!std::isfinite(value)) {
+    throw std::invalid_argument(name + ": " + format_number(value) +
+                                " is not a finite number; expected one in " + range);
+  }
+  throw std::invalid_argument(name + ": " + format_number(value) + " is outside " + range);
+}
+
+void check_setting(const std::string& name, std::int64_t value, std::int64_t min,
+                   std::int64_t max) {
+  if (value >= min && value <= max) return;
+  throw std::invalid_argument(name + ": " + std::to_string(value) + " is outside [" +
+                              std::to_string(min) + ", " + std::to_string(max) + "]");
+}
+
+std::uint64_t physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page_size = sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page_size <= 0) return 0;
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
+}
+
+void check_allocation(const std::string& name, const std::string& value, double bytes,
+                      const std::string& what) {
+  const double memory = static_cast<double>(physical_memory_bytes());
+  if (memory <= 0 || bytes <= memory / 2) return;
+  throw std::invalid_argument(name + ": " + value + " would make " + what + " need " +
+                              format_bytes(bytes) + ", more than half of this machine's " +
+                              format_bytes(memory) + " of memory");
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// The one gate every checkpoint passes before anything uses it: `train --resume`
+/// (rl/checkpoint.hpp's load_checkpoint), and `rollout`, `evaluate`, `sweep` and the
+/// Python `load_policy` through DeployedPolicy, so a checkpoint either loads everywhere or
+/// is refused everywhere with the same message. A robot runner should load policies
+/// with DeployedPolicy::load (or read_checked_checkpoint) too.
+///
+/// Beyond the file's structure (read_checkpoint_file: size, magic, CRC, header size and
+/// nesting depth) it checks the contents: the known format and version, a readable
+/// configuration, a network within policy/network_limits.hpp whose sizes match the stored
+/// spaces, spaces with ordered bounds (finite for actions), tensors of the network's size,
+/// every weight, moment and statistic finite, normalisation settings in range and counters
+/// in [0, kMaxCheckpointCounter]. Header keys it does not know are left alone (later
+/// versions of the writer may add optional ones, such as provenance).
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "policy/checkpoint_file.hpp"
+
+namespace upkie_rl {
+
+/// The header's "version" of the checkpoints this build reads and writes.
+inline constexpr std::int64_t kCheckpointVersion = 1;
+/// Largest counter (timesteps, iterations, updates, checkpoints, optimiser steps) accepted:
+/// far beyond any run, far from int64 overflow.
+inline constexpr std::int64_t kMaxCheckpointCounter = 1'000'000'000'000'000;
+
+/// Checks a checkpoint's contents (see the file comment). Throws CheckpointError whose
+/// message starts with `where` and names the first problem.
+void check_checkpoint(const CheckpointFile& file, const std::string& where);
+
+/// read_checkpoint_file, then check_checkpoint with `where` = "checkpoint <path>".
+CheckpointFile read_checked_checkpoint(const std::filesystem::path& path);
+
+}  // namespace upkie_rl

@@ -1,0 +1,79 @@
+// Fault injection (issue 26) through the real command line: each case ends with an exit
+// status in 1..127, within seconds, with a short message naming the culprit, and leaves
+// existing files intact.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include "apps/cli_runner.hpp"
+#include "common/temp_files.hpp"
+#include "policy/checkpoint_file.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using testing::run_cli;
+
+const std::string kConfig = std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml";
+const std::filesystem::path kModel =
+    std::filesystem::path(UPKIE_RL_SOURCE_DIR) / "tests/data/policies/pendulum_bullet_seed0.ckpt";
+
+/// `arguments` fails with a status in [1, 127] (1 for errors, CLI11's own for bad flags)
+/// within 30 s, in at most three lines, naming `culprit`.
+void expect_clean_refusal(const std::string& arguments, const std::string& culprit) {
+  const auto start = std::chrono::steady_clock::now();
+  const testing::CliResult result = run_cli(arguments);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(result.exit_code, 1) << arguments << "\n" << result.output;
+  EXPECT_LE(result.exit_code, 127) << arguments << "\n" << result.output;
+  EXPECT_LE(result.lines().size(), 3u) << arguments << "\n" << result.output;
+  EXPECT_NE(result.output.find(culprit), std::string::npos) << arguments << "\n" << result.output;
+  EXPECT_LT(seconds, 30.0) << arguments;
+}
+
+TEST(ReliabilityCli, UnboundedSettingsAreRefusedBeforeAnythingStarts) {
+  const std::filesystem::path run_dir = testing::temp_path("never_made", "upkie_rl_cli_bounds");
+  for (const auto& [setting, culprit] : std::vector<std::pair<std::string, std::string>>{
+           {"ppo.n_steps=2000000000000", "'ppo.n_steps': 2000000000000"},
+           {"policy.actor_hidden_sizes=[300000]", "'policy.actor_hidden_sizes': 300000"},
+           {"torch_threads=20000", "'torch_threads': 20000"},
+           {"env.num_envs=3000000", "'env.num_envs': 3000000"},
+           {"ppo.ent_coef=nan", "'ppo.ent_coef': nan"},
+           {"policy.log_std_init=inf", "'policy.log_std_init': inf"},
+           {"normalize.epsilon=1e39", "'normalize.epsilon': 1e+39"},
+           {"ppo.learning_rate_initial=1e39", "'ppo.learning_rate_initial': 1e+39"}}) {
+    expect_clean_refusal("train --quiet --config " + kConfig + " --set " + setting + " --run-dir " +
+                             run_dir.string(),
+                         culprit);
+  }
+  EXPECT_FALSE(std::filesystem::exists(run_dir));
+}
+
+TEST(ReliabilityCli, NonFiniteFlagsAndEmptyPathsAreRefused) {
+  expect_clean_refusal("train --config " + kConfig + " --dist-timeout nan", "--dist-timeout");
+  expect_clean_refusal("rollout --env Upkie-Bullet-Pendulum --episodes 1 --record ''", "--record");
+  expect_clean_refusal("rollout --env Upkie-Bullet-Pendulum --episodes 1 --video ''", "--video");
+  expect_clean_refusal("spine --spine-frequency inf", "--spine-frequency");
+  expect_clean_refusal("spine --shm-mode 0777", "--shm-mode");
+}
+
+TEST(ReliabilityCli, EveryReaderRefusesACraftedCheckpointWithTheSameMessage) {
+  CheckpointFile file = read_checkpoint_file(kModel);
+  file.header["version"] = 2;
+  const std::filesystem::path crafted = testing::temp_path("v2.ckpt", "upkie_rl_cli_gate");
+  write_checkpoint_file(file, crafted);
+  const std::string message = "checkpoint " + crafted.string() +
+                              ": checkpoint version 2 is not the version 1 this build reads";
+  expect_clean_refusal(
+      "rollout --env Upkie-Bullet-Pendulum --episodes 1 --model " + crafted.string(), message);
+  expect_clean_refusal(
+      "evaluate --env Upkie-Bullet-Pendulum --episodes 1 --model " + crafted.string(), message);
+  expect_clean_refusal("train --quiet --resume " + crafted.string(), message);
+}
+
+}  // namespace
+}  // namespace upkie_rl

@@ -1,0 +1,172 @@
+// Fault injection (issue 26, item 2): crafted checkpoints whose CRC is valid are refused by
+// the one gate, with the same message from every reader, and never crash it.
+
+#include "policy/checkpoint_gate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+
+#include "common/temp_files.hpp"
+#include "policy/crc32c.hpp"
+#include "policy/deployed_policy.hpp"
+
+namespace upkie_rl {
+namespace {
+
+const std::filesystem::path kModel =
+    std::filesystem::path(UPKIE_RL_SOURCE_DIR) / "tests/data/policies/pendulum_bullet_seed0.ckpt";
+
+std::filesystem::path temp_path(const std::string& name) {
+  return testing::temp_path(name, "upkie_rl_checkpoint_gate");
+}
+
+/// The stored model with `change` applied, written with a valid CRC.
+std::filesystem::path crafted(const std::string& name,
+                              const std::function<void(CheckpointFile&)>& change) {
+  CheckpointFile file = read_checkpoint_file(kModel);
+  change(file);
+  const std::filesystem::path path = temp_path(name + ".ckpt");
+  write_checkpoint_file(file, path);
+  return path;
+}
+
+/// A file of `header_text` and no tensors, with a valid CRC (no JSON library involved).
+std::filesystem::path raw_checkpoint(const std::string& name, const std::string& header_text) {
+  std::string bytes = "UPKIERL1";
+  const std::uint64_t size = header_text.size();
+  bytes.append(reinterpret_cast<const char*>(&size), sizeof(size));
+  bytes += header_text;
+  const std::uint32_t crc = crc32c(bytes);
+  bytes.append(reinterpret_cast<const char*>(&crc), sizeof(crc));
+  const std::filesystem::path path = temp_path(name + ".ckpt");
+  testing::write_bytes(path, bytes);
+  return path;
+}
+
+/// Both readers refuse `path` with the same message, which mentions `expected`.
+void expect_refused(const std::filesystem::path& path, const std::string& expected) {
+  std::string gate_message;
+  try {
+    read_checked_checkpoint(path);
+    ADD_FAILURE() << path << " passed the gate";
+  } catch (const CheckpointError& error) {
+    gate_message = error.what();
+  }
+  EXPECT_NE(gate_message.find(expected), std::string::npos) << gate_message;
+  EXPECT_NE(gate_message.find(path.string()), std::string::npos) << gate_message;
+  try {
+    DeployedPolicy::load(path);
+    ADD_FAILURE() << path << " loaded as a policy";
+  } catch (const CheckpointError& error) {
+    EXPECT_EQ(std::string(error.what()), gate_message);
+  }
+}
+
+TEST(CheckpointGate, TheStoredModelPasses) {
+  EXPECT_NO_THROW(read_checked_checkpoint(kModel));
+  EXPECT_NO_THROW(DeployedPolicy::load(kModel));
+}
+
+TEST(CheckpointGate, UnknownOptionalHeaderKeysAreTolerated) {
+  const auto path = crafted("provenance", [](CheckpointFile& file) {
+    file.header["provenance"] = {{"tool", "stable-baselines3"}, {"version", "2.3.0"}};
+  });
+  EXPECT_NO_THROW(read_checked_checkpoint(path));
+}
+
+TEST(CheckpointGate, DeeplyNestedHeaderIsRefusedWithoutRecursion) {
+  const std::string nested = std::string(200'000, '[') + std::string(200'000, ']');
+  expect_refused(raw_checkpoint("nested", "{\"format\": " + nested + "}"), "nested");
+}
+
+TEST(CheckpointGate, HeaderThatIsNotAnObjectIsRefused) {
+  expect_refused(raw_checkpoint("array", "[1, 2, 3]"), "not a JSON object");
+}
+
+TEST(CheckpointGate, OtherVersionIsRefused) {
+  expect_refused(crafted("version2", [](CheckpointFile& file) { file.header["version"] = 2; }),
+                 "version 2");
+}
+
+TEST(CheckpointGate, OtherFormatIsRefused) {
+  expect_refused(
+      crafted("format", [](CheckpointFile& file) { file.header["format"] = "something else"; }),
+      "not an upkie-rl checkpoint");
+}
+
+TEST(CheckpointGate, NanOrInfiniteWeightsAreRefused) {
+  expect_refused(crafted("nan_weight",
+                         [](CheckpointFile& file) {
+                           file.tensors["policy.parameters"].values[7] =
+                               std::numeric_limits<float>::quiet_NaN();
+                         }),
+                 "tensor 'policy.parameters' value 7");
+  expect_refused(crafted("inf_moment",
+                         [](CheckpointFile& file) {
+                           auto& moment = file.tensors["optimizer.exp_avg_sq"].values;
+                           if (moment.empty()) moment.resize(1);
+                           moment[0] = std::numeric_limits<float>::infinity();
+                         }),
+                 "tensor 'optimizer.exp_avg_sq'");
+}
+
+TEST(CheckpointGate, HugeCountersAreRefused) {
+  expect_refused(crafted("counters",
+                         [](CheckpointFile& file) {
+                           file.header["counters"]["num_timesteps"] =
+                               std::numeric_limits<std::int64_t>::max();
+                         }),
+                 "counters.num_timesteps");
+  expect_refused(
+      crafted("checkpoints_saved",
+              [](CheckpointFile& file) { file.header["run"]["checkpoints_saved"] = -3; }),
+      "run.checkpoints_saved");
+}
+
+TEST(CheckpointGate, NormalisationSettingsOutOfRangeAreRefused) {
+  expect_refused(crafted("epsilon",
+                         [](CheckpointFile& file) {
+                           file.header["normalization"]["config"]["epsilon"] = 1e39;
+                         }),
+                 "epsilon");
+  expect_refused(crafted("variance",
+                         [](CheckpointFile& file) {
+                           file.header["normalization"]["observations"]["var"][0] = -1.0;
+                         }),
+                 "var");
+}
+
+TEST(CheckpointGate, ShapesInconsistentWithTheSpacesOrNetworkAreRefused) {
+  expect_refused(
+      crafted("shape",
+              [](CheckpointFile& file) { file.header["policy"]["observation_size"] = 99; }),
+      "do not match the stored spaces");
+  expect_refused(crafted("huge_layer",
+                         [](CheckpointFile& file) {
+                           file.header["policy"]["actor_hidden_sizes"] = {60000, 60000};
+                         }),
+                 "exceed the limit");
+  expect_refused(crafted("short_tensor",
+                         [](CheckpointFile& file) {
+                           file.tensors["policy.parameters"].values.pop_back();
+                           file.tensors["policy.parameters"].shape = {static_cast<std::int64_t>(
+                               file.tensors["policy.parameters"].values.size())};
+                         }),
+                 "policy.parameters");
+  expect_refused(
+      crafted("action_bounds",
+              [](CheckpointFile& file) { file.header["action_space"]["high"][0] = "inf"; }),
+      "action space component 0");
+}
+
+TEST(CheckpointGate, DevicesAndDirectoriesAreRefusedWithoutReading) {
+  expect_refused("/dev/zero", "not a regular file");
+  expect_refused(std::filesystem::temp_directory_path(), "is a directory");
+}
+
+}  // namespace
+}  // namespace upkie_rl
