@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python typecheck-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
 
 all: build
 
@@ -26,11 +26,19 @@ build: deps configure
 test-cpp:
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-test-python:
-	@if ls python/tests/test_*.py >/dev/null 2>&1; then \
-	  UPKIE_RL_BUILD_DIR=$(abspath $(BUILD_DIR)) PYTHONPATH=$(abspath $(BUILD_DIR))/python \
-	    $(PYTHON) -m pytest -q python/tests; \
-	else echo "no Python tests yet"; fi
+# The Python tests run twice: against the oldest Gymnasium the package supports (1.0.0, in
+# Debian's interpreter, with SB3) and the newest pyproject.toml allows (the venv of
+# scripts/install-deps.sh), after mypy checks the package, its stubs and their use.
+GYMNASIUM_NEWEST_PYTHON ?= .venv-gymnasium-newest/bin/python
+PYTEST_ENV = UPKIE_RL_BUILD_DIR=$(abspath $(BUILD_DIR)) PYTHONPATH=$(abspath $(BUILD_DIR))/python
+
+test-python: typecheck-python
+	$(PYTEST_ENV) $(PYTHON) -m pytest -q python/tests
+	$(PYTEST_ENV) $(GYMNASIUM_NEWEST_PYTHON) -m pytest -q python/tests
+
+typecheck-python:
+	$(PYTEST_ENV) $(PYTHON) -m mypy
+	MYPYPATH=$(abspath $(BUILD_DIR))/python $(PYTEST_ENV) $(PYTHON) -m mypy.stubtest upkie_rl._core --allowlist python/stubtest-allowlist.txt
 
 test: build
 	$(MAKE) test-cpp

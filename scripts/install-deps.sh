@@ -40,11 +40,14 @@ fi
 # (Debian has only MuJoCo 2.2, without the mjSpec API the model is built with). moviepy:
 # Gymnasium's RecordVideo writes with it. onnxruntime: the tests run exported ONNX policies
 # with it (its wheels accept numpy 1.x).
+# gymnasium: the oldest release the package supports (pyproject.toml), which SB3 2.4.1 also
+# accepts; the newest is tested in a venv of its own (below). mypy: `make test-python`
+# type-checks the package and its stubs.
 PYTHON_PACKAGES=(
-  "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium>=1.0,<1.1" "msgpack:msgpack"
+  "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium==1.0.0" "msgpack:msgpack"
   "upkie:upkie" "tensorboard:tensorboard" "scikit_build_core:scikit-build-core"
   "pybind11:pybind11" "cloudpickle:cloudpickle" "pandas:pandas" "matplotlib:matplotlib"
-  "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy" "onnxruntime:onnxruntime"
+  "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy" "onnxruntime:onnxruntime" "mypy:mypy"
 )
 # Installed without their dependencies, which are listed above: Debian's torch calls
 # itself 1.13.0a0, a pre-release that SB3's "torch>=1.13" refuses, so pip would fetch
@@ -113,9 +116,34 @@ if [ "${#missing_no_deps[@]}" -gt 0 ]; then
   "$PYTHON" -m pip install "${pip_flags[@]}" --no-deps "${missing_no_deps[@]}"
 fi
 
+# The newest Gymnasium that pyproject.toml allows, in a venv of its own that sees Debian's
+# interpreter's packages (numpy, torch, pytest, mujoco, moviepy): `make test-python` runs
+# the Python tests against it too. Installed once: remove the venv to take a newer release.
+repo_dir="$(cd "$(dirname "$0")/.." && pwd)"
+newest_venv="${GYMNASIUM_NEWEST_VENV:-$repo_dir/.venv-gymnasium-newest}"
+gymnasium_requirement="$("$PYTHON" -c "import sys, tomllib
+project = tomllib.load(open(sys.argv[1], 'rb'))['project']
+print(next(d for d in project['dependencies'] if d.startswith('gymnasium')))" "$repo_dir/pyproject.toml")"
+if [ ! -x "$newest_venv/bin/python" ]; then
+  echo "install-deps: creating $newest_venv (newest $gymnasium_requirement)"
+  "$PYTHON" -m venv --system-site-packages "$newest_venv"
+fi
+# Gymnasium must be the venv's own, not Debian's interpreter's 1.0.0 seen through it.
+if ! "$newest_venv/bin/python" - <<'PYTHON_CHECK' 2>/dev/null; then
+import sys, importlib.metadata as metadata
+installed = metadata.distribution("gymnasium")
+sys.exit(0 if installed.locate_file("").as_posix().startswith(sys.prefix) else 1)
+PYTHON_CHECK
+  echo "install-deps: installing $gymnasium_requirement (newest) in $newest_venv"
+  "$newest_venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+    --upgrade --upgrade-strategy only-if-needed "$gymnasium_requirement"
+else
+  echo "install-deps: newest Gymnasium venv present ($newest_venv)"
+fi
+
 # The viewer's npm packages, exactly as package-lock.json says, again whenever it changes
 # (web/viewer/build.mjs refuses to bundle with stale packages).
-viewer_dir="$(cd "$(dirname "$0")/.." && pwd)/web/viewer"
+viewer_dir="$repo_dir/web/viewer"
 if [ ! -f "$viewer_dir/node_modules/.package-lock.json" ] ||
    [ "$viewer_dir/package-lock.json" -nt "$viewer_dir/node_modules/.package-lock.json" ]; then
   echo "install-deps: installing the viewer's npm packages (npm ci)"

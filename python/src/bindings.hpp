@@ -19,5 +19,6 @@ void bind_vector_env(pybind11::module_& module);
 void bind_registry(pybind11::module_& module);
 void bind_policy(pybind11::module_& module);
 void bind_model_files(pybind11::module_& module);
+void bind_evaluation(pybind11::module_& module);
 
 }  // namespace upkie_rl::python

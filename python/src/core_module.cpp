@@ -50,4 +50,5 @@ PYBIND11_MODULE(_core, module) {
   upkie_rl::python::bind_vector_env(module);
   upkie_rl::python::bind_policy(module);
   upkie_rl::python::bind_model_files(module);
+  upkie_rl::python::bind_evaluation(module);
 }

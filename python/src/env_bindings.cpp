@@ -13,9 +13,8 @@
 #include "array_checks.hpp"
 #include "bindings.hpp"
 #include "envs/registry.hpp"
+#include "frame_renderer.hpp"
 #include "observation_to_python.hpp"
-#include "render/render_error.hpp"
-#include "render/robot_renderer.hpp"
 
 namespace py = pybind11;
 
@@ -72,29 +71,11 @@ class PyEnv {
     return action;
   }
 
-  /// The robot drawn from the last state's ground truth, (height, width, 3) uint8. The
-  /// renderer (an OpenGL context) is made at the first call, on the calling thread.
-  py::array_t<std::uint8_t> render(int width, int height) {
+  /// The robot drawn from the last state's ground truth, (height, width, 3) uint8, with the
+  /// time and pitch written on it when `overlay` is true.
+  py::array_t<std::uint8_t> render(int width, int height, bool overlay) {
     const std::lock_guard lock(mutex_);
-    const Observation* full = env_->full_observation();
-    if (full == nullptr || !full->has_sim) {
-      throw RenderError("this environment has no simulator ground truth to render");
-    }
-    if (!renderer_ || renderer_->width() != width || renderer_->height() != height) {
-      RenderConfig config;
-      config.width = width;
-      config.height = height;
-      renderer_.reset();
-      renderer_ = std::make_unique<RobotRenderer>(RobotModel::default_model(), config);
-    }
-    char values[96];
-    std::snprintf(values, sizeof(values), "%.2f s\n%+.3f rad", full->time,
-                  full->base_orientation.pitch);
-    const std::span<const std::uint8_t> frame =
-        renderer_->render(robot_pose(*full), "time\npitch", values);
-    py::array_t<std::uint8_t> image({height, width, 3});
-    std::copy(frame.begin(), frame.end(), image.mutable_data());
-    return image;
+    return renderer_.render(env_->full_observation(), width, height, overlay);
   }
 
   const Env& env() const { return *env_; }
@@ -103,7 +84,7 @@ class PyEnv {
   std::size_t observation_size() const { return env_->observation_space().size(); }
 
   std::unique_ptr<Env> env_;
-  std::unique_ptr<RobotRenderer> renderer_;
+  FrameRenderer renderer_;
   mutable std::mutex mutex_;
 };
 
@@ -132,8 +113,9 @@ void bind_env(py::module_& module) {
            "Multiplies every randomisation bound (initial state, perturbations, noise, lag, "
            "pushes) by scale in [0, 1] from the next reset on (a curriculum).")
       .def("render", &PyEnv::render, py::arg("width") = 640, py::arg("height") = 480,
+           py::arg("overlay") = false,
            "The robot drawn offscreen from the last state's ground truth: a (height, width, "
-           "3) uint8 array.")
+           "3) uint8 array; overlay=True writes the time and pitch on it.")
       .def_property_readonly(
           "observation_space",
           [](const PyEnv& self) { return space_to_python(self.env().observation_space()); })

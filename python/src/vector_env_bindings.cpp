@@ -13,6 +13,7 @@
 
 #include "array_checks.hpp"
 #include "bindings.hpp"
+#include "frame_renderer.hpp"
 #include "observation_to_python.hpp"
 #include "vec/make_vector_env.hpp"
 
@@ -93,6 +94,13 @@ class PyVectorEnv {
     return observation_to_python(*full);
   }
 
+  /// Environment `i` drawn from its last state's ground truth, (height, width, 3) uint8.
+  py::array_t<std::uint8_t> render(std::size_t i, int width, int height, bool overlay) {
+    if (i >= venv_->num_envs()) throw py::index_error("no environment " + std::to_string(i));
+    const std::lock_guard lock(mutex_);
+    return renderer_.render(venv_->full_observation(i), width, height, overlay);
+  }
+
   const VectorEnv& venv() const { return *venv_; }
   std::size_t num_threads() const { return num_threads_; }
 
@@ -106,6 +114,7 @@ class PyVectorEnv {
   std::size_t num_threads_;
   bool was_reset_ = false;
   const VectorStep* last_step_ = nullptr;  // The VectorEnv's buffers of the last step().
+  FrameRenderer renderer_;                 // One OpenGL context for every environment's frames.
   mutable std::mutex mutex_;
 };
 
@@ -125,6 +134,10 @@ void bind_vector_env(py::module_& module) {
       .def("final_observations", &PyVectorEnv::final_observations,
            "(final observations, episode returns, episode lengths) of the last step.")
       .def("spine_observation", &PyVectorEnv::spine_observation, py::arg("index"))
+      .def("render", &PyVectorEnv::render, py::arg("index"), py::arg("width") = 640,
+           py::arg("height") = 480, py::arg("overlay") = false,
+           "Environment index drawn offscreen from its last state's ground truth: a (height, "
+           "width, 3) uint8 array; overlay=True writes the time and pitch on it.")
       .def_property_readonly("num_envs",
                              [](const PyVectorEnv& self) { return self.venv().num_envs(); })
       .def_property_readonly("num_threads", &PyVectorEnv::num_threads)

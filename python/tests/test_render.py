@@ -92,3 +92,44 @@ def test_rendering_works_after_importing_torch():
                             env=dict(os.environ), timeout=120)
     assert result.returncode == 0, result.stderr
     assert "rendered" in result.stdout
+
+
+def overlay_box(with_overlay: np.ndarray, without: np.ndarray):
+    """Rows and columns (as fractions of the frame) where the caption changed pixels."""
+    changed = np.any(with_overlay != without, axis=2)
+    rows, columns = np.nonzero(changed)
+    if rows.size == 0:
+        return None
+    height, width = changed.shape
+    return (rows.max() + 1) / height, (columns.max() + 1) / width
+
+
+def frames_with_and_without_overlay(width: int, height: int):
+    clean = gym.make("upkie_rl/Upkie-MuJoCo-Pendulum", render_mode="rgb_array",
+                     render_width=width, render_height=height)
+    captioned = gym.make("upkie_rl/Upkie-MuJoCo-Pendulum", render_mode="rgb_array",
+                         render_width=width, render_height=height, render_overlay=True)
+    clean.reset(seed=0)
+    captioned.reset(seed=0)
+    return captioned.render(), clean.render()
+
+
+def test_frames_are_clean_unless_the_overlay_is_asked_for():
+    captioned, clean = frames_with_and_without_overlay(320, 240)
+    box = overlay_box(captioned, clean)
+    assert box is not None, "render_overlay=True writes a caption"
+    # The caption is in the top left corner; the rest of the frame is the same picture.
+    assert box[0] < 0.5 and box[1] < 0.6, box
+    np.testing.assert_array_equal(captioned[150:], clean[150:])
+    # The clean frame has no caption text: no white pixel in that corner (the scene has none).
+    corner = clean[: int(box[0] * 240) + 1, : int(box[1] * 320) + 1]
+    assert not np.any(np.all(corner > 235, axis=2))
+    assert np.any(np.all(captioned[: int(box[0] * 240) + 1] > 235, axis=2))
+
+
+def test_the_overlay_scales_with_the_frame():
+    small = overlay_box(*frames_with_and_without_overlay(320, 240))
+    large = overlay_box(*frames_with_and_without_overlay(1280, 960))
+    # The same share of the frame at both sizes (a fixed font took 4 times less at 1280 x 960).
+    assert 0.6 < large[0] / small[0] < 1.6, (small, large)
+    assert 0.6 < large[1] / small[1] < 1.6, (small, large)

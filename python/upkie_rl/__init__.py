@@ -5,14 +5,20 @@
 >>> env = gym.make("Upkie-Bullet-Pendulum", frequency=200.0)
 >>> venv = upkie_rl.make_vec("Upkie-Bullet-Pendulum", num_envs=10, num_threads=2, seed=0)
 >>> sb3_venv = upkie_rl.make_sb3_vec_env("Upkie-Bullet-Pendulum", num_envs=10, seed=0)
->>> policy = upkie_rl.load_policy("runs/pendulum/model_20261121-144733.ckpt")
+>>> policy = upkie_rl.load_policy(path)  # a model_*.ckpt or model_*.pt of upkie-rl train
+>>> actions, _ = policy.predict(observations)  # as SB3's model.predict
 
-Importing the package registers every id (``upkie_rl/Upkie-{Bullet,MuJoCo,Mock,Spine}-{Servos,
-Pendulum,Gyropod,ServosTask}``, and the Bullet ones without the namespace too).
+Importing the package registers every id of ``upkie_rl.registered_env_ids()`` as
+``upkie_rl/<id>``, and those of backends the public upkie package lacks (Bullet, MuJoCo)
+without the namespace too.
 """
 
 import os as _os
 from pathlib import Path as _Path
+from typing import TYPE_CHECKING, Any, Dict, List, Optional
+
+if TYPE_CHECKING:
+    from .sb3 import UpkieSB3VecEnv
 
 # An installed package carries the robot model; a build tree's module knows the source's.
 _PACKAGED_MODEL = _Path(__file__).parent / "models" / "upkie" / "upkie.urdf"
@@ -49,26 +55,38 @@ from ._core import (  # noqa: E402
     SpineTimeoutError,
 )
 from .env import UpkieEnv  # noqa: E402
-from .policy import Policy, evaluate, load_policy  # noqa: E402
+from .policy import (  # noqa: E402
+    PT_CKPT_TOLERANCE,
+    Policy,
+    evaluate,
+    evaluation_start_options,
+    load_policy,
+)
 from .registration import register  # noqa: E402
 from .vector import UpkieVectorEnv, make_vec  # noqa: E402
 
 __version__ = "0.1.0"
 
 
-def registered_env_ids():
+def registered_env_ids() -> List[str]:
     """The registry's ids (as the CLI's `upkie-rl envs` lists them)."""
     return _core.registered_env_ids()
 
 
-def env_options(env_id: str):
+def env_options(env_id: str) -> List[Dict[str, Any]]:
     """The options ``env_id`` accepts: name, type, help, default, bounds, choices."""
     from .vector import canonical_id
 
     return _core.env_options(canonical_id(env_id))
 
 
-def make_sb3_vec_env(env_id, num_envs, num_threads=None, seed=None, **options):
+def make_sb3_vec_env(
+    env_id: str,
+    num_envs: int,
+    num_threads: Optional[int] = None,
+    seed: Optional[int] = None,
+    **options: Any,
+) -> "UpkieSB3VecEnv":
     """``num_envs`` environments as a Stable-Baselines3 VecEnv (imports stable_baselines3)."""
     from .sb3 import make_sb3_vec_env as make
 
@@ -100,6 +118,7 @@ __all__ = [
     "InvalidCommandError",
     "ModelError",
     "OnnxError",
+    "PT_CKPT_TOLERANCE",
     "Policy",
     "RenderError",
     "SimulationDivergedError",
@@ -109,6 +128,7 @@ __all__ = [
     "UpkieVectorEnv",
     "env_options",
     "evaluate",
+    "evaluation_start_options",
     "export_onnx",
     "load_policy",
     "make_sb3_vec_env",

@@ -41,7 +41,7 @@ def _format(env_id: str, option: dict, value: Any) -> str:
         if isinstance(value, numbers.Integral):
             return str(int(value))
         if float(value).is_integer():
-            return str(int(value))
+            return str(int(float(value)))
         raise TypeError(f"{where} expects an integer, got {value!r}")
     return repr(float(value))
 

@@ -7,14 +7,16 @@ observations, for evaluation and deployment.
 - ``model_*.pt``: the TorchScript export, evaluated by torch (``torch.jit.load``).
 
 Both apply the frozen observation normalisation saved with the model, run the actor and
-clip its mean to the action bounds, so the two files give the same actions.
+clip its mean to the action bounds. They compute in different float32 operation orders, so
+their actions agree to ``PT_CKPT_TOLERANCE`` (absolute, per component), not bit for bit.
 """
 
 from __future__ import annotations
 
 import json
+import warnings
 from pathlib import Path
-from typing import Union
+from typing import Any, List, Optional, Tuple, Union
 
 import gymnasium as gym
 import numpy as np
@@ -22,6 +24,10 @@ import numpy as np
 from . import _core
 from .spaces import box
 from .vector import canonical_id
+
+#: Largest difference between the actions of a ``.pt`` export and its ``.ckpt`` (absolute,
+#: per component), measured on trained pendulum policies (python/tests/test_policy.py).
+PT_CKPT_TOLERANCE = 1e-5
 
 
 class Policy:
@@ -42,6 +48,25 @@ class Policy:
                 f"observation has shape {observation.shape}, expected ({size},) or (n, {size})"
             )
         return self._act(np.ascontiguousarray(observation, dtype=np.float32))
+
+    def predict(
+        self,
+        observation: Any,
+        state: Optional[Tuple[np.ndarray, ...]] = None,
+        episode_start: Optional[np.ndarray] = None,
+        deterministic: bool = True,
+    ) -> Tuple[np.ndarray, Optional[Tuple[np.ndarray, ...]]]:
+        """Stable-Baselines3's ``model.predict``: the action(s) for one observation (obs_dim,)
+        or a batch (n, obs_dim), and the recurrent ``state``, passed through (these
+        policies have none). ``episode_start`` is accepted and unused, like SB3's
+        feed-forward policies. Only deterministic actions exist in an exported policy (the
+        actor's mean): ``deterministic=False`` raises ValueError."""
+        if not deterministic:
+            raise ValueError(
+                "an upkie-rl policy file holds the actor's mean only: predict() gives "
+                "deterministic actions (deterministic=True)"
+            )
+        return self(observation), state
 
     def check_env(self, env) -> None:
         """Raises ValueError unless ``env``'s flat spaces are the policy's."""
@@ -119,11 +144,28 @@ def load_policy(path: Union[str, Path]) -> Policy:
     return CheckpointPolicy(path)
 
 
-def evaluate(policy: Policy, env_id: str, episodes: int = 10, seed: int = 0, **options):
+def evaluate(
+    policy: Policy,
+    env_id: str,
+    episodes: int = 10,
+    seed: int = 0,
+    exact_start: bool = False,
+    **options: Any,
+) -> List[Tuple[float, int]]:
     """Rolls out ``policy`` deterministically on ``env_id`` (a fresh environment, episode k
-    seeded ``seed + k``); returns the list of (return, length) per episode."""
+    seeded ``seed + k``); returns the list of (return, length) per episode.
+
+    Episodes start from the evaluation's random initial state (``evaluation_start_options``:
+    each initial-state randomisation the id has, left at zero by its defaults and not given
+    in ``options``, gets the evaluation's bound), so that N episodes are N different ones.
+    ``exact_start=True`` keeps the environment's own start (the pendulum's is the same
+    every episode, as in upkie's environments). Warns (UserWarning) when every episode
+    was the same."""
+    env_id = canonical_id(env_id)
+    if not exact_start:
+        options = evaluation_start_options(env_id, options)
     # Always our id: a bare Upkie-Mock-* or Upkie-Spine-* may be the public upkie package's.
-    env = gym.make(f"upkie_rl/{canonical_id(env_id)}", **options)
+    env = gym.make(f"upkie_rl/{env_id}", **options)
     policy.check_env(env)
     results = []
     for episode in range(episodes):
@@ -131,9 +173,22 @@ def evaluate(policy: Policy, env_id: str, episodes: int = 10, seed: int = 0, **o
         total, length, done = 0.0, 0, False
         while not done:
             observation, reward, terminated, truncated, _ = env.step(policy(observation))
-            total += reward
+            total += float(reward)
             length += 1
             done = terminated or truncated
         results.append((total, length))
     env.close()
+    warning = _core.identical_episodes_warning([r for r, _ in results], [n for _, n in results])
+    if warning:
+        warnings.warn(warning, UserWarning, stacklevel=2)
     return results
+
+
+def evaluation_start_options(env_id: str, options: Optional[dict] = None) -> dict:
+    """``options`` with the evaluations' initial-state randomisation added: what
+    ``evaluate`` (and the CLI's ``rollout`` and ``evaluate``) use unless asked for the exact
+    start."""
+    options = dict(options or {})
+    for name, value in _core.evaluation_start_options(canonical_id(env_id), list(options)):
+        options[name] = float(value)
+    return options

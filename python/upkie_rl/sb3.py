@@ -10,20 +10,24 @@ without a Monitor wrapper).
 from __future__ import annotations
 
 import time
-from typing import Any, List, Optional
+from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 from stable_baselines3.common.vec_env.base_vec_env import VecEnv
 
 from .actions import as_action_array
 from .spaces import box
-from .vector import canonical_id, make_core_vector_env
+from .vector import RenderSettings, agent_frequency, canonical_id, make_core_vector_env
 
 
 class UpkieSB3VecEnv(VecEnv):
     """``num_envs`` environments of one id stepped together in C++ (GIL released, on
     ``num_threads`` workers). Environment i is seeded ``seed + i``: by ``seed`` at the first
-    reset, and by ``VecEnv.seed(s)`` at the next one."""
+    reset, and by ``VecEnv.seed(s)`` at the next one.
+
+    ``render_mode="rgb_array"`` makes ``render()`` tile the frames of the first
+    ``render_envs`` environments (all by default), as SB3's ``VecVideoRecorder`` records
+    them; ``render_width``, ``render_height`` and ``render_overlay`` as for ``make_vec``."""
 
     def __init__(
         self,
@@ -31,21 +35,32 @@ class UpkieSB3VecEnv(VecEnv):
         num_envs: int,
         num_threads: Optional[int] = None,
         seed: Optional[int] = None,
+        render_mode: Optional[str] = None,
+        render_width: int = 640,
+        render_height: int = 480,
+        render_envs: Optional[int] = None,
+        render_overlay: bool = False,
         **options: Any,
-    ):
+    ) -> None:
         env_id = canonical_id(env_id)
         self.env_id = env_id
+        self._render = RenderSettings(
+            env_id, render_mode, render_width, render_height, render_envs, render_overlay
+        )
         self._core = make_core_vector_env(env_id, num_envs, num_threads, "same_step", options)
-        self.render_mode = None
+        self.render_mode = render_mode
         super().__init__(
             num_envs, box(self._core.observation_space), box(self._core.action_space)
         )
+        self.metadata: Dict[str, Any] = {
+            **self.metadata, "render_fps": agent_frequency(env_id, options)
+        }
         self.num_threads = self._core.num_threads
         self._first_seed = 0 if seed is None else seed
         self._was_reset = False
         self._actions: Optional[np.ndarray] = None
         self._start_time = time.monotonic()
-        self._action_shape = (num_envs, self.action_space.shape[0])
+        self._action_shape = (num_envs, len(self._core.action_space[0]))
 
     def reset(self):
         seed = self._seeds[0]
@@ -79,11 +94,15 @@ class UpkieSB3VecEnv(VecEnv):
         return observations, rewards, dones, infos
 
     def close(self) -> None:
-        self._core = None
+        self._core = None  # type: ignore[assignment]  # any later use fails
+
+    def get_images(self) -> Sequence[Optional[np.ndarray]]:
+        """Frames of the first ``render_envs`` environments (SB3 tiles them in render())."""
+        if self.render_mode != "rgb_array":
+            return [None for _ in range(self.num_envs)]
+        return self._render.frames(self._core, self.num_envs)
 
     def get_attr(self, attr_name: str, indices=None) -> List[Any]:
-        if attr_name == "render_mode":
-            return [None for _ in self._get_indices(indices)]
         value = getattr(self, attr_name)
         return [value for _ in self._get_indices(indices)]
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from typing import Any, Optional
+from typing import Any, List, Optional, Tuple
 
 import gymnasium as gym
 import numpy as np
@@ -14,8 +14,24 @@ from .actions import as_action_array
 from .options import to_env_options
 from .spaces import box, is_nested
 
-#: Gymnasium's autoreset mode names (``gymnasium.vector.AutoresetMode`` values in 1.1+).
+#: Gymnasium's autoreset mode names, and the C++ side's name of each.
 AUTORESET_MODES = {"NextStep": "next_step", "SameStep": "same_step"}
+
+
+def autoreset_mode_name(mode: Any) -> str:
+    """"NextStep" or "SameStep" of a mode given as ``gymnasium.vector.AutoresetMode`` (1.1+)
+    or as its name; ValueError for anything else (``Disabled`` included)."""
+    name = getattr(mode, "value", mode)
+    if name not in AUTORESET_MODES:
+        raise ValueError(f"autoreset_mode {mode!r}: expected one of {list(AUTORESET_MODES)}")
+    return str(name)
+
+
+def autoreset_mode_metadata(name: str) -> Any:
+    """What ``metadata["autoreset_mode"]`` holds: Gymnasium's ``AutoresetMode`` enum where it
+    exists (1.1+; its vector wrappers require the enum), the name in Gymnasium 1.0."""
+    enum = getattr(gym.vector, "AutoresetMode", None)
+    return name if enum is None else enum(name)
 
 
 def default_num_threads(num_envs: int) -> int:
@@ -61,6 +77,13 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
     ``spine_observation=True`` adds each environment's full observation dictionary to
     ``infos["spine_observation"]`` (an object array) at every step; it is off by default
     (about 8 us per environment and step, 2% of a Bullet pendulum step).
+
+    Rendering (``render_mode="rgb_array"``): ``render()`` returns a tuple of ``num_envs``
+    frames, (``render_height``, ``render_width``, 3) uint8, as Gymnasium's SyncVectorEnv
+    does, so its vector ``RecordVideo`` tiles them. ``render_envs=k`` draws only the first k
+    (each frame takes about 19 ms at 640 x 480) and gives None for the others (use it with
+    ``RecordVideo(..., record_first_only=True)`` and k=1). ``render_overlay=True`` writes
+    the time and pitch on the frames.
     """
 
     def __init__(
@@ -69,23 +92,31 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
         num_envs: int,
         num_threads: Optional[int] = None,
         seed: Optional[int] = None,
-        autoreset_mode: str = "NextStep",
+        autoreset_mode: Any = "NextStep",
         spine_observation: bool = False,
+        render_mode: Optional[str] = None,
+        render_width: int = 640,
+        render_height: int = 480,
+        render_envs: Optional[int] = None,
+        render_overlay: bool = False,
         **options: Any,
-    ):
-        mode = getattr(autoreset_mode, "value", autoreset_mode)
-        if mode not in AUTORESET_MODES:
-            raise ValueError(
-                f"autoreset_mode {autoreset_mode!r}: expected one of {list(AUTORESET_MODES)}"
-            )
+    ) -> None:
+        mode = autoreset_mode_name(autoreset_mode)
         self.env_id = env_id = canonical_id(env_id)
+        self._render = RenderSettings(
+            env_id, render_mode, render_width, render_height, render_envs, render_overlay
+        )
         self._core = make_core_vector_env(
             env_id, num_envs, num_threads, AUTORESET_MODES[mode], options
         )
         self.num_envs = num_envs
         self.num_threads = self._core.num_threads
-        self.metadata = {"autoreset_mode": mode, "render_modes": []}
-        self.render_mode = None
+        self.metadata = {
+            "autoreset_mode": autoreset_mode_metadata(mode),
+            "render_modes": ["rgb_array"],
+            "render_fps": agent_frequency(env_id, options),
+        }
+        self.render_mode = render_mode
         self.single_observation_space = box(self._core.observation_space)
         self.single_action_space = box(self._core.action_space)
         self.observation_space = batch_space(self.single_observation_space, num_envs)
@@ -107,7 +138,7 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
             seed = self._seed
         self._was_reset = True
         observations = self._core.reset(None if seed is None else int(seed))
-        infos = {}
+        infos: dict = {}
         if self._spine_observation:
             self._add_spine_observations(infos)
         return observations, infos
@@ -131,12 +162,24 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
             self._add_spine_observations(infos)
         return observations, rewards.astype(np.float64), terminated, truncated, infos
 
+    def render(self) -> Optional[Tuple[Any, ...]]:  # frames, None past render_envs
+        """One frame per environment (None past ``render_envs``); None without a
+        render_mode."""
+        if self.render_mode is None:
+            gym.logger.warn(
+                f"{self.env_id}: render() without a render_mode; make the vector env with "
+                "render_mode='rgb_array'"
+            )
+            return None
+        frames = self._render.frames(self._core, self.num_envs)
+        return tuple(frames + [None] * (self.num_envs - len(frames)))
+
     def spine_observation(self, index: int) -> Optional[dict]:
         """Environment ``index``'s full observation dictionary after the last step."""
         return self._core.spine_observation(index)
 
-    def close_extras(self, **kwargs):
-        self._core = None
+    def close_extras(self, **kwargs: Any) -> None:
+        self._core = None  # type: ignore[assignment]  # any later use fails
 
     def _add_spine_observations(self, infos: dict) -> None:
         observations = np.empty(self.num_envs, dtype=object)
@@ -144,6 +187,46 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
             observations[i] = self._core.spine_observation(i)
         infos["spine_observation"] = observations
         infos["_spine_observation"] = np.ones(self.num_envs, dtype=bool)
+
+
+class RenderSettings:
+    """The frames a vector env draws: their size, how many environments, with or without the
+    caption. Checks the settings where they are given."""
+
+    def __init__(
+        self,
+        env_id: str,
+        render_mode: Optional[str],
+        width: int,
+        height: int,
+        count: Optional[int],
+        overlay: bool,
+    ) -> None:
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(
+                f"{env_id}: render_mode {render_mode!r} is not supported; use 'rgb_array'"
+            )
+        if count is not None and (not isinstance(count, int) or count < 1):
+            raise ValueError(f"render_envs must be a positive integer or None, got {count!r}")
+        self.size = (int(width), int(height))
+        self.count = count
+        self.overlay = bool(overlay)
+
+    def frames(self, core: Any, num_envs: int) -> List[np.ndarray]:
+        """Frames of the first ``count`` environments (all without a count)."""
+        count = num_envs if self.count is None else min(self.count, num_envs)
+        return [core.render(i, *self.size, self.overlay) for i in range(count)]
+
+
+def agent_frequency(env_id: str, options: dict) -> float:
+    """Steps per second of ``env_id``'s environments with ``options`` (its ``frequency``
+    option): the real-time frame rate of their videos."""
+    if "frequency" in options:
+        return float(options["frequency"])
+    for option in _core.env_options(env_id):
+        if option["name"] == "frequency":
+            return float(option["default"])
+    raise ValueError(f"{env_id}: no frequency option")
 
 
 def make_vec(
@@ -157,8 +240,10 @@ def make_vec(
 
     Also the ids' ``vector_entry_point``: ``gym.make_vec(id, n,
     vectorization_mode="vector_entry_point", **kwargs)`` comes here. Ids may carry the
-    ``upkie_rl/`` namespace. Keyword arguments: ``autoreset_mode`` ("NextStep" or
-    "SameStep"), ``spine_observation`` (bool), and the registry's options.
+    ``upkie_rl/`` namespace. Keyword arguments: ``autoreset_mode`` (``AutoresetMode``
+    NEXT_STEP or SAME_STEP, or their names "NextStep", "SameStep"), ``spine_observation``
+    (bool), ``render_mode`` ("rgb_array"), ``render_width``, ``render_height``,
+    ``render_envs``, ``render_overlay``, and the registry's options.
     """
     return UpkieVectorEnv(env_id, num_envs, num_threads, seed, **options)
 

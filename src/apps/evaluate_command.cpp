@@ -18,11 +18,13 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/controller_option.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/policy_controller.hpp"
 #include "apps/robustness_grid.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/episode_runner.hpp"
+#include "envs/evaluation_start.hpp"
 #include "envs/registry.hpp"
 
 namespace upkie_rl::apps {
@@ -40,6 +42,7 @@ struct EvaluateOptions {
   std::vector<std::string> env_options;
   int threads = 0;
   bool json = false;
+  bool exact_start = false;
   std::string output;
 };
 
@@ -55,6 +58,7 @@ struct CellResult {
   int successes = 0;
   double mean_return = 0.0;
   double mean_length = 0.0;
+  bool identical = false;  ///< Every episode had the same return and length.
 };
 
 /// "label=value" splits at the first '=' when a label is given; else the label is derived.
@@ -109,7 +113,14 @@ CellResult evaluate_cell(const EvaluateOptions& options, const Contender& conten
                                    options.max_steps, observation, action));
   }
   const EpisodeSummary summary = summarize_episodes(outcomes);
+  std::vector<double> returns;
+  std::vector<int> lengths;
+  for (const EpisodeOutcome& outcome : outcomes) {
+    returns.push_back(outcome.total_reward);
+    lengths.push_back(outcome.length);
+  }
   CellResult result;
+  result.identical = !identical_episodes_warning(returns, lengths).empty();
   result.successes = summary.successes;
   result.mean_return = summary.mean_return;
   result.mean_length = summary.mean_length;
@@ -279,6 +290,24 @@ void write_outputs(const std::filesystem::path& directory, const std::string& ta
             << figures.size() << " heat map(s) in " << directory.string() << std::endl;
 }
 
+/// One warning on stderr when the episodes of some cell were all the same.
+void warn_identical_cells(const EvaluateOptions& options,
+                          const std::vector<std::vector<CellResult>>& results) {
+  if (options.episodes < 2) return;
+  std::size_t identical = 0;
+  std::size_t cells = 0;
+  for (const auto& contender : results) {
+    for (const CellResult& cell : contender) identical += cell.identical ? 1 : 0;
+    cells += contender.size();
+  }
+  if (identical == 0) return;
+  std::cerr << "upkie-rl: warning: in " << identical << " of " << cells << " cells, all "
+            << options.episodes
+            << " episodes were identical: their environment starts every episode from the same "
+               "state (add an initial-state randomisation, or leave out --exact-start)"
+            << std::endl;
+}
+
 void run_evaluate(const EvaluateOptions& options) {
   const std::vector<GridAxis> axes = parse_grid(options.grid);
   const EnvOptions base = parse_env_options(options.env_options);
@@ -293,6 +322,7 @@ void run_evaluate(const EvaluateOptions& options) {
       EnvOptions all = contenders[c].options;
       const EnvOptions cell_env_options = cell_options(axes, cell);
       all.insert(all.end(), cell_env_options.begin(), cell_env_options.end());
+      if (!options.exact_start) all = with_evaluation_start(options.env_id, all);
       factories[c].push_back(make_env_factory(options.env_id, all));
     }
   }
@@ -302,6 +332,7 @@ void run_evaluate(const EvaluateOptions& options) {
     print_table(table, contenders[c], axes, results[c], options.episodes);
   }
   std::cout << table.str();
+  warn_identical_cells(options, results);
   const nlohmann::json summary = summary_json(options, contenders, axes, cells, results);
   if (!options.output.empty()) {
     write_outputs(options.output, table.str(), summary, contenders, axes, results, options.episodes,
@@ -322,8 +353,7 @@ void add_evaluate_command(CLI::App& app) {
                       "[label=]trained model (repeatable): deterministic policy, with the task "
                       "options it was trained with");
   command->add_option("--controller", options->controllers,
-                      "[label=]built-in controller (repeatable): zero, linear:k1,k2,k3,k4, lqr, "
-                      "lqr:theta,p,theta_dot,p_dot,command");
+                      std::string("[label=]built-in controller (repeatable): ") + kControllerHelp);
   command->add_option("--grid", options->grid,
                       "Up to two axes name=start:stop:step or name=value, comma-separated: push "
                       "[N], mass, friction, lag [s], delay [steps], pitch [rad], or any "
@@ -344,6 +374,7 @@ void add_evaluate_command(CLI::App& app) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
+  command->add_flag("--exact-start", options->exact_start, kExactStartHelp);
   command->add_option("--output", options->output,
                       "Directory for table.txt, summary.json and heatmap_<label>.png");
   command->callback([options] { run_evaluate(*options); });

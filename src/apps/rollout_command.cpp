@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/controller_option.hpp"
 #include "apps/option_checks.hpp"
 #include "apps/record_file.hpp"
 #include "apps/live_view.hpp"
@@ -18,6 +19,7 @@
 #include "apps/video_recorder.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/episode_runner.hpp"
+#include "envs/evaluation_start.hpp"
 #include "envs/registry.hpp"
 #include "sim/observation_dict.hpp"
 
@@ -36,6 +38,7 @@ struct RolloutOptions {
   std::string record_path;
   bool json = false;
   bool info = false;
+  bool exact_start = false;
   VideoOptions video;
   LiveViewOptions view;
 };
@@ -65,6 +68,14 @@ void run_rollout(const RolloutOptions& options) {
     if (!env_options.empty()) {
       std::cout << "environment options: " << format_env_options(env_options) << std::endl;
     }
+  }
+  if (!options.exact_start) {
+    const EnvOptions start = evaluation_start_options(options.env_id, env_options);
+    if (!start.empty()) {
+      std::cout << "random initial state: " << format_env_options(start)
+                << " (--exact-start: the environment's own)" << std::endl;
+    }
+    env_options.insert(env_options.end(), start.begin(), start.end());
   }
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
   std::unique_ptr<Controller> controller = make_rollout_controller(options, env_options, *env);
@@ -140,6 +151,8 @@ void run_rollout(const RolloutOptions& options) {
   const double mean = summary.mean_return;
   const double mean_length = summary.mean_length;
   const double std_return = summary.std_return;
+  const std::string identical = identical_episodes_warning(returns, lengths);
+  if (!identical.empty()) std::cerr << "upkie-rl: warning: " << identical << std::endl;
   std::cout << "mean return " << mean << " +- " << std_return << " over " << returns.size()
             << " episodes, mean length " << mean_length << std::endl;
   if (options.json) {
@@ -157,11 +170,7 @@ void add_rollout_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "rollout", "Run episodes of an environment with a controller and report their returns");
   command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
-  command
-      ->add_option("--controller", options->controller,
-                   "zero (neutral action), linear:k1,k2,k3,k4 (ground velocity = "
-                   "k.[theta, p, theta_dot, p_dot]) or lqr (designed on this environment)")
-      ->capture_default_str();
+  command->add_option("--controller", options->controller, kControllerHelp)->capture_default_str();
   command
       ->add_option("--model", options->model,
                    "Trained model (model_*.ckpt or a checkpoint of `upkie-rl train`): "
@@ -184,6 +193,7 @@ void add_rollout_command(CLI::App& app) {
   add_video_options(*command, options->video);
   add_live_view_options(*command, options->view, true);
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
+  command->add_flag("--exact-start", options->exact_start, kExactStartHelp);
   command->add_flag("--info", options->info,
                     "Print each episode's last info (the full observation dictionary)");
   command->callback([options] { run_rollout(*options); });

@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -24,6 +25,13 @@ RobotPose robot_pose(const Observation& observation) {
     pose.joint_angles[servo] = observation.servo[servo].position;
   }
   return pose;
+}
+
+int overlay_font_scale(int height) {
+  // 150 % at 480 rows, proportional, in MuJoCo's steps of 50 % (mjFONTSCALE_50 to _300),
+  // rounded down: a caption a little small hides less of a small frame.
+  const int steps = static_cast<int>(std::floor(height * 150.0 / 480.0 / 50.0 + 1e-9));
+  return 50 * std::clamp(steps, 1, 6);
 }
 
 void RenderConfig::validate() const {
@@ -57,7 +65,7 @@ struct RobotRenderer::Impl {
     mjv_defaultOption(&option);
     mjr_defaultContext(&render_context);
     mjv_makeScene(m, &scene, 1000);
-    mjr_makeContext(m, &render_context, mjFONTSCALE_150);
+    mjr_makeContext(m, &render_context, overlay_font_scale(config.height));
     if (render_context.offFBO == 0) {
       mjv_freeScene(&scene);
       mjr_freeContext(&render_context);

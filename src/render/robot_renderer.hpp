@@ -27,6 +27,10 @@ struct RobotPose {
 /// @throws RenderError when the observation has none (a real robot's).
 RobotPose robot_pose(const Observation& observation);
 
+/// Font scale [%] of the caption on frames of `height` rows: 150 at 480 rows, in proportion,
+/// in MuJoCo's steps (50 to 300), so that the caption takes the same share of any frame.
+int overlay_font_scale(int height);
+
 /// Image size and camera. The camera tracks the base from a fixed direction.
 struct RenderConfig {
   int width = 640;                  ///< [px], at most 1920.
