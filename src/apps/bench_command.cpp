@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/controller_option.hpp"
+#include "apps/policy_controller.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/registry.hpp"
 #include "envs/servos_env.hpp"
@@ -51,7 +53,10 @@ double raw_simulation_steps_per_s(int steps) {
 void run_bench(const BenchOptions& options) {
   const EnvOptions env_options = parse_env_options(options.env_options);
   std::unique_ptr<Env> probe = make_env(options.env_id, env_options);
-  std::unique_ptr<Controller> controller = make_builtin_controller(options.controller, *probe);
+  const std::string spec =
+      resolve_controller_spec(options.controller, design_env_factory(options.env_id, env_options));
+  if (spec != options.controller) std::cout << options.controller << ": " << spec << std::endl;
+  std::unique_ptr<Controller> controller = make_builtin_controller(spec, *probe);
   std::unique_ptr<VectorEnv> venv =
       make_vector_env(options.env_id, env_options, options.num_envs, options.threads);
   const std::size_t obs_size = venv->observation_space().size();
@@ -110,8 +115,7 @@ void add_bench_command(CLI::App& app) {
   command->add_option("--steps", options->steps, "Vector steps to time")
       ->check(CLI::Range(1, 1'000'000'000))
       ->capture_default_str();
-  command->add_option("--controller", options->controller, "zero or linear:k1,k2,k3,k4")
-      ->capture_default_str();
+  command->add_option("--controller", options->controller, kControllerHelp)->capture_default_str();
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value (repeatable)");
   command->add_flag("--raw", options->raw,

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iomanip>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -56,7 +58,30 @@ void run_gnuplot(const std::string& gnuplot, const std::string& text) {
   }
 }
 
+/// Axis settings shared by the line figures: the x axis ends at the first and last data.
+constexpr const char* kLineAxes = "set autoscale xfix\n";
+
 }  // namespace
+
+std::string flat_series_range(const std::vector<std::vector<double>>& series) {
+  double low = INFINITY;
+  double high = -INFINITY;
+  for (const auto& values : series) {
+    for (double value : values) {
+      if (std::isnan(value)) continue;
+      low = std::min(low, value);
+      high = std::max(high, value);
+    }
+  }
+  if (!std::isfinite(low) || !std::isfinite(high)) return {};
+  const double magnitude = std::max(std::abs(low), std::abs(high));
+  if (high - low > 1e-6 * magnitude && high > low) return {};
+  const double middle = 0.5 * (low + high);
+  const double half = magnitude > 0.0 ? 0.1 * magnitude : 1.0;
+  std::ostringstream range;
+  range << std::setprecision(17) << '[' << middle - half << ':' << middle + half << ']';
+  return range.str();
+}
 
 std::string find_gnuplot() {
   const char* path = std::getenv("PATH");
@@ -75,7 +100,8 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
   std::ostringstream script;
   script << terminal_line(gnuplot, 900, 540);
-  script << "set grid\nset key top right\nset datafile missing 'NaN'\nset format x '%.1s%c'\n";
+  script << "set grid\nset key top right\nset datafile missing 'NaN'\nset format x '%.1s%c'\n"
+         << kLineAxes;
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const TrendFigure& figure = figures[f];
     const std::string block = "$data" + std::to_string(f);
@@ -89,6 +115,8 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
     script << "set title " << quoted(figure.title) << '\n';
     script << "set xlabel " << quoted(figure.x_label) << '\n';
     script << "set ylabel " << quoted(figure.y_label) << '\n';
+    const std::string y_range = flat_series_range({figure.raw, figure.smoothed});
+    script << (y_range.empty() ? "set autoscale y\n" : "set yrange " + y_range + "\n");
     // Colours are #AARRGGBB: alpha 0x99 draws the raw values semi-transparent.
     script << "plot " << block << " using 1:2 with lines lc rgb '#991f77b4' lw 1 title 'raw', "
            << block << " using 1:3 with lines lc rgb '#d62728' lw 2.5 title "
@@ -105,9 +133,13 @@ void draw_curves_figure(const CurvesFigure& figure) {
       "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
       "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
   std::vector<std::string> groups;
+  std::set<std::string> titled_groups;
+  std::vector<std::vector<double>> all_y;
+  for (const CurvesFigure::Curve& curve : figure.curves) all_y.push_back(curve.y);
   std::ostringstream script;
   script << terminal_line(gnuplot, 1000, 600);
-  script << "set grid\nset key bottom right\nset termoption noenhanced\nset format x '%.1s%c'\n";
+  script << "set grid\nset key bottom right\nset termoption noenhanced\nset format x '%.1s%c'\n"
+         << kLineAxes;
   std::ostringstream plots;
   for (std::size_t c = 0; c < figure.curves.size(); ++c) {
     const CurvesFigure::Curve& curve = figure.curves[c];
@@ -118,17 +150,21 @@ void draw_curves_figure(const CurvesFigure& figure) {
     }
     script << "EOD\n";
     auto found = std::find(groups.begin(), groups.end(), curve.group);
-    const bool first_of_group = found == groups.end();
-    if (first_of_group) found = groups.insert(groups.end(), curve.group);
+    if (found == groups.end()) found = groups.insert(groups.end(), curve.group);
     const auto group = static_cast<std::size_t>(found - groups.begin());
-    plots << (c ? ", " : "") << block << " using 1:2 with lines lw 1.5 lc rgb '"
-          << kColours[group % kColours.size()] << "' "
-          << (first_of_group ? "title " + quoted(curve.group) : std::string("notitle"));
+    const bool titled = !curve.faint && titled_groups.insert(curve.group).second;
+    // Faint curves: alpha 0x66 (#AARRGGBB) and a thin line.
+    const std::string colour = kColours[group % kColours.size()];
+    plots << (c ? ", " : "") << block << " using 1:2 with lines lw " << (curve.faint ? "1" : "2")
+          << " lc rgb '" << (curve.faint ? "#66" + colour.substr(1) : colour) << "' "
+          << (titled ? "title " + quoted(curve.group) : std::string("notitle"));
   }
   script << "set output " << quoted(figure.output.string()) << '\n';
   script << "set title " << quoted(figure.title) << '\n';
   script << "set xlabel " << quoted(figure.x_label) << '\n';
   script << "set ylabel " << quoted(figure.y_label) << '\n';
+  const std::string y_range = flat_series_range(all_y);
+  if (!y_range.empty()) script << "set yrange " << y_range << '\n';
   if (figure.curves.empty()) {
     script << "set label 'no data yet' at graph 0.5, 0.5 center\nplot [0:1] [0:1] NaN notitle\n";
   } else {
@@ -175,8 +211,12 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
       script << (r ? ", " : "") << quoted(figure.y_values[r]) << ' ' << r;
     }
     script << ")\n";
-    script << "plot " << block << " using 1:2:3 with image, " << block
-           << " using 1:2:(sprintf('%.0f', $3)) with labels font ',10'\n";
+    // One filled box per cell: `with image` needs two rows and two columns to size its
+    // pixels, and drew nothing for a one-dimensional grid.
+    script << "plot " << block
+           << " using 1:2:($1-0.5):($1+0.5):($2-0.5):($2+0.5):3 with boxxy fillcolor palette "
+              "fillstyle solid 1.0 noborder, "
+           << block << " using 1:2:(sprintf('%.0f', $3)) with labels font ',10'\n";
     script << "unset output\n";
   }
   run_gnuplot(gnuplot, script.str());

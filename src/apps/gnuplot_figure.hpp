@@ -40,6 +40,7 @@ struct CurvesFigure {
     std::string group;
     std::vector<double> x;
     std::vector<double> y;  ///< NaN values are left out.
+    bool faint = false;     ///< Thin and semi-transparent, never in the key (raw values).
   };
   std::filesystem::path output;  ///< PNG file to write.
   std::string title;
@@ -51,6 +52,11 @@ struct CurvesFigure {
 /// Full path of the gnuplot executable on PATH; throws std::runtime_error saying how to
 /// install it when there is none.
 std::string find_gnuplot();
+
+/// The y range gnuplot should use for `values` (NaN left out), as "[low:high]", or empty
+/// to let gnuplot choose: a flat series (spread below 1e-6 of its magnitude, floating-point
+/// noise) gets ±10% of its value (±1 for a zero series) instead of a range zoomed into noise.
+std::string flat_series_range(const std::vector<std::vector<double>>& series);
 
 /// Draws the figures in one gnuplot session. Throws std::runtime_error if gnuplot is
 /// missing or fails.

@@ -12,14 +12,23 @@
 
 namespace upkie_rl::apps {
 
+void add_view_address_options(CLI::App& command, std::string& host, int& port,
+                              bool hidden_aliases) {
+  command.add_option("--view-host", host, "Address the viewer listens on")->capture_default_str();
+  command.add_option("--view-port", port, "Port of the viewer; 0 picks a free one")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  if (hidden_aliases) {
+    // Former spellings of `upkie-rl view`, accepted and left out of --help.
+    command.add_option("--host", host)->group("");
+    command.add_option("--port", port)->check(CLI::Range(0, 65535))->group("");
+  }
+}
+
 void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pacing) {
   command.add_flag("--view", options.enabled,
                    "Serve a live 3-D view in the browser (the URL is printed)");
-  command.add_option("--view-host", options.host, "Address the viewer listens on")
-      ->capture_default_str();
-  command.add_option("--view-port", options.port, "Port of the viewer; 0 picks a free one")
-      ->check(CLI::Range(0, 65535))
-      ->capture_default_str();
+  add_view_address_options(command, options.host, options.port, false);
   command
       .add_option("--view-wait", options.wait_clients,
                   "Wait for this many browsers before the first step")

@@ -33,6 +33,10 @@ struct LiveViewOptions {
   double idle_timeout = 10.0;
 };
 
+/// Adds --view-host and --view-port, the viewer's address in every command; with
+/// `hidden_aliases`, also --host and --port, accepted but not listed in --help.
+void add_view_address_options(CLI::App& command, std::string& host, int& port, bool hidden_aliases);
+
 /// Adds --view, --view-host, --view-port, --view-wait, --view-max-connections,
 /// --view-idle-timeout and (when `pacing`) --view-speed.
 void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pacing);

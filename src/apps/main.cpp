@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "apps/commands.hpp"
 
@@ -13,6 +14,7 @@ int run(int argc, char** argv) {
   CLI::App app{
       "upkie-rl: simulate, train, evaluate and deploy balance controllers for Upkie, "
       "the open-source wheeled biped."};
+  app.set_version_flag("--version", std::string("upkie-rl ") + UPKIE_RL_VERSION);
   app.require_subcommand(1);
   app.fallthrough(false);
   upkie_rl::apps::add_envs_command(app);

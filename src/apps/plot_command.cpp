@@ -1,11 +1,14 @@
 /// @file
-/// `upkie-rl plot RUN_DIR`: the seed's training figures from a run's progress.csv —
-/// loss.png, kl.png and return.png, raw values semi-transparent with a rolling mean.
+/// `upkie-rl plot RUN_DIR [RUN_DIR...]`: the seed's training figures from the runs'
+/// progress.csv — loss.png, kl.png, return.png and length.png. One run: raw values
+/// semi-transparent with their trailing mean; several: each run's trailing mean in its own
+/// colour, named in the legend, over its raw values.
 
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/commands.hpp"
 #include "apps/gnuplot_figure.hpp"
@@ -17,54 +20,123 @@ namespace upkie_rl::apps {
 namespace {
 
 struct PlotOptions {
-  std::string run_dir;
+  std::vector<std::string> run_dirs;
   int window = 50;
   std::string output_dir;
 };
 
-void run_plot(const PlotOptions& options) {
-  const std::filesystem::path csv = std::filesystem::path(options.run_dir) / "progress.csv";
-  if (!std::filesystem::exists(csv)) {
-    throw std::runtime_error("no progress.csv in " + options.run_dir +
-                             " (is it a run directory of `upkie-rl train`?)");
-  }
-  const ScalarTable table = read_scalar_csv(csv);
-  if (table.rows.empty()) throw std::runtime_error(csv.string() + ": no update logged yet");
-  const std::filesystem::path output =
-      std::filesystem::path(options.output_dir.empty() ? options.run_dir : options.output_dir);
-  std::filesystem::create_directories(output);
+/// One figure of the training log: a column and how to name it.
+struct LoggedQuantity {
+  const char* file;
+  const char* title;
+  const char* column;
+  const char* y_label;
+};
 
-  const std::size_t step = table.index("time/total_timesteps");
-  auto column = [&](const std::string& name) {
+constexpr LoggedQuantity kFigures[] = {
+    {"loss.png", "Training loss", "train/loss", "loss (dimensionless)"},
+    {"kl.png", "Approximate KL divergence", "train/approx_kl", "approx. KL [nat]"},
+    {"return.png", "Mean episode return (last 100 episodes)", "rollout/ep_rew_mean",
+     "return (dimensionless)"},
+    {"length.png", "Mean episode length (last 100 episodes)", "rollout/ep_len_mean",
+     "episode length [steps]"}};
+constexpr const char* kStepColumn = "time/total_timesteps";
+constexpr const char* kStepLabel = "environment steps";
+
+/// A run's log.
+struct RunLog {
+  std::string name;  ///< The run directory's name, for the legend.
+  ScalarTable table;
+
+  std::vector<double> column(const std::string& name) const {
     const std::size_t index = table.index(name);
     std::vector<double> values;
+    values.reserve(table.rows.size());
     for (const auto& row : table.rows) values.push_back(row[index]);
     return values;
-  };
-  std::vector<double> x;
-  for (const auto& row : table.rows) x.push_back(row[step]);
-  const auto window = static_cast<std::size_t>(options.window);
-  const std::string smoothed_label = "rolling mean (window " + std::to_string(window) + ")";
-  auto figure = [&](const std::string& file, const std::string& title, const std::string& tag,
-                    const std::string& y_label) {
-    TrendFigure out;
-    out.output = output / file;
-    out.title = title;
-    out.x_label = "timesteps";
-    out.y_label = y_label;
-    out.x = x;
-    out.raw = column(tag);
-    out.smoothed = rolling_mean(out.raw, window);
-    out.smoothed_label = smoothed_label;
-    return out;
-  };
-  const std::vector<TrendFigure> figures{
-      figure("loss.png", "Training loss", "train/loss", "loss"),
-      figure("kl.png", "Approximate KL divergence", "train/approx_kl", "approx. KL"),
-      figure("return.png", "Mean episode return (last 100 episodes)", "rollout/ep_rew_mean",
-             "return")};
+  }
+  bool has(const std::string& name) const {
+    for (const std::string& column : table.columns) {
+      if (column == name) return true;
+    }
+    return false;
+  }
+};
+
+RunLog read_run(const std::string& run_dir) {
+  const std::filesystem::path csv = std::filesystem::path(run_dir) / "progress.csv";
+  if (!std::filesystem::exists(csv)) {
+    throw std::runtime_error("no progress.csv in " + run_dir +
+                             " (is it a run directory of `upkie-rl train`?)");
+  }
+  RunLog run{std::filesystem::path(run_dir).lexically_normal().filename().string(),
+             read_scalar_csv(csv)};
+  if (run.name.empty()) run.name = std::filesystem::path(run_dir).parent_path().filename().string();
+  if (run.table.rows.empty()) throw std::runtime_error(csv.string() + ": no update logged yet");
+  return run;
+}
+
+/// The legend's name of the trailing mean: it lags the data by about half a window.
+std::string smoothing_label(std::size_t window) {
+  return "mean of the last " + std::to_string(window) + " updates (lags ~" +
+         std::to_string(window / 2) + ")";
+}
+
+void plot_one_run(const RunLog& run, std::size_t window, const std::filesystem::path& output) {
+  std::vector<TrendFigure> figures;
+  for (const LoggedQuantity& quantity : kFigures) {
+    if (!run.has(quantity.column)) continue;  // older logs may lack a column
+    TrendFigure figure;
+    figure.output = output / quantity.file;
+    figure.title = quantity.title;
+    figure.x_label = kStepLabel;
+    figure.y_label = quantity.y_label;
+    figure.x = run.column(kStepColumn);
+    figure.raw = run.column(quantity.column);
+    figure.smoothed = rolling_mean(figure.raw, window);
+    figure.smoothed_label = smoothing_label(window);
+    figures.push_back(std::move(figure));
+  }
   draw_trend_figures(figures);
-  for (const TrendFigure& f : figures) std::cout << "wrote " << f.output.string() << std::endl;
+  for (const TrendFigure& figure : figures) {
+    std::cout << "wrote " << figure.output.string() << std::endl;
+  }
+}
+
+void plot_runs(const std::vector<RunLog>& runs, std::size_t window,
+               const std::filesystem::path& output) {
+  for (const LoggedQuantity& quantity : kFigures) {
+    CurvesFigure figure;
+    figure.output = output / quantity.file;
+    figure.title = std::string(quantity.title) + ", " + smoothing_label(window);
+    figure.x_label = kStepLabel;
+    figure.y_label = quantity.y_label;
+    for (const RunLog& run : runs) {
+      if (!run.has(quantity.column)) continue;
+      const std::vector<double> raw = run.column(quantity.column);
+      figure.curves.push_back({run.name, run.column(kStepColumn), raw, true});
+      figure.curves.push_back({run.name, run.column(kStepColumn), rolling_mean(raw, window)});
+    }
+    draw_curves_figure(figure);
+    std::cout << "wrote " << figure.output.string() << std::endl;
+  }
+}
+
+void run_plot(const PlotOptions& options) {
+  std::vector<RunLog> runs;
+  for (const std::string& run_dir : options.run_dirs) runs.push_back(read_run(run_dir));
+  if (runs.size() > 1 && options.output_dir.empty()) {
+    throw std::invalid_argument("several runs make one set of figures: give --output DIR");
+  }
+  const std::filesystem::path output(options.output_dir.empty() ? options.run_dirs.front()
+                                                                : options.output_dir);
+  std::filesystem::create_directories(output);
+  const auto window = static_cast<std::size_t>(options.window);
+  if (runs.size() == 1) {
+    plot_one_run(runs.front(), window, output);
+  } else {
+    plot_runs(runs, window, output);
+  }
 }
 
 }  // namespace
@@ -72,13 +144,17 @@ void run_plot(const PlotOptions& options) {
 void add_plot_command(CLI::App& app) {
   auto options = std::make_shared<PlotOptions>();
   CLI::App* command = app.add_subcommand(
-      "plot", "Draw loss.png, kl.png and return.png of a training run with gnuplot");
-  command->add_option("run_dir", options->run_dir, "Run directory of `upkie-rl train`")->required();
-  command->add_option("--window", options->window, "Rolling-mean window, in updates")
+      "plot",
+      "Draw loss.png, kl.png, return.png and length.png of training runs with gnuplot; "
+      "several runs are overlaid, one colour each");
+  command->add_option("run_dirs", options->run_dirs, "Run directories of `upkie-rl train`")
+      ->required();
+  command->add_option("--window", options->window, "Trailing-mean window, in updates")
       ->check(CLI::Range(1, 1'000'000))
       ->capture_default_str();
   command->add_option("--output", options->output_dir,
-                      "Directory for the figures (default: the run directory)");
+                      "Directory for the figures (default: the run directory; required for "
+                      "several runs)");
   command->callback([options] { run_plot(*options); });
 }
 

@@ -1,11 +1,17 @@
 /// @file
-/// `upkie-rl render`: a video of episodes recorded by `upkie-rl rollout --record`.
+/// `upkie-rl render`: a video of episodes recorded by `upkie-rl rollout --record`; with
+/// several record files, their episodes side by side in one video (two policies compared).
 
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/frame_clock.hpp"
 #include "apps/record_file.hpp"
 #include "apps/video_recorder.hpp"
 #include "sim/base_observer.hpp"
@@ -14,15 +20,13 @@ namespace upkie_rl::apps {
 namespace {
 
 struct RenderOptions {
-  std::string record_path;
+  std::vector<std::string> record_paths;
   VideoOptions video;
 };
 
-void run_render(const RenderOptions& options) {
-  if (options.video.path.empty()) throw std::invalid_argument("--video is required");
-  VideoWriter::check_path(options.video.path);
-  const std::vector<RecordedStep> steps = read_record_file(options.record_path).steps;
-  VideoRecorder video(RobotModel::default_model(), options.video);
+void render_one(const std::string& record_path, const VideoOptions& options) {
+  const std::vector<RecordedStep> steps = read_record_file(record_path).steps;
+  VideoRecorder video(RobotModel::default_model(), options);
   int episode = -1;
   double episode_return = 0.0;
   for (const RecordedStep& step : steps) {
@@ -36,8 +40,95 @@ void run_render(const RenderOptions& options) {
     episode_return += step.reward;
   }
   video.close();
-  std::cout << "video " << options.video.path.string() << ": " << video.frames() << " frames at "
-            << options.video.fps << " frames/s from " << steps.size() << " steps" << std::endl;
+  std::cout << "video " << options.path.string() << ": " << video.frames() << " frames at "
+            << options.fps << " frames/s from " << steps.size() << " steps" << std::endl;
+}
+
+/// One frame of a pane: the pose and its caption.
+struct PaneFrame {
+  RobotPose pose;
+  FrameCaption caption;
+};
+
+/// The frames of one record file at `fps`, captioned with `label` when `overlay`.
+std::vector<PaneFrame> pane_frames(const std::vector<RecordedStep>& steps, const std::string& label,
+                                   int fps, bool overlay) {
+  std::vector<PaneFrame> frames;
+  FrameClock clock(fps);
+  int episode = -1;
+  double episode_return = 0.0;
+  for (const RecordedStep& step : steps) {
+    if (step.episode != episode) {
+      episode = step.episode;
+      episode_return = 0.0;
+      clock.start_episode();
+    }
+    if (clock.take(step.time)) {
+      FrameCaption caption;
+      if (overlay) {
+        caption = episode_caption(episode, step.time, episode_return,
+                                  base_pitch(step.pose.base_orientation));
+        caption.titles = "record\n" + caption.titles;
+        caption.values = label + "\n" + caption.values;
+      }
+      frames.push_back({step.pose, std::move(caption)});
+    }
+    episode_return += step.reward;
+  }
+  return frames;
+}
+
+/// The record files' episodes side by side, each pane width / n pixels wide; a record that
+/// ends first holds its last frame.
+void render_side_by_side(const std::vector<std::string>& record_paths, const VideoOptions& options) {
+  constexpr int kMaxPanes = 4;  // one OpenGL context each
+  const int panes = static_cast<int>(record_paths.size());
+  if (panes > kMaxPanes) {
+    throw std::invalid_argument("at most " + std::to_string(kMaxPanes) +
+                                " record files side by side, got " + std::to_string(panes));
+  }
+  VideoOptions pane = options;
+  pane.width = options.width / panes / 2 * 2;  // even, for H.264
+  std::vector<std::vector<PaneFrame>> frames;
+  std::vector<std::unique_ptr<RobotRenderer>> renderers;
+  std::size_t length = 0;
+  for (const std::string& path : record_paths) {
+    frames.push_back(pane_frames(read_record_file(path).steps,
+                                 std::filesystem::path(path).stem().string(), options.fps,
+                                 options.overlay));
+    length = std::max(length, frames.back().size());
+    renderers.push_back(
+        std::make_unique<RobotRenderer>(RobotModel::default_model(), render_config(pane)));
+  }
+  const int width = pane.width * panes;
+  VideoWriter writer(options.path, width, options.height, options.fps);
+  std::vector<std::uint8_t> image(static_cast<std::size_t>(width) * options.height * 3);
+  const std::size_t pane_row = static_cast<std::size_t>(pane.width) * 3;
+  for (std::size_t f = 0; f < length; ++f) {
+    for (int p = 0; p < panes; ++p) {
+      const PaneFrame& frame = frames[p][std::min(f, frames[p].size() - 1)];
+      const std::span<const std::uint8_t> drawn =
+          renderers[p]->render(frame.pose, frame.caption.titles, frame.caption.values);
+      for (int y = 0; y < options.height; ++y) {
+        std::memcpy(image.data() + (static_cast<std::size_t>(y) * width + p * pane.width) * 3,
+                    drawn.data() + y * pane_row, pane_row);
+      }
+    }
+    writer.write(image);
+  }
+  writer.close();
+  std::cout << "video " << options.path.string() << ": " << writer.frames() << " frames at "
+            << options.fps << " frames/s, " << panes << " records side by side (" << pane.width
+            << "x" << options.height << " each)" << std::endl;
+}
+
+void run_render(const RenderOptions& options) {
+  VideoWriter::check_path(options.video.path);
+  if (options.record_paths.size() == 1) {
+    render_one(options.record_paths.front(), options.video);
+  } else {
+    render_side_by_side(options.record_paths, options.video);
+  }
 }
 
 }  // namespace
@@ -45,11 +136,14 @@ void run_render(const RenderOptions& options) {
 void add_render_command(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* command = app.add_subcommand(
-      "render", "Make a video of episodes recorded by `upkie-rl rollout --record`");
-  command->add_option("record", options->record_path, "Record file (CSV)")
+      "render",
+      "Make a video of episodes recorded by `upkie-rl rollout --record`; several record files "
+      "(two policies) play side by side, each in width / n pixels");
+  command->add_option("records", options->record_paths, "Record files (CSV)")
       ->required()
       ->check(CLI::ExistingFile);
   add_video_options(*command, options->video);
+  command->get_option("--video")->required();  // marked REQUIRED in --help
   command->callback([options] { run_render(*options); });
 }
 

@@ -159,13 +159,13 @@ void run_spine(const SpineOptions& options) {
           });
     }
     if (real_time) {
-      spdlog::info("spine {}: {}, real time, {} Hz, one {} ms physics step per cycle",
+      spdlog::info("spine {}: {}, real time, {} Hz, one {} s physics step per cycle",
                    options.shm_name, options.backend, options.spine_frequency,
-                   1e3 * physics.physics_timestep);
+                   physics.physics_timestep);
     } else {
-      spdlog::info("spine {}: {}, on request, {} physics steps of {} ms per action",
+      spdlog::info("spine {}: {}, on request, {} physics steps of {} s per action",
                    options.shm_name, options.backend, physics.nb_substeps,
-                   1e3 * physics.physics_timestep);
+                   physics.physics_timestep);
     }
     if (config.observation_delay_steps > 0 || config.cycle_jitter > 0.0) {
       spdlog::info("spine {}: observations {} simulation steps old, cycles up to {} ms late",

@@ -273,7 +273,7 @@ void run_sweep(const SweepOptions& options) {
   }
   if (!creating && (!options.seeds.empty() || !options.axes.empty() || !options.out.empty())) {
     throw std::invalid_argument(
-        "--seeds, --set and --out describe a new sweep: give them with --config");
+        "--seeds, --set and --output describe a new sweep: give them with --config");
   }
   if (creating && (options.run_index >= 0 || options.summary_only)) {
     throw std::invalid_argument("--run and --summary take the directory of an existing sweep");
@@ -327,8 +327,9 @@ void add_sweep_command(CLI::App& app) {
                    "for every run)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  command->add_option("--out", options->out,
+  command->add_option("--output", options->out,
                       "Directory of the new sweep (default: runs/sweep-<config>-<date>-<time>)");
+  command->add_option("--out", options->out)->group("");  // the former spelling
   command
       ->add_option("--jobs", options->jobs,
                    "Runs at once here (default: cores / env.threads, at least 1)")

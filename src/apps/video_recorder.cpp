@@ -6,7 +6,6 @@
 #include <cstdio>
 
 namespace upkie_rl::apps {
-namespace {
 
 RenderConfig render_config(const VideoOptions& options) {
   RenderConfig config;
@@ -15,12 +14,18 @@ RenderConfig render_config(const VideoOptions& options) {
   return config;
 }
 
-}  // namespace
-
 VideoRecorder::VideoRecorder(std::shared_ptr<const RobotModel> model, const VideoOptions& options)
     : options_(options),
       renderer_((VideoWriter::check_path(options.path), std::move(model)), render_config(options)),
-      writer_(options.path, options.width, options.height, options.fps) {}
+      writer_(options.path, options.width, options.height, options.fps),
+      clock_(options.fps) {}
+
+FrameCaption episode_caption(int episode, double time, double episode_return, double pitch) {
+  char values[160];
+  std::snprintf(values, sizeof(values), "%d\n%.2f s\n%.1f\n%+.3f rad", episode, time,
+                episode_return, pitch);
+  return {"episode\ntime\nreturn\npitch", values};
+}
 
 void add_video_options(CLI::App& command, VideoOptions& options) {
   command
@@ -43,24 +48,22 @@ void add_video_options(CLI::App& command, VideoOptions& options) {
         }
       },
       "Frame size WIDTHxHEIGHT (default 640x480)");
+  command.add_flag(
+      "--overlay,!--no-overlay", options.overlay,
+      "Write the episode, time [s], return and pitch [rad] on the frames (default: on; "
+      "the caption scales with the frame)");
 }
 
 void VideoRecorder::start_episode(int episode) {
   episode_ = episode;
-  next_frame_ = 0;
+  clock_.start_episode();
 }
 
 void VideoRecorder::add(const RobotPose& pose, double time, double episode_return, double pitch) {
-  // Half a step of tolerance: at 200 Hz and 30 fps, frame k is the first step at or after
-  // k / 30 s.
-  if (time + 1e-9 < static_cast<double>(next_frame_) / options_.fps) return;
-  char values[160];
-  std::snprintf(values, sizeof(values), "%d\n%.2f s\n%.1f\n%+.3f rad", episode_, time,
-                episode_return, pitch);
-  const std::span<const std::uint8_t> frame =
-      renderer_.render(pose, "episode\ntime\nreturn\npitch", values);
-  writer_.write(frame);
-  next_frame_ = static_cast<long>(std::floor(time * options_.fps + 1e-9)) + 1;
+  if (!clock_.take(time)) return;
+  const FrameCaption caption =
+      options_.overlay ? episode_caption(episode_, time, episode_return, pitch) : FrameCaption{};
+  writer_.write(renderer_.render(pose, caption.titles, caption.values));
 }
 
 void VideoRecorder::close() { writer_.close(); }

@@ -6,10 +6,20 @@
 #include <filesystem>
 #include <memory>
 
+#include "apps/frame_clock.hpp"
 #include "render/robot_renderer.hpp"
 #include "render/video_writer.hpp"
 
 namespace upkie_rl::apps {
+
+/// The caption of a frame: titles and values, two columns of lines.
+struct FrameCaption {
+  std::string titles;
+  std::string values;
+};
+
+/// "episode\ntime\nreturn\npitch" and their values ("3", "1.25 s", "-12.5", "+0.012 rad").
+FrameCaption episode_caption(int episode, double time, double episode_return, double pitch);
 
 /// Settings of `--video`.
 struct VideoOptions {
@@ -17,14 +27,19 @@ struct VideoOptions {
   int fps = 30;                ///< Frames per second of video = of simulated time.
   int width = 640;
   int height = 480;
+  bool overlay = true;  ///< Caption (episode, time, return, pitch) on the frames.
 };
 
-/// Adds --video, --video-fps, --video-size to a subcommand.
+/// The renderer's settings of a video's frames.
+RenderConfig render_config(const VideoOptions& options);
+
+/// Adds --video, --video-fps, --video-size, --overlay/--no-overlay to a subcommand.
 void add_video_options(CLI::App& command, VideoOptions& options);
 
 /// Renders the robot at `fps` frames per simulated second: a step becomes a frame when its
 /// time reaches the next frame's, so the video plays in real time whatever the agent rate.
-/// Each frame shows the episode, time, return so far and pitch.
+/// Each frame shows the episode, time, return so far and pitch unless options.overlay is
+/// false.
 class VideoRecorder {
  public:
   /// Checks the path and starts the renderer and the encoder.
@@ -46,8 +61,8 @@ class VideoRecorder {
   VideoOptions options_;
   RobotRenderer renderer_;
   VideoWriter writer_;
+  FrameClock clock_;
   int episode_ = 0;
-  long next_frame_ = 0;  ///< Index of the next frame within the episode.
 };
 
 }  // namespace upkie_rl::apps

@@ -14,6 +14,7 @@
 #include "apps/commands.hpp"
 #include "apps/record_file.hpp"
 #include "apps/interrupt_handlers.hpp"
+#include "apps/live_view.hpp"
 #include "envs/registry.hpp"
 #include "model/robot_model.hpp"
 #include "view/view_frame.hpp"
@@ -136,10 +137,7 @@ void add_view_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("--html", options->html_path,
                       "Write a self-contained HTML replay to this file instead of serving");
-  command->add_option("--host", options->host, "Address to listen on")->capture_default_str();
-  command->add_option("--port", options->port, "Port to listen on; 0 picks a free one")
-      ->check(CLI::Range(0, 65535))
-      ->capture_default_str();
+  add_view_address_options(*command, options->host, options->port, true);
   command->add_option("--title", options->title, "Title shown in the page (default: the file)");
   command->callback([options] { run_view(*options); });
 }

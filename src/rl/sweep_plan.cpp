@@ -269,7 +269,7 @@ void write_sweep(const std::filesystem::path& directory, const TrainingConfig& b
   if (std::filesystem::exists(plan_path)) {
     if (read_text(plan_path) != plan_text || read_text(directory / kConfigFile) != config_text) {
       throw std::runtime_error(directory.string() +
-                               " already holds another sweep: choose another --out, or run "
+                               " already holds another sweep: choose another --output, or run "
                                "`upkie-rl sweep " +
                                directory.string() + "` to continue that one");
     }

@@ -8,11 +8,13 @@
 #include <sstream>
 
 #include "apps/cli_runner.hpp"
+#include "common/image_pixels.hpp"
 #include "common/temp_files.hpp"
 
 namespace upkie_rl {
 namespace {
 
+using testing::count_pixels_near;
 using testing::run_cli;
 using testing::temp_path;
 
@@ -45,6 +47,14 @@ TEST(EvaluateCommand, TinyGridGivesTheTableJsonAndHeatMaps) {
   for (const char* name : {"heatmap_pd.png", "heatmap_zero.png"}) {
     EXPECT_GT(std::filesystem::file_size(output / name), 1000u) << name;
   }
+  // The one-dimensional grid is drawn (it came out blank): pd's cells are green (100%) and
+  // red (0%), the zero controller's both red. A cell is about 300 x 200 pixels.
+  constexpr std::uint32_t kGreen = 0x1a9850;
+  constexpr std::uint32_t kRed = 0xd73027;
+  EXPECT_GT(count_pixels_near(output / "heatmap_pd.png", kGreen), 10000);
+  EXPECT_GT(count_pixels_near(output / "heatmap_pd.png", kRed), 10000);
+  EXPECT_LT(count_pixels_near(output / "heatmap_zero.png", kGreen), 100);
+  EXPECT_GT(count_pixels_near(output / "heatmap_zero.png", kRed), 20000);
   std::filesystem::remove_all(output);
 }
 

@@ -29,7 +29,7 @@ std::string small_sweep(const std::filesystem::path& directory, std::int64_t tim
          "/configs/pendulum.yaml --seeds 0:2 --set ppo.n_epochs=2,3 --set env.num_envs=2 --set "
          "env.threads=0 --set ppo.n_steps=512 --set ppo.batch_size=64 --set "
          "ppo.total_timesteps=" +
-         std::to_string(timesteps) + " --set checkpoint_every=1024 --eval-episodes 2 --out " +
+         std::to_string(timesteps) + " --set checkpoint_every=1024 --eval-episodes 2 --output " +
          directory.string();
 }
 
@@ -169,11 +169,11 @@ TEST(SweepCommand, BadArgumentsAreRefusedWithAReason) {
     std::string reason;
   };
   const Case cases[] = {
-      {"sweep --config " + config + " --out " + directory.string(), "needs --seeds"},
-      {"sweep --config " + config + " --seeds 0:2 --set ppo.n_epochs=2,0 --out " +
+      {"sweep --config " + config + " --output " + directory.string(), "needs --seeds"},
+      {"sweep --config " + config + " --seeds 0:2 --set ppo.n_epochs=2,0 --output " +
            directory.string(),
        "sweep run n_epochs=0_seed0: config key 'ppo.n_epochs'"},
-      {"sweep --config " + config + " --seeds 2:1 --out " + directory.string(), "seeds '2:1'"},
+      {"sweep --config " + config + " --seeds 2:1 --output " + directory.string(), "seeds '2:1'"},
       {"sweep " + directory.string(), "sweep.yaml: cannot read"},
       {"sweep --config " + config + " --seeds 0 --run 0", "--run and --summary take"},
       {"sweep", "either --config"},

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "apps/cli_runner.hpp"
+#include "common/shell_output.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -30,6 +31,46 @@ std::filesystem::path find_model(const std::filesystem::path& run_dir) {
     if (name.rfind("model_", 0) == 0 && entry.path().extension() == ".ckpt") return entry.path();
   }
   return {};
+}
+
+/// What `upkie-rl train` draws on a 60-column terminal: run in a pseudo-terminal by
+/// `script`, after `stty cols 60`.
+std::string train_in_a_terminal(const std::filesystem::path& run_dir) {
+  const std::string train = std::string(UPKIE_RL_CLI_PATH) + " train --config " + kConfig + kTiny +
+                            " --set ppo.total_timesteps=1024 --run-dir " + run_dir.string();
+  return testing::shell_output("script -qec 'stty cols 60 rows 24; " + train + "' /dev/null 2>&1");
+}
+
+TEST(TrainCommand, ProgressFitsA60ColumnTerminalAndIsPlainLinesInAFile) {
+  const auto run_dir = fresh_directory("progress_tty");
+  const std::string terminal = train_in_a_terminal(run_dir);
+  // Each redraw starts with a carriage return and ends by clearing the rest of the line;
+  // none may be wider than 59 columns (it would wrap onto a new line at every update).
+  int redraws = 0;
+  std::size_t start = 0;
+  while ((start = terminal.find('\r', start)) != std::string::npos) {
+    std::size_t end = terminal.find("\x1b[K", start);
+    if (end == std::string::npos) break;
+    const std::string line = terminal.substr(start + 1, end - start - 1);
+    start = end;
+    if (line.find("steps") == std::string::npos) continue;
+    ++redraws;
+    EXPECT_LE(line.size(), 59u) << "\"" << line << "\"";
+    EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+  }
+  EXPECT_GE(redraws, 4) << terminal;
+  std::filesystem::remove_all(run_dir);
+
+  // Not a terminal: plain periodic lines, no carriage return or escape sequence.
+  const auto file_run_dir = fresh_directory("progress_file");
+  const auto result = run_cli("train --config " + kConfig + kTiny +
+                              " --set ppo.total_timesteps=1024 --run-dir " + file_run_dir.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(result.output.find('\r'), std::string::npos);
+  EXPECT_EQ(result.output.find('\x1b'), std::string::npos);
+  EXPECT_NE(result.output.find("100% 1,024/1,024 steps | return"), std::string::npos)
+      << result.output;
+  std::filesystem::remove_all(file_run_dir);
 }
 
 TEST(TrainCommand, TrainsEvaluatesAndResumesFromTheCommandLine) {

@@ -46,6 +46,58 @@ TEST(VideoCommand, RolloutVideoPlaysInRealTime) {
   std::filesystem::remove(path);
 }
 
+/// White pixels (the caption's text) in the top left quarter of a video's first frame.
+long caption_pixels(const std::filesystem::path& video) {
+  const std::string raw = shell_output("ffmpeg -v error -i '" + video.string() +
+                                       "' -frames:v 1 -vf crop=iw/2:ih/2:0:0 -f rawvideo "
+                                       "-pix_fmt rgb24 - 2>/dev/null");
+  long count = 0;
+  for (std::size_t i = 0; i + 2 < raw.size(); i += 3) {
+    const auto bright = [&](std::size_t c) { return static_cast<unsigned char>(raw[i + c]) > 225; };
+    count += bright(0) && bright(1) && bright(2) ? 1 : 0;
+  }
+  return count;
+}
+
+TEST(VideoCommand, OverlayIsOptional) {
+  const auto captioned = temp_path("captioned.mp4");
+  const auto clean = temp_path("clean.mp4");
+  const std::string rollout =
+      "rollout --env Upkie-MuJoCo-Pendulum --max-steps 10 --video-size 320x240 --video ";
+  ASSERT_EQ(run_cli(rollout + captioned.string()).exit_code, 0);
+  const auto result = run_cli(rollout + clean.string() + " --no-overlay");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_GT(caption_pixels(captioned), 100);
+  EXPECT_EQ(caption_pixels(clean), 0);
+  std::filesystem::remove(captioned);
+  std::filesystem::remove(clean);
+}
+
+TEST(VideoCommand, RenderPutsTwoRecordsSideBySide) {
+  const auto falling = temp_path("falling.csv");
+  const auto balancing = temp_path("balancing.csv");
+  const auto video = temp_path("side_by_side.mp4");
+  const std::string rollout = "rollout --env Upkie-MuJoCo-Pendulum --exact-start --record ";
+  ASSERT_EQ(run_cli(rollout + falling.string() + " --max-steps 60").exit_code, 0);
+  ASSERT_EQ(
+      run_cli(rollout + balancing.string() + " --max-steps 120 --controller linear:10,1,0,0.1")
+          .exit_code,
+      0);
+  const auto result = run_cli("render " + falling.string() + " " + balancing.string() +
+                              " --video-size 640x240 --video " + video.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("2 records side by side (320x240 each)"), std::string::npos)
+      << result.output;
+  // The longer record sets the length (0.6 s at 30 frames/s, t = 0 included); the
+  // shorter one holds its last frame.
+  EXPECT_EQ(probe(video).first, 19);
+  EXPECT_EQ(shell_output("ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
+                         "-of csv=p=0 " +
+                         video.string()),
+            "640,240\n");
+  for (const auto& path : {falling, balancing, video}) std::filesystem::remove(path);
+}
+
 TEST(VideoCommand, BulletEpisodesRenderToo) {
   const auto path = temp_path("bullet.gif");
   const auto result = run_cli(

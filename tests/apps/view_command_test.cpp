@@ -168,7 +168,7 @@ TEST_F(ViewCommand, NamesWhatIsWrongWithARecord) {
 TEST_F(ViewCommand, NamesABusyPortAndKeepsAnExistingRecord) {
   const BusyPort busy;
   const std::string port = std::to_string(busy.port());
-  auto result = run_cli("view " + record_->string() + " --port " + port);
+  auto result = run_cli("view " + record_->string() + " --view-port " + port);
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find("cannot listen on 127.0.0.1:" + port + ": the port is in use"),
             std::string::npos)

@@ -5,7 +5,7 @@ const ROWS = [
   ['Step', (f) => String(f.step)],
   ['Time', (f) => `${f.time.toFixed(3)} s`],
   ['Return', (f) => f.return.toFixed(2)],
-  ['Pitch', (f) => `${(f.pitch * 180 / Math.PI).toFixed(1)}°`],
+  ['Pitch', (f) => `${f.pitch.toFixed(3)} rad`],
   ['Ground position', (f) => `${f.ground_position.toFixed(3)} m`],
 ];
 

@@ -28,6 +28,7 @@ const viewer = {
   connected: false,
   errors,
   robotScreenBox: () => null,
+  cameraHeight: () => null,
 };
 window.upkieViewer = viewer;
 
@@ -46,6 +47,7 @@ function start(session) {
   robot.visible = options.robot;
   scene.world.add(robot);
   viewer.robotScreenBox = () => scene.screenBox(robot);
+  viewer.cameraHeight = () => scene.cameraHeight();
 
   const followBox = document.getElementById('follow');
   followBox.checked = options.follow;

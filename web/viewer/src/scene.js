@@ -11,6 +11,10 @@ const CAMERA_YAW = THREE.MathUtils.degToRad(45);
 const CAMERA_PITCH = THREE.MathUtils.degToRad(-30);
 const TARGET_HEIGHT = 0.3;
 const FLOOR_SIZE = 200;  // metres, even so that tiles meet at whole metres
+// The eye never goes under the floor: orbiting stops short of the horizon seen from the
+// target, and after a pan the target and eye are lifted back above these heights [m].
+const MAX_POLAR_ANGLE = THREE.MathUtils.degToRad(88);
+const MIN_EYE_HEIGHT = 0.05;
 // Sun direction from the robot (Z-up), far enough for the shadow camera to hold it.
 const SUN_OFFSET = new THREE.Vector3(1.2, -0.8, 3.0);
 
@@ -96,6 +100,9 @@ export function createScene(container) {
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.enableDamping = true;
   controls.dampingFactor = 0.15;
+  controls.maxPolarAngle = MAX_POLAR_ANGLE;
+  controls.minDistance = 0.2;
+  controls.maxDistance = 30;
   // Software renderers are slow: draw only when the view or the scene changed.
   let dirty = true;
   controls.addEventListener('change', () => { dirty = true; });
@@ -149,8 +156,18 @@ export function createScene(container) {
   new ResizeObserver(resize).observe(container);
   resize();
 
+  /** Lifts target and eye above the floor (a pan can take them below it). */
+  function keepAboveFloor() {
+    if (controls.target.y < 0) {
+      camera.position.y -= controls.target.y;
+      controls.target.y = 0;
+    }
+    if (camera.position.y < MIN_EYE_HEIGHT) camera.position.y = MIN_EYE_HEIGHT;
+  }
+
   function render() {
     controls.update();
+    keepAboveFloor();
     if (!dirty) return;
     dirty = false;
     renderer.render(scene, camera);
@@ -183,5 +200,6 @@ export function createScene(container) {
 
   return {
     world, resetView, follow, centerOn, render, screenBox, invalidate: () => { dirty = true; },
+    cameraHeight: () => camera.position.y,
   };
 }

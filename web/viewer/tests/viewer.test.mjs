@@ -119,7 +119,7 @@ describe('live rollout', () => {
 
 describe('replay', () => {
   test('a served record file replays with its controls', async () => {
-    const { child, url, exited } = await serve(['view', record, '--port', '0']);
+    const { child, url, exited } = await serve(['view', record, '--view-port', '0']);
     try {
       const early = await openViewer(browser, `${url}?autoplay=0&t=0.05&follow=0`);
       const late = await openViewer(browser, `${url}?autoplay=0&t=1.2&follow=0`);
@@ -148,6 +148,30 @@ describe('replay', () => {
       const { code } = await exited;
       assert.equal(code, 0, 'Ctrl-C (SIGTERM) stops the viewer cleanly');
     }
+  });
+
+  test('the camera stays above the floor whatever the mouse does', async () => {
+    const html = join(work, 'camera.html');
+    await run(['view', record, '--html', html]);
+    const { page, errors } = await openViewer(browser, `${pathToFileURL(html).href}?follow=0&autoplay=0`, { offline: true });
+    const canvas = await page.$('#scene');
+    const rect = await canvas.boundingBox();
+    const [x, y] = [rect.x + rect.width / 2, rect.y + rect.height / 2];
+    const lowest = [];
+    // Orbit (left button) and pan (right button) the eye downwards, far past the floor.
+    for (const button of ['left', 'right']) {
+      for (let drag = 0; drag < 3; drag++) {
+        await page.mouse.move(x, y - 150);
+        await page.mouse.down({ button });
+        await page.mouse.move(x, y + 250, { steps: 20 });
+        await page.mouse.up({ button });
+        await page.waitForTimeout(300);  // the damped motion settles
+        lowest.push(await page.evaluate(() => window.upkieViewer.cameraHeight()));
+      }
+    }
+    for (const height of lowest) assert.ok(height >= 0.049, `camera height ${height} m: ${lowest}`);
+    assert.deepEqual(errors, []);
+    await page.context().close();
   });
 
   test('the self-contained page replays with the network off', async () => {

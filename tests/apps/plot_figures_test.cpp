@@ -1,0 +1,40 @@
+/// The pieces of figures and progress lines that do not need gnuplot or a terminal.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "apps/gnuplot_figure.hpp"
+#include "apps/progress_bar.hpp"
+
+namespace upkie_rl::apps {
+namespace {
+
+TEST(FlatSeriesRange, FlatDataGetsTenPercentAroundItsValue) {
+  // A constant series with floating-point noise: without a range gnuplot zooms into 1e-12.
+  EXPECT_EQ(flat_series_range({{0.01, 0.01 + 1e-12, 0.01}}), "[0.0089999999999999993:0.011]");
+  EXPECT_EQ(flat_series_range({{0.0, 0.0}, {NAN}}), "[-1:1]");
+  EXPECT_EQ(flat_series_range({{-300.0, -300.0}}), "[-330:-270]");
+  // Varying data, and no data, are left to gnuplot.
+  EXPECT_EQ(flat_series_range({{1.0, 2.0}}), "");
+  EXPECT_EQ(flat_series_range({{NAN}}), "");
+}
+
+TEST(ProgressLine, FitsTheWidthAndDropsFieldsInOrder) {
+  const auto line = [](int columns) {
+    return progress_line(0.5, "512,000", "1,024,000", "4,321", "01:58", "return -12.3", columns);
+  };
+  const std::string wide = line(200);
+  EXPECT_EQ(wide,
+            "[###############...............]  50% 512,000/1,024,000 steps | return -12.3 | "
+            "4,321 steps/s | ETA 01:58");
+  for (int columns = 10; columns <= 120; ++columns) {
+    EXPECT_LE(static_cast<int>(line(columns).size()), columns) << columns;
+  }
+  // 60 columns (one spare): the bar shrinks, ETA and speed go, the return stays.
+  EXPECT_EQ(line(59), "[######.......]  50% 512,000/1,024,000 steps | return -12.3");
+  EXPECT_EQ(line(40), " 50% 512,000/1,024,000 steps");
+}
+
+}  // namespace
+}  // namespace upkie_rl::apps
