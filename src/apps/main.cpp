@@ -7,6 +7,7 @@
 #include <string>
 
 #include "apps/commands.hpp"
+#include "policy/build_info.hpp"
 
 namespace {
 
@@ -14,7 +15,8 @@ int run(int argc, char** argv) {
   CLI::App app{
       "upkie-rl: simulate, train, evaluate and deploy balance controllers for Upkie, "
       "the open-source wheeled biped."};
-  app.set_version_flag("--version", std::string("upkie-rl ") + UPKIE_RL_VERSION);
+  app.set_version_flag("--version", std::string("upkie-rl ") + upkie_rl::upkie_rl_version() +
+                                        " (commit " + upkie_rl::upkie_rl_git_commit() + ")");
   app.require_subcommand(1);
   app.fallthrough(false);
   upkie_rl::apps::add_envs_command(app);
