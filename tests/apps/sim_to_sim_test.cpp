@@ -13,13 +13,14 @@ namespace {
 
 using testing::run_cli;
 
-/// Rollout summary of `policy` on `env_id` from the upright start, as the seed evaluates.
+/// Rollout summary of `policy` on `env_id` from the upright start, as the seed evaluates
+/// (--exact-start: not the evaluations' random start).
 /// (From tilted starts, init_rand_pitch=0.05, the MuJoCo-trained policy falls in about half
 /// the episodes on either engine: a robustness matter, not a sim-to-sim one.)
 nlohmann::json evaluate(const std::string& policy, const std::string& env_id) {
   const std::string path = std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/" + policy;
   const auto result = run_cli("rollout --env " + env_id + " --model " + path +
-                              " --episodes 2 --json");
+                              " --episodes 2 --exact-start --json");
   EXPECT_EQ(result.exit_code, 0) << result.output;
   return nlohmann::json::parse(result.lines().back());
 }
