@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "apps/cli_runner.hpp"
+#include "common/temp_files.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -41,8 +43,10 @@ TEST(CliGrammar, TheViewerAddressHasOneNameInEveryCommand) {
     EXPECT_FALSE(contains(help.output, "--host")) << command;
   }
   // The former spelling of `view` still works, unlisted.
-  const auto html = run_cli("view --host 127.0.0.1 --port 0 --html /dev/null");
+  const auto page = testing::temp_path("grammar.html");
+  const auto html = run_cli("view --host 127.0.0.1 --port 0 --html " + page.string());
   EXPECT_EQ(html.exit_code, 0) << html.output;
+  std::filesystem::remove(page);
   const auto sweep = run_cli("sweep --help");
   EXPECT_TRUE(contains(sweep.output, "--output")) << sweep.output;
   EXPECT_FALSE(contains(sweep.output, "--out ")) << sweep.output;

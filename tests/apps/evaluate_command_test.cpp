@@ -48,12 +48,13 @@ TEST(EvaluateCommand, TinyGridGivesTheTableJsonAndHeatMaps) {
     EXPECT_GT(std::filesystem::file_size(output / name), 1000u) << name;
   }
   // The one-dimensional grid is drawn (it came out blank): pd's cells are green (100%) and
-  // red (0%), the zero controller's both red. A cell is about 300 x 200 pixels.
+  // red (0%), the zero controller's both red. A cell is about 300 x 200 pixels; the colour
+  // bar holds a few hundred pixels of each.
   constexpr std::uint32_t kGreen = 0x1a9850;
   constexpr std::uint32_t kRed = 0xd73027;
   EXPECT_GT(count_pixels_near(output / "heatmap_pd.png", kGreen), 10000);
   EXPECT_GT(count_pixels_near(output / "heatmap_pd.png", kRed), 10000);
-  EXPECT_LT(count_pixels_near(output / "heatmap_zero.png", kGreen), 100);
+  EXPECT_LT(count_pixels_near(output / "heatmap_zero.png", kGreen), 2000);
   EXPECT_GT(count_pixels_near(output / "heatmap_zero.png", kRed), 20000);
   std::filesystem::remove_all(output);
 }

@@ -47,9 +47,9 @@ TEST(RobustPolicies, RobustPendulumSurvivesMorePushesThanThePdLaw) {
 
 TEST(RobustPolicies, ServosBalanceBalancesWithItsLegs) {
   const auto record = temp_path("servos_balance.csv");
-  const auto result = run_cli("rollout --env Upkie-MuJoCo-ServosTask --episodes 3 --model " +
-                              kPolicies + "servos_balance_mujoco_seed0.ckpt --record " +
-                              record.string());
+  const auto result =
+      run_cli("rollout --env Upkie-MuJoCo-ServosTask --episodes 3 --model " + kPolicies +
+              "servos_balance_mujoco_seed0.ckpt --record " + record.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   // The model's task options come with it.
   EXPECT_NE(result.output.find("observe_pitch=true"), std::string::npos) << result.output;

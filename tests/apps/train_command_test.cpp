@@ -49,6 +49,10 @@ TEST(TrainCommand, ProgressFitsA60ColumnTerminalAndIsPlainLinesInAFile) {
   int redraws = 0;
   std::size_t start = 0;
   while ((start = terminal.find('\r', start)) != std::string::npos) {
+    if (terminal.compare(start, 2, "\r\n") == 0) {  // the terminal's line ending
+      start += 2;
+      continue;
+    }
     std::size_t end = terminal.find("\x1b[K", start);
     if (end == std::string::npos) break;
     const std::string line = terminal.substr(start + 1, end - start - 1);

@@ -67,7 +67,7 @@ TEST(VideoCommand, OverlayIsOptional) {
   ASSERT_EQ(run_cli(rollout + captioned.string()).exit_code, 0);
   const auto result = run_cli(rollout + clean.string() + " --no-overlay");
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_GT(caption_pixels(captioned), 100);
+  EXPECT_GT(caption_pixels(captioned), 20);  // small white text, blurred by H.264
   EXPECT_EQ(caption_pixels(clean), 0);
   std::filesystem::remove(captioned);
   std::filesystem::remove(clean);
@@ -88,9 +88,9 @@ TEST(VideoCommand, RenderPutsTwoRecordsSideBySide) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("2 records side by side (320x240 each)"), std::string::npos)
       << result.output;
-  // The longer record sets the length (0.6 s at 30 frames/s, t = 0 included); the
-  // shorter one holds its last frame.
-  EXPECT_EQ(probe(video).first, 19);
+  // The longer record sets the length: its rows hold the states before each step (0 to
+  // 0.595 s), 18 frames at 30 frames/s; the shorter one holds its last frame.
+  EXPECT_EQ(probe(video).first, 18);
   EXPECT_EQ(shell_output("ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
                          "-of csv=p=0 " +
                          video.string()),

@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <string>
 
-#include "common/shell_output.hpp"
+#include <array>
+#include <cstdio>
+#include <memory>
 
 namespace upkie_rl::testing {
 
@@ -15,8 +17,16 @@ namespace upkie_rl::testing {
 /// colour 0xRRGGBB; -1 when ffmpeg cannot decode it.
 inline long count_pixels_near(const std::filesystem::path& path, std::uint32_t rgb,
                               int tolerance = 12) {
-  const std::string raw = shell_output("ffmpeg -v error -i '" + path.string() +
-                                       "' -f rawvideo -pix_fmt rgb24 - 2>/dev/null");
+  // Binary output: read with fread (shell_output stops at the first zero byte).
+  const std::string command =
+      "ffmpeg -v error -i '" + path.string() + "' -f rawvideo -pix_fmt rgb24 - 2>/dev/null";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  std::string raw;
+  std::array<char, 65536> buffer{};
+  for (std::size_t read = 0;
+       pipe && (read = std::fread(buffer.data(), 1, buffer.size(), pipe.get())) > 0;) {
+    raw.append(buffer.data(), read);
+  }
   if (raw.empty() || raw.size() % 3 != 0) return -1;
   const int target[3] = {static_cast<int>(rgb >> 16 & 0xff), static_cast<int>(rgb >> 8 & 0xff),
                          static_cast<int>(rgb & 0xff)};
