@@ -8,7 +8,7 @@
 >>> policy = upkie_rl.load_policy("runs/pendulum/model_20261121-144733.ckpt")
 
 Importing the package registers every id (``upkie_rl/Upkie-{Bullet,MuJoCo,Mock,Spine}-{Servos,
-Pendulum,Gyropod,ServosTask}``, and the Bullet ones without the namespace too).
+Pendulum,Gyropod,ServosTask,Velocity}``, and the Bullet ones without the namespace too).
 """
 
 import os as _os

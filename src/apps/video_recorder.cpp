@@ -50,15 +50,24 @@ void VideoRecorder::start_episode(int episode) {
   next_frame_ = 0;
 }
 
-void VideoRecorder::add(const RobotPose& pose, double time, double episode_return, double pitch) {
+void VideoRecorder::add(const RobotPose& pose, double time, double episode_return, double pitch,
+                        const VelocityCommand* command, const BaseVelocity* measured) {
   // Half a step of tolerance: at 200 Hz and 30 fps, frame k is the first step at or after
   // k / 30 s.
   if (time + 1e-9 < static_cast<double>(next_frame_) / options_.fps) return;
-  char values[160];
-  std::snprintf(values, sizeof(values), "%d\n%.2f s\n%.1f\n%+.3f rad", episode_, time,
-                episode_return, pitch);
-  const std::span<const std::uint8_t> frame =
-      renderer_.render(pose, "episode\ntime\nreturn\npitch", values);
+  char values[320];
+  const int length = std::snprintf(values, sizeof(values), "%d\n%.2f s\n%.1f\n%+.3f rad", episode_,
+                                   time, episode_return, pitch);
+  const bool velocity = command != nullptr && measured != nullptr;
+  if (velocity && length > 0 && static_cast<std::size_t>(length) < sizeof(values)) {
+    std::snprintf(values + length, sizeof(values) - static_cast<std::size_t>(length),
+                  "\n%+.2f m/s %+.2f rad/s\n%+.2f m/s %+.2f rad/s", command->forward_velocity,
+                  command->yaw_rate, measured->forward_velocity, measured->yaw_rate);
+  }
+  const std::span<const std::uint8_t> frame = renderer_.render(
+      pose,
+      velocity ? "episode\ntime\nreturn\npitch\ncommand\nmeasured" : "episode\ntime\nreturn\npitch",
+      values);
   writer_.write(frame);
   next_frame_ = static_cast<long>(std::floor(time * options_.fps + 1e-9)) + 1;
 }

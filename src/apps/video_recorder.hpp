@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "envs/velocity_command.hpp"
 #include "render/robot_renderer.hpp"
 #include "render/video_writer.hpp"
 
@@ -24,7 +25,8 @@ void add_video_options(CLI::App& command, VideoOptions& options);
 
 /// Renders the robot at `fps` frames per simulated second: a step becomes a frame when its
 /// time reaches the next frame's, so the video plays in real time whatever the agent rate.
-/// Each frame shows the episode, time, return so far and pitch.
+/// Each frame shows the episode, time, return so far and pitch (and, for a velocity task,
+/// the command beside the measured velocity).
 class VideoRecorder {
  public:
   /// Checks the path and starts the renderer and the encoder.
@@ -34,8 +36,10 @@ class VideoRecorder {
   /// Starts episode `episode`: its first frame is at its time 0.
   void start_episode(int episode);
 
-  /// Offers the state at simulated time `time` [s] of the current episode.
-  void add(const RobotPose& pose, double time, double episode_return, double pitch);
+  /// Offers the state at simulated time `time` [s] of the current episode; a velocity
+  /// task's frames also show its command and the measured velocity (`command`, `measured`).
+  void add(const RobotPose& pose, double time, double episode_return, double pitch,
+           const VelocityCommand* command = nullptr, const BaseVelocity* measured = nullptr);
 
   /// Finishes the file. @throws RenderError when the encoder failed.
   void close();
