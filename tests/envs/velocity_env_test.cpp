@@ -273,6 +273,8 @@ TEST(VelocityEnv, StandingUprightTouchesTheFloorWithTheWheelsOnly) {
     auto env = make_env(id);
     Obs observation{};
     env->reset(0, observation);
+    const Act action{};
+    for (int step = 0; step < 10; ++step) env->step(action, observation);  // settle: 0.2 s
     const Observation* full = env->full_observation();
     EXPECT_TRUE(full->floor_contact.contact) << id;
     EXPECT_FALSE(full->floor_contact.non_wheel) << id;

@@ -47,10 +47,10 @@ TEST(VelocityCommandSchedule, PiecewiseConstantCommands) {
   EXPECT_EQ(schedule.at(1.0), (VelocityCommand{0.5, 0.1}));
   EXPECT_EQ(schedule.at(2.5), (VelocityCommand{0.5, 0.1}));
   EXPECT_EQ(schedule.at(100.0), (VelocityCommand{-1.0, 0.0}));
-  EXPECT_THROW(VelocityCommandSchedule(std::vector<VelocityCommandSchedule::Row>{}),
-               std::invalid_argument);
-  EXPECT_THROW(VelocityCommandSchedule({{1.0, {}}, {1.0, {}}}), std::invalid_argument);
-  EXPECT_THROW(VelocityCommandSchedule({{0.0, {NAN, 0.0}}}), std::invalid_argument);
+  using Rows = std::vector<VelocityCommandSchedule::Row>;
+  EXPECT_THROW(VelocityCommandSchedule(Rows{}), std::invalid_argument);
+  EXPECT_THROW(VelocityCommandSchedule(Rows{{1.0, {}}, {1.0, {}}}), std::invalid_argument);
+  EXPECT_THROW(VelocityCommandSchedule(Rows{{0.0, {NAN, 0.0}}}), std::invalid_argument);
 }
 
 TEST(VelocityCommandSchedule, LoadsACsvAndNamesTheBadLine) {
