@@ -71,18 +71,25 @@ TEST(VelocityCommand, ShortTrainingImprovesTheReturnAndLogsEachTerm) {
   const std::string config = std::string(UPKIE_RL_SOURCE_DIR) + "/configs/velocity.yaml";
   const auto result = run_cli(
       "train --quiet --config " + config + " --run-dir " + run_dir.string() +
-      " --set env.num_envs=4 --set env.threads=0 --set ppo.n_steps=2048 --set ppo.batch_size=512"
-      " --set ppo.total_timesteps=24576 --set checkpoint_every=0"
+      " --set env.num_envs=8 --set env.threads=0 --set ppo.n_steps=2048 --set ppo.batch_size=512"
+      " --set ppo.total_timesteps=81920 --set checkpoint_every=0"
       " --set env.options.max_episode_steps=200");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const ScalarTable table = read_scalar_csv(run_dir / "progress.csv");
   const std::size_t column = table.index("rollout/ep_rew_mean");
   const std::size_t tracking = table.index("episode/reward_track_forward_velocity");
   table.index("episode/reward_action_rate");
-  ASSERT_GE(table.rows.size(), 3u);
-  const double first = table.rows.front()[column];
-  const double last = table.rows.back()[column];
-  EXPECT_GT(last, first + 10.0) << "first " << first << ", last " << last;
+  ASSERT_GE(table.rows.size(), 6u);
+  // Means of the first and last three iterations (one iteration's mean is noisy); measured:
+  // about 43 then 59 (episodes of at most 200 steps, up to 5.5 per step).
+  const auto mean_of = [&](std::size_t begin) {
+    return (table.rows[begin][column] + table.rows[begin + 1][column] +
+            table.rows[begin + 2][column]) /
+           3.0;
+  };
+  const double first = mean_of(0);
+  const double last = mean_of(table.rows.size() - 3);
+  EXPECT_GT(last, first + 8.0) << "first " << first << ", last " << last;
   EXPECT_TRUE(std::isfinite(table.rows.back()[tracking]));
   std::filesystem::remove_all(run_dir);
 }
