@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python typecheck-python bench train train-mujoco train-robust sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python typecheck-python bench train train-mujoco train-robust train-velocity sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
 
 all: build
 
@@ -77,6 +77,24 @@ train-robust:
 	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-MuJoCo-Pendulum --controller pd=linear:10,1,0,0.1 \
 	    --controller lqr --model robust=$$model --grid push=0:40:5,mass=0.7:1.3:0.1 \
 	    --episodes 10 --output $$run/robustness
+
+# Drive anywhere (docs/environments.md, "Velocity"): trains configs/velocity.yaml on MuJoCo,
+# then compares the policy with the classical balancer (lqr) on 20 episodes of 20 s with
+# random commands and pushes up to 20 N on MuJoCo, the policy on Bullet (sim-to-sim), and
+# draws commanded against measured velocities.
+VELOCITY_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000 \
+  --env-option push_force=20 --env-option push_duration=0.2 --env-option push_interval=3 \
+  --env-option push_direction=any
+train-velocity:
+	$(MAKE) train TRAIN_CONFIG=configs/velocity.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
+	  RUN_DIR=runs/velocity-$(shell date +%Y%m%d-%H%M%S)
+	@run=$$(ls -td runs/velocity-* | head -n 1); model=$$(ls -t $$run/model_*.ckpt | head -n 1); \
+	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-MuJoCo-Velocity --model policy=$$model \
+	    --controller lqr $(VELOCITY_EVAL) --output $$run/velocity-mujoco && \
+	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-Bullet-Velocity --model policy=$$model \
+	    $(VELOCITY_EVAL) --output $$run/velocity-bullet && \
+	  $(BUILD_DIR)/upkie-rl rollout --env Upkie-MuJoCo-Velocity --model $$model \
+	    --commands configs/velocity_commands.csv --plot $$run/velocity --json
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done

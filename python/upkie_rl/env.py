@@ -15,7 +15,7 @@ from .spaces import NestedLayout, box, is_nested
 
 class UpkieEnv(gym.Env):
     """An upkie-rl environment (``Upkie-{Bullet,Mock,Spine}-{Servos,Pendulum,Gyropod,
-    ServosTask}``) stepped in C++.
+    ServosTask,Velocity}``) stepped in C++.
 
     Observations are float32 arrays (the Servos environment: upkie's nested dicts
     ``{joint: {key: array of shape (1,)}}``); rewards Python floats; ``terminated`` and

@@ -15,8 +15,10 @@ struct SupervisorLimits {
   double joint_velocity_factor = 1.2;
   /// Rate limit of velocity commands (the wheels'), change per second [rad/s^2].
   double max_velocity_command_rate = 2000.0;
-  /// Rate limit of position commands (the legs'), change per second [rad/s].
-  double max_position_command_rate = 6.0;
+  /// Rate limit of position commands (the legs'), change per second [rad/s]: 2 rev/s, the
+  /// velocity limit Upkie configures on its leg servos (a lower one destabilises the
+  /// servos-balance test policy, which moves its legs to balance).
+  double max_position_command_rate = 4.0 * 3.14159265358979323846;
   /// Cap of every command's maximum_torque [N.m]; never above the joint's effort, the
   /// spine's own limit (0: the effort).
   double max_torque = 0.0;

@@ -22,6 +22,7 @@
 #include "apps/gnuplot_figure.hpp"
 #include "apps/policy_controller.hpp"
 #include "apps/robustness_grid.hpp"
+#include "apps/tracking_report.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/episode_runner.hpp"
 #include "envs/evaluation_start.hpp"
@@ -59,6 +60,7 @@ struct CellResult {
   double mean_return = 0.0;
   double mean_length = 0.0;
   bool identical = false;  ///< Every episode had the same return and length.
+  EpisodeSummary summary;  ///< All of it (tracking figures of velocity tasks).
 };
 
 /// "label=value" splits at the first '=' when a label is given; else the label is derived.
@@ -124,6 +126,7 @@ CellResult evaluate_cell(const EvaluateOptions& options, const Contender& conten
   result.successes = summary.successes;
   result.mean_return = summary.mean_return;
   result.mean_length = summary.mean_length;
+  result.summary = summary;
   return result;
 }
 
@@ -168,6 +171,21 @@ std::string percent(int successes, int episodes) {
   return out.str();
 }
 
+/// The episodes of every cell as one summary (tracking errors pooled over their steps).
+EpisodeSummary pooled_summary(const std::vector<CellResult>& results) {
+  EpisodeSummary pooled;
+  int falls = 0;
+  for (const CellResult& cell : results) {
+    pooled.episodes += cell.summary.episodes;
+    pooled.successes += cell.summary.successes;
+    falls += cell.summary.episodes - cell.summary.successes;
+    pooled.tracking += cell.summary.tracking;
+  }
+  pooled.has_tracking = pooled.tracking.active;
+  pooled.fall_rate = pooled.episodes > 0 ? static_cast<double>(falls) / pooled.episodes : 0.0;
+  return pooled;
+}
+
 /// The grid of one contender: rows the first axis (or one row), columns the second.
 void print_table(std::ostream& out, const Contender& contender, const std::vector<GridAxis>& axes,
                  const std::vector<CellResult>& results, int episodes) {
@@ -198,7 +216,10 @@ void print_table(std::ostream& out, const Contender& contender, const std::vecto
   }
   out << "overall " << percent(total, episodes * static_cast<int>(results.size())) << " (" << total
       << "/" << episodes * results.size() << " episodes), mean return " << std::fixed
-      << std::setprecision(1) << mean_return << std::defaultfloat << "\n\n";
+      << std::setprecision(1) << mean_return << std::defaultfloat << "\n";
+  const std::string tracking = tracking_text(pooled_summary(results));
+  if (!tracking.empty()) out << tracking << '\n';
+  out << '\n';
 }
 
 nlohmann::json summary_json(const EvaluateOptions& options,
@@ -229,13 +250,16 @@ nlohmann::json summary_json(const EvaluateOptions& options,
         values[axes[a].name] = axes[a].values[cells[k][a]];
       const CellResult& cell = results[c][k];
       successes += cell.successes;
-      entry["cells"].push_back(
-          {{"values", values},
-           {"successes", cell.successes},
-           {"success_rate", static_cast<double>(cell.successes) / options.episodes},
-           {"mean_return", cell.mean_return},
-           {"mean_length", cell.mean_length}});
+      nlohmann::json cell_json = {
+          {"values", values},
+          {"successes", cell.successes},
+          {"success_rate", static_cast<double>(cell.successes) / options.episodes},
+          {"mean_return", cell.mean_return},
+          {"mean_length", cell.mean_length}};
+      add_tracking_json(cell_json, cell.summary);
+      entry["cells"].push_back(cell_json);
     }
+    add_tracking_json(entry, pooled_summary(results[c]));
     entry["successes"] = successes;
     entry["success_rate"] =
         static_cast<double>(successes) / static_cast<double>(options.episodes * cells.size());

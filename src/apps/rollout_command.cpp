@@ -12,15 +12,19 @@
 
 #include "apps/commands.hpp"
 #include "apps/controller_option.hpp"
-#include "apps/option_checks.hpp"
-#include "apps/record_file.hpp"
+#include "apps/gnuplot_figure.hpp"
 #include "apps/live_view.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/policy_controller.hpp"
+#include "apps/record_file.hpp"
+#include "apps/tracking_report.hpp"
 #include "apps/video_recorder.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/episode_runner.hpp"
 #include "envs/evaluation_start.hpp"
 #include "envs/registry.hpp"
+#include "envs/velocity_command_schedule.hpp"
+#include "envs/velocity_env.hpp"
 #include "sim/observation_dict.hpp"
 
 namespace upkie_rl::apps {
@@ -39,6 +43,8 @@ struct RolloutOptions {
   bool json = false;
   bool info = false;
   bool exact_start = false;
+  std::string commands_path;  // velocity tasks: scripted commands (time, vx, wz)
+  std::string plot_prefix;    // velocity tasks: commanded vs measured figures of episode 0
   VideoOptions video;
   LiveViewOptions view;
 };
@@ -48,6 +54,13 @@ void add_video_frame(VideoRecorder& video, const Env& env, double episode_return
   const Observation* full = env.full_observation();
   if (full == nullptr || !full->has_sim) {
     throw std::runtime_error("--video needs a simulated environment (Bullet, MuJoCo or Mock)");
+  }
+  const VelocityEnv* velocity = find_velocity_env(env);
+  if (velocity != nullptr) {
+    const BaseVelocity measured = velocity->measured_velocity();
+    video.add(robot_pose(*full), full->time, episode_return, full->base_orientation.pitch,
+              &velocity->command(), &measured);
+    return;
   }
   video.add(robot_pose(*full), full->time, episode_return, full->base_orientation.pitch);
 }
@@ -60,6 +73,39 @@ std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& option
   if (spec != options.controller) std::cout << options.controller << ": " << spec << std::endl;
   return make_builtin_controller(spec, env);
 }
+
+/// Commanded and measured velocities of one episode, for --plot.
+struct VelocityTrace {
+  std::vector<double> time;
+  std::vector<double> commanded_forward, measured_forward, commanded_yaw, measured_yaw;
+
+  void add(double t, const VelocityEnv& env) {
+    const VelocityCommand& command = env.last_step_command();
+    const BaseVelocity velocity = env.measured_velocity();
+    time.push_back(t);
+    commanded_forward.push_back(command.forward_velocity);
+    measured_forward.push_back(velocity.forward_velocity);
+    commanded_yaw.push_back(command.yaw_rate);
+    measured_yaw.push_back(velocity.yaw_rate);
+  }
+
+  /// <prefix>_forward_velocity.png and <prefix>_yaw_rate.png.
+  void draw(const std::string& prefix, const std::string& title) const {
+    const auto figure = [&](const char* name, const char* label, const std::vector<double>& wanted,
+                            const std::vector<double>& measured) {
+      CurvesFigure out;
+      out.output = prefix + "_" + name + ".png";
+      out.title = title;
+      out.x_label = "time [s]";
+      out.y_label = label;
+      out.curves = {{"commanded", time, wanted}, {"measured", time, measured}};
+      draw_curves_figure(out);
+      std::cout << "figure " << out.output.string() << std::endl;
+    };
+    figure("forward_velocity", "forward velocity [m/s]", commanded_forward, measured_forward);
+    figure("yaw_rate", "yaw rate [rad/s]", commanded_yaw, measured_yaw);
+  }
+};
 
 void run_rollout(const RolloutOptions& options) {
   EnvOptions env_options = parse_env_options(options.env_options);
@@ -79,6 +125,17 @@ void run_rollout(const RolloutOptions& options) {
   }
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
   std::unique_ptr<Controller> controller = make_rollout_controller(options, env_options, *env);
+  VelocityEnv* velocity = find_velocity_env(*env);
+  if (velocity == nullptr && (!options.commands_path.empty() || !options.plot_prefix.empty())) {
+    throw std::invalid_argument(
+        "--commands and --plot need a velocity task (Upkie-*-Velocity), not " + options.env_id);
+  }
+  std::optional<VelocityCommandSchedule> schedule;
+  if (!options.commands_path.empty()) {
+    schedule.emplace(VelocityCommandSchedule::load(options.commands_path));
+  }
+  if (!options.plot_prefix.empty()) find_gnuplot();  // refuse at once, not after the work
+  VelocityTrace trace;
   std::optional<LiveView> view;
   if (options.view.enabled) {
     if (env->full_observation() == nullptr) {
@@ -103,9 +160,12 @@ void run_rollout(const RolloutOptions& options) {
   std::vector<float> action(env->action_space().size());
   std::vector<double> returns;
   std::vector<int> lengths;
+  std::vector<EpisodeOutcome> outcomes;
   for (int episode = 0; episode < options.episodes; ++episode) {
+    if (schedule) velocity->set_command_override(schedule->at(0.0));
     env->reset(options.seed + static_cast<std::uint64_t>(episode), observation);
     controller->reset();
+    EpisodeOutcome outcome;
     double total = 0.0;
     if (video) {
       video->start_episode(episode);
@@ -118,18 +178,30 @@ void run_rollout(const RolloutOptions& options) {
       controller->act(observation, action);
       if (view) view->publish(*env->full_observation(), length, total, action);
       if (recorder) recorder->before_step(*env, observation);
+      // The observation this step returns shows the command of the next one.
+      if (schedule) velocity->set_command_override(schedule->at((length + 1) * env->timestep()));
       const StepResult result = env->step(action, observation);
       if (recorder) recorder->after_step(episode, length, action, result);
       total += result.reward;
       ++length;
+      if (velocity != nullptr) {
+        outcome.tracking.add(*velocity, result.terminated);
+        if (episode == 0 && !options.plot_prefix.empty()) {
+          trace.add(length * env->timestep(), *velocity);
+        }
+      }
       if (video) add_video_frame(*video, *env, total);
       if (result.terminated || result.truncated) {
         ending = result.terminated ? "terminated" : "truncated";
+        outcome.terminated = result.terminated;
         break;
       }
     }
     returns.push_back(total);
     lengths.push_back(length);
+    outcome.total_reward = total;
+    outcome.length = length;
+    outcomes.push_back(outcome);
     std::cout << "episode " << episode << ": return " << total << ", length " << length << " ("
               << ending << ")" << std::endl;
     if (options.info) {
@@ -145,8 +217,11 @@ void run_rollout(const RolloutOptions& options) {
               << options.video.fps << " frames/s" << std::endl;
   }
 
-  std::vector<EpisodeOutcome> outcomes;
-  for (std::size_t e = 0; e < returns.size(); ++e) outcomes.push_back({returns[e], lengths[e]});
+  if (!options.plot_prefix.empty()) {
+    trace.draw(options.plot_prefix,
+               options.env_id +
+                   ", episode 0: " + (options.model.empty() ? options.controller : options.model));
+  }
   const EpisodeSummary summary = summarize_episodes(outcomes);
   const double mean = summary.mean_return;
   const double mean_length = summary.mean_length;
@@ -155,11 +230,14 @@ void run_rollout(const RolloutOptions& options) {
   if (!identical.empty()) std::cerr << "upkie-rl: warning: " << identical << std::endl;
   std::cout << "mean return " << mean << " +- " << std_return << " over " << returns.size()
             << " episodes, mean length " << mean_length << std::endl;
+  const std::string tracking = tracking_text(summary);
+  if (!tracking.empty()) std::cout << tracking << std::endl;
   if (options.json) {
-    const nlohmann::json summary = {{"episodes", returns.size()}, {"mean_return", mean},
-                                    {"std_return", std_return},   {"mean_length", mean_length},
-                                    {"returns", returns},         {"lengths", lengths}};
-    std::cout << summary.dump() << std::endl;
+    nlohmann::json json = {{"episodes", returns.size()}, {"mean_return", mean},
+                           {"std_return", std_return},   {"mean_length", mean_length},
+                           {"returns", returns},         {"lengths", lengths}};
+    add_tracking_json(json, summary);
+    std::cout << json.dump() << std::endl;
   }
 }
 
@@ -192,6 +270,14 @@ void add_rollout_command(CLI::App& app) {
       ->check(kNonEmptyPath);
   add_video_options(*command, options->video);
   add_live_view_options(*command, options->view, true);
+  command
+      ->add_option("--commands", options->commands_path,
+                   "Velocity tasks: scripted commands, a CSV of rows time,vx,wz ([s], [m/s], "
+                   "[rad/s]), each held until the next row's time")
+      ->check(CLI::ExistingFile);
+  command->add_option("--plot", options->plot_prefix,
+                      "Velocity tasks: draw commanded against measured velocities of episode 0 "
+                      "in PREFIX_forward_velocity.png and PREFIX_yaw_rate.png");
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
   command->add_flag("--exact-start", options->exact_start, kExactStartHelp);
   command->add_flag("--info", options->info,

@@ -27,6 +27,16 @@ FrameCaption episode_caption(int episode, double time, double episode_return, do
   return {"episode\ntime\nreturn\npitch", values};
 }
 
+void append_velocity_caption(FrameCaption& caption, const VelocityCommand& command,
+                             const BaseVelocity& measured) {
+  char values[96];
+  std::snprintf(values, sizeof(values), "\n%+.2f m/s %+.2f rad/s\n%+.2f m/s %+.2f rad/s",
+                command.forward_velocity, command.yaw_rate, measured.forward_velocity,
+                measured.yaw_rate);
+  caption.titles += "\ncommand\nmeasured";
+  caption.values += values;
+}
+
 void add_video_options(CLI::App& command, VideoOptions& options) {
   command
       .add_option("--video", options.path,
@@ -59,10 +69,16 @@ void VideoRecorder::start_episode(int episode) {
   clock_.start_episode();
 }
 
-void VideoRecorder::add(const RobotPose& pose, double time, double episode_return, double pitch) {
+void VideoRecorder::add(const RobotPose& pose, double time, double episode_return, double pitch,
+                        const VelocityCommand* command, const BaseVelocity* measured) {
   if (!clock_.take(time)) return;
-  const FrameCaption caption =
-      options_.overlay ? episode_caption(episode_, time, episode_return, pitch) : FrameCaption{};
+  FrameCaption caption;
+  if (options_.overlay) {
+    caption = episode_caption(episode_, time, episode_return, pitch);
+    if (command != nullptr && measured != nullptr) {
+      append_velocity_caption(caption, *command, *measured);
+    }
+  }
   writer_.write(renderer_.render(pose, caption.titles, caption.values));
 }
 

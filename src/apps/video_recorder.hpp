@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "apps/frame_clock.hpp"
+#include "envs/velocity_command.hpp"
 #include "render/robot_renderer.hpp"
 #include "render/video_writer.hpp"
 
@@ -20,6 +21,10 @@ struct FrameCaption {
 
 /// "episode\ntime\nreturn\npitch" and their values ("3", "1.25 s", "-12.5", "+0.012 rad").
 FrameCaption episode_caption(int episode, double time, double episode_return, double pitch);
+
+/// Adds the "command" and "measured" lines of a velocity task ("+0.50 m/s +0.10 rad/s").
+void append_velocity_caption(FrameCaption& caption, const VelocityCommand& command,
+                             const BaseVelocity& measured);
 
 /// Settings of `--video`.
 struct VideoOptions {
@@ -38,8 +43,8 @@ void add_video_options(CLI::App& command, VideoOptions& options);
 
 /// Renders the robot at `fps` frames per simulated second: a step becomes a frame when its
 /// time reaches the next frame's, so the video plays in real time whatever the agent rate.
-/// Each frame shows the episode, time, return so far and pitch unless options.overlay is
-/// false.
+/// Each frame shows the episode, time, return so far and pitch (and, for a velocity task,
+/// the command beside the measured velocity) unless options.overlay is false.
 class VideoRecorder {
  public:
   /// Checks the path and starts the renderer and the encoder.
@@ -49,8 +54,10 @@ class VideoRecorder {
   /// Starts episode `episode`: its first frame is at its time 0.
   void start_episode(int episode);
 
-  /// Offers the state at simulated time `time` [s] of the current episode.
-  void add(const RobotPose& pose, double time, double episode_return, double pitch);
+  /// Offers the state at simulated time `time` [s] of the current episode; a velocity
+  /// task's frames also show its command and the measured velocity (`command`, `measured`).
+  void add(const RobotPose& pose, double time, double episode_return, double pitch,
+           const VelocityCommand* command = nullptr, const BaseVelocity* measured = nullptr);
 
   /// Finishes the file. @throws RenderError when the encoder failed.
   void close();

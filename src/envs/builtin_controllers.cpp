@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "envs/lqr_design.hpp"
+#include "envs/velocity_balancer.hpp"
+#include "envs/velocity_env.hpp"
 
 namespace upkie_rl {
 
@@ -86,8 +88,11 @@ std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, con
   if (spec == "zero") return std::make_unique<ZeroController>(env);
   constexpr std::string_view kLinearPrefix = "linear:";
   if (spec.rfind(kLinearPrefix, 0) == 0) {
-    return std::make_unique<LinearController>(
-        env, parse_numbers<4>(spec, spec.substr(kLinearPrefix.size()), kLinearExpected));
+    const std::array<float, 4> gains =
+        parse_numbers<4>(spec, spec.substr(kLinearPrefix.size()), kLinearExpected);
+    // The velocity task has no pendulum state: the same law in error coordinates drives it.
+    if (find_velocity_env(env) != nullptr) return std::make_unique<VelocityBalancer>(env, gains);
+    return std::make_unique<LinearController>(env, gains);
   }
   throw std::invalid_argument("unknown controller \"" + spec + "\"; " + kValidSpecs);
 }

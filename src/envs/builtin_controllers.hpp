@@ -41,7 +41,8 @@ class LinearController final : public Controller {
   float high_ = 0.0f;
 };
 
-/// "zero" or "linear:k1,k2,k3,k4" (see resolve_controller_spec for "lqr").
+/// "zero" or "linear:k1,k2,k3,k4" (see resolve_controller_spec for "lqr"). On a velocity
+/// task (Upkie-*-Velocity) the linear law is a VelocityBalancer.
 /// @throws std::invalid_argument naming the spec and listing the valid ones.
 std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, const Env& env);
 

@@ -9,6 +9,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "envs/box_space.hpp"
 #include "sim/observation.hpp"
@@ -73,6 +74,12 @@ class Env {
   /// pushes) by `scale` in [0, 1] from the next reset on: the curriculum of a training run
   /// ramps it from 0 to 1. Wrappers pass it on; environments without randomisation ignore it.
   virtual void set_randomization_scale(double scale) { static_cast<void>(scale); }
+
+  /// Names of the terms the reward is the sum of, when the environment breaks it down
+  /// (training logs each term's episode sum); empty otherwise.
+  virtual std::span<const std::string_view> reward_term_names() const { return {}; }
+  /// The terms of the last step's reward, in the order of reward_term_names().
+  virtual std::span<const double> reward_terms() const { return {}; }
 
   /// Duration of one step [s].
   virtual double timestep() const = 0;

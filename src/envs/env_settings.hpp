@@ -17,6 +17,8 @@
 #include "envs/pendulum_env.hpp"
 #include "envs/perturbation_settings.hpp"
 #include "envs/servos_task_env.hpp"
+#include "envs/velocity_command_sampler.hpp"
+#include "envs/velocity_task.hpp"
 #include "model/inertia_source.hpp"
 #include "sim/simulation.hpp"
 #include "spine/spine_backend.hpp"
@@ -26,7 +28,7 @@ namespace upkie_rl {
 /// The backend named by an id (`Upkie-<Backend>-<Kind>`).
 enum class EnvBackend { kBullet, kMujoco, kMock, kSpine };
 /// The task named by an id.
-enum class EnvKind { kServos, kPendulum, kGyropod, kServosTask };
+enum class EnvKind { kServos, kPendulum, kGyropod, kServosTask, kVelocity };
 
 /// A parsed environment id.
 struct EnvId {
@@ -48,6 +50,8 @@ struct EnvSettings {
   PendulumConfig pendulum;
   GyropodConfig gyropod;
   ServosTaskConfig task;
+  VelocityTaskConfig velocity;
+  VelocityCommandRanges commands;
 };
 
 /// Parses `Upkie-<Backend>-<Kind>` (`Upkie-PyBullet-*` is an alias of `Upkie-Bullet-*`).

@@ -28,6 +28,10 @@ class EnvWrapper : public Env {
   const Observation* full_observation() const override { return env_->full_observation(); }
   void neutral_action(std::span<float> action) const override { env_->neutral_action(action); }
   void set_randomization_scale(double scale) override { env_->set_randomization_scale(scale); }
+  std::span<const std::string_view> reward_term_names() const override {
+    return env_->reward_term_names();
+  }
+  std::span<const double> reward_terms() const override { return env_->reward_terms(); }
   double timestep() const override { return env_->timestep(); }
   int physics_steps_per_step() const override { return env_->physics_steps_per_step(); }
 

@@ -9,6 +9,7 @@
 
 #include "envs/controller.hpp"
 #include "envs/env.hpp"
+#include "envs/velocity_tracking.hpp"
 
 namespace upkie_rl {
 
@@ -17,6 +18,8 @@ struct EpisodeOutcome {
   double total_reward = 0.0;
   int length = 0;           ///< Steps taken.
   bool terminated = false;  ///< The task ended it (a fall); otherwise a time limit did.
+  /// Velocity tasks: tracking errors over the episode (no steps otherwise).
+  VelocityTracking tracking;
 };
 
 /// Resets `env` with `seed`, then steps it with `controller` until the episode ends or
@@ -31,6 +34,11 @@ struct EpisodeSummary {
   double mean_return = 0.0;
   double std_return = 0.0;  ///< Population standard deviation.
   double mean_length = 0.0;
+  /// Velocity tasks: the tracking errors pooled over every step of every episode.
+  bool has_tracking = false;
+  VelocityTracking tracking;
+  /// Share of episodes that were terminated (falls).
+  double fall_rate = 0.0;
 };
 
 EpisodeSummary summarize_episodes(const std::vector<EpisodeOutcome>& outcomes);

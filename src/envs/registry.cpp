@@ -10,6 +10,7 @@
 #include "envs/observation_noise.hpp"
 #include "envs/servos_env.hpp"
 #include "envs/time_limit.hpp"
+#include "envs/velocity_env.hpp"
 
 namespace upkie_rl {
 
@@ -33,10 +34,11 @@ constexpr std::array<BackendName, 4> kBackends = {{
     {"Mock", Backend::kMock},
     {"Spine", Backend::kSpine},
 }};
-constexpr std::array<KindName, 4> kKinds = {{{"Servos", Kind::kServos},
+constexpr std::array<KindName, 5> kKinds = {{{"Servos", Kind::kServos},
                                              {"Pendulum", Kind::kPendulum},
                                              {"Gyropod", Kind::kGyropod},
-                                             {"ServosTask", Kind::kServosTask}}};
+                                             {"ServosTask", Kind::kServosTask},
+                                             {"Velocity", Kind::kVelocity}}};
 
 std::string registered_list() {
   std::string list;
@@ -66,6 +68,53 @@ void add_balance_options(OptionTable& table, BalanceRewardWeights& reward,
                    "reward weight of (second action difference)^2");
 }
 
+constexpr double kVelocityFrequency = 50.0;  // [Hz]
+constexpr int kVelocityEpisodeSteps = 1000;  // 20 s
+
+void add_velocity_options(OptionTable& table, VelocityTaskConfig& task,
+                          VelocityCommandRanges& commands) {
+  table.add_double("max_forward_velocity", &commands.max_forward_velocity, 0.0, kHuge,
+                   "random forward velocity commands in +-it [m/s]");
+  table.add_double("max_yaw_rate", &commands.max_yaw_rate, 0.0, kHuge,
+                   "random yaw rate commands in +-it [rad/s]");
+  table.add_double("zero_command_probability", &commands.zero_command_probability, 0.0, 1.0,
+                   "share of random commands that ask to stand still");
+  table.add_double("command_resample_time_min", &commands.resample_time_min, 0.0, kHuge,
+                   "a random command holds U(min, max) seconds [s]");
+  table.add_double("command_resample_time_max", &commands.resample_time_max, 0.0, kHuge,
+                   "longest hold of a random command [s], 0 for one command per episode");
+  table.add_double("wheel_velocity_scale", &task.wheel_velocity_scale, 1e-6, kHuge,
+                   "wheel velocity target at action 1 [rad/s]");
+  table.add_double("leg_action_scale", &task.leg_action_scale, 1e-6, 10.0,
+                   "hip and knee target offset from the default pose at action 1 [rad]");
+  table.add_double("leg_kp_scale", &task.leg_kp_scale, 0.0, ServosEnv::kMaxGainScale,
+                   "kp_scale of hips and knees");
+  table.add_double("leg_kd_scale", &task.leg_kd_scale, 0.0, ServosEnv::kMaxGainScale,
+                   "kd_scale of hips and knees");
+  table.add_double("wheel_kd_scale", &task.wheel_kd_scale, 0.0, ServosEnv::kMaxGainScale,
+                   "kd_scale of the wheels' velocity loop");
+  table.add_double("fall_tilt", &task.fall_tilt, 0.0, 3.2,
+                   "terminate when the base tilts more than it [rad]");
+  table.add_choice(
+      "terminate_on_contact", {"true", "false"},
+      [&task](std::size_t choice) { task.terminate_on_contact = choice == 0; },
+      "terminate when a part other than a wheel touches the floor");
+  VelocityRewardWeights& reward = task.reward;
+  table.add_double("w_track_forward_velocity", &reward.w_track_forward_velocity, 0.0, kHuge,
+                   "reward weight of forward velocity tracking");
+  table.add_double("w_track_yaw_rate", &reward.w_track_yaw_rate, 0.0, kHuge,
+                   "reward weight of yaw rate tracking");
+  table.add_double("w_upright", &reward.w_upright, 0.0, kHuge, "reward weight of uprightness");
+  table.add_double("w_pose", &reward.w_pose, 0.0, kHuge,
+                   "reward weight of the legs' closeness to the default pose");
+  table.add_double("w_action_rate", &reward.w_action_rate, 0.0, kHuge,
+                   "penalty weight of the squared action change");
+  table.add_double("forward_velocity_sigma", &reward.forward_velocity_sigma, 1e-6, kHuge,
+                   "width of the forward velocity tracking kernel [m/s]");
+  table.add_double("yaw_rate_sigma", &reward.yaw_rate_sigma, 1e-6, kHuge,
+                   "width of the yaw rate tracking kernel [rad/s]");
+}
+
 }  // namespace
 
 EnvId parse_env_id(const std::string& id) {
@@ -92,6 +141,14 @@ OptionTable env_option_table(const EnvId& id, EnvSettings& settings) {
   const Kind kind = id.kind;
   const bool timed = kind == Kind::kPendulum || kind == Kind::kServosTask;
   settings.max_episode_steps = timed ? 300 : 0;
+  if (kind == Kind::kVelocity) {
+    // The policy runs at 50 Hz (as mjlab_upkie's); episodes of 20 s. Physics stays at the
+    // 1 ms reference on both engines: at 5 ms MuJoCo's wheel velocity loop and tire contact
+    // go unstable (the pendulum's balancer falls), at 2 ms the wheel speeds jitter by
+    // ±0.5 m/s and the balancer tracks 4x worse than at 1 ms.
+    settings.frequency = kVelocityFrequency;
+    settings.max_episode_steps = kVelocityEpisodeSteps;
+  }
   OptionTable table;
   table.add_double("frequency", &settings.frequency, 1.0, 10000.0, "agent rate [Hz]");
   if (id.backend == Backend::kSpine) {
@@ -191,6 +248,9 @@ OptionTable env_option_table(const EnvId& id, EnvSettings& settings) {
                        "fraction of each leg joint's range spanned by the action");
       break;
     }
+    case Kind::kVelocity:
+      add_velocity_options(table, settings.velocity, settings.commands);
+      break;
   }
   return table;
 }
@@ -213,6 +273,7 @@ EnvSettings parse_env_settings(const EnvId& id, const std::string& name,
   try {
     settings.perturbations.validate();
     settings.action_lag.validate();
+    if (id.kind == Kind::kVelocity) settings.commands.validate();
   } catch (const std::invalid_argument& error) {
     throw std::invalid_argument(name + ": " + error.what());
   }
@@ -244,6 +305,9 @@ std::unique_ptr<Env> assemble_env(const EnvId& id, const EnvSettings& settings,
       break;
     case Kind::kServosTask:
       env = std::make_unique<ServosTaskEnv>(std::move(servos), settings.task);
+      break;
+    case Kind::kVelocity:
+      env = std::make_unique<VelocityEnv>(std::move(servos), settings.velocity, settings.commands);
       break;
   }
   if (settings.action_lag.any()) {

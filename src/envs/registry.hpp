@@ -1,10 +1,11 @@
 #pragma once
 /// @file
 /// The registry of environment ids: `Upkie-{Bullet,MuJoCo,Mock,Spine}-{Servos,Pendulum,
-/// Gyropod,ServosTask}`, with `Upkie-PyBullet-*` accepted as an alias of `Upkie-Bullet-*`.
+/// Gyropod,ServosTask,Velocity}`, with `Upkie-PyBullet-*` accepted as an alias of `Upkie-Bullet-*`.
 ///
 /// Kinds: Servos (ServosEnv), Pendulum (PendulumEnv + TimeLimit 300), Gyropod (GyropodEnv),
-/// ServosTask (the seed's full-servos task chain: ServosTaskEnv + TimeLimit 300).
+/// ServosTask (the seed's full-servos task chain: ServosTaskEnv + TimeLimit 300),
+/// Velocity (VelocityEnv at 50 Hz + TimeLimit 1000, 20 s).
 /// Options (key=value, see env_option_help()) are parsed into typed settings once, when the
 /// environment or factory is made.
 

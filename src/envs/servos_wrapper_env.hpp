@@ -17,6 +17,7 @@ namespace upkie_rl {
 class ServosWrapperEnv : public Env {
  public:
   ServosEnv& servos() { return *servos_; }
+  const ServosEnv& servos() const { return *servos_; }
 
   const BoxSpace& observation_space() const override { return observation_space_; }
   const BoxSpace& action_space() const override { return action_space_; }

@@ -52,6 +52,7 @@ Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
       buffer_(config.steps_per_env(), num_envs_, observation_size_, action_size_),
       inference_(*policy_, num_envs_),
       gradient_(*policy_, std::min(config.ppo.batch_size, buffer_.size())),
+      reward_terms_(env.reward_term_names().size()),
       rng_(config.seed),
       last_observations_(num_envs_ * observation_size_),
       clipped_actions_(num_envs_ * action_size_),
@@ -136,6 +137,11 @@ void Ppo::collect_rollout() {
       dones[i] = (terminated || truncated) ? 1.0f : 0.0f;
       any_truncated = any_truncated || truncated;
       if (terminated || step.truncated[i] != 0) {
+        const std::size_t num_terms = reward_terms_.num_terms();
+        if (num_terms > 0) {
+          reward_terms_.add(std::span<const double>(step.episode_reward_terms)
+                                .subspan(static_cast<std::size_t>(i) * num_terms, num_terms));
+        }
         if (communicator_->world_size() == 1) {
           episodes_.add(step.episode_returns[i], step.episode_lengths[i]);
         } else {

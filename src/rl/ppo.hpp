@@ -17,6 +17,7 @@
 #include "rl/flat_adam.hpp"
 #include "rl/linear_schedule.hpp"
 #include "rl/ppo_gradient.hpp"
+#include "rl/reward_term_statistics.hpp"
 #include "rl/rollout_buffer.hpp"
 #include "rl/training_config.hpp"
 #include "vec/vector_env.hpp"
@@ -96,6 +97,9 @@ class Ppo {
   FlatAdam& optimizer() { return optimizer_; }
   const FlatAdam& optimizer() const { return optimizer_; }
   const EpisodeStatistics& episodes() const { return episodes_; }
+  /// Each reward term's episode sum over the last episodes of this rank's environments
+  /// (VectorEnv::reward_term_names(); not gathered over DD-PPO ranks).
+  const RewardTermStatistics& reward_terms() const { return reward_terms_; }
   const PpoTimings& timings() const { return timings_; }
   const RolloutBuffer& buffer() const { return buffer_; }
   /// The learning rate the schedule gives after `timesteps`.
@@ -120,6 +124,7 @@ class Ppo {
   PolicyInference inference_;
   PpoGradient gradient_;  ///< Loss and gradient of a minibatch, buffers sized once.
   EpisodeStatistics episodes_;
+  RewardTermStatistics reward_terms_;
   PpoTimings timings_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_;

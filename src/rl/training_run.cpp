@@ -89,6 +89,10 @@ std::string local_timestamp() {
   return buffer;
 }
 
+std::string TrainingRun::reward_term_tag(std::string_view term) {
+  return "episode/reward_" + std::string(term);
+}
+
 std::vector<std::string> TrainingRun::logged_tags() {
   return {"time/total_timesteps",
           "time/iterations",
@@ -274,7 +278,11 @@ std::filesystem::path TrainingRun::train(
   std::optional<ScalarCsvWriter> csv;
   if (writes_outputs()) {
     events.emplace(run_dir_);
-    csv.emplace(run_dir_ / "progress.csv", logged_tags(), resumed_at_);
+    std::vector<std::string> tags = logged_tags();
+    for (const std::string_view name : env_->reward_term_names()) {
+      tags.push_back(reward_term_tag(name));
+    }
+    csv.emplace(run_dir_ / "progress.csv", tags, resumed_at_);
   }
   const auto sum_over_ranks = [this](std::span<double> values) {
     communicator_->sum(torch::from_blob(values.data(), {static_cast<std::int64_t>(values.size())},
@@ -332,6 +340,13 @@ std::filesystem::path TrainingRun::train(
     if (ppo_->episodes().size() > 0) {
       scalars.push_back({"rollout/ep_rew_mean", f(progress.mean_return)});
       scalars.push_back({"rollout/ep_len_mean", f(progress.mean_length)});
+    }
+    const RewardTermStatistics& terms = ppo_->reward_terms();
+    if (terms.size() > 0) {
+      const std::span<const std::string_view> names = env_->reward_term_names();
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        scalars.push_back({reward_term_tag(names[k]), f(terms.mean(k))});
+      }
     }
     if (events) {
       events->add_scalars(progress.timesteps, scalars, wall_time());

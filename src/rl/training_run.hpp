@@ -101,6 +101,9 @@ class TrainingRun {
 
   /// Tags of progress.csv, in order.
   static std::vector<std::string> logged_tags();
+  /// `episode/reward_<term>`: the tag of a reward term's mean episode sum (logged after
+  /// logged_tags() when the environment breaks its reward down).
+  static std::string reward_term_tag(std::string_view term);
 
  private:
   struct ResumeTag {};

@@ -324,7 +324,7 @@ void BulletSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const
                                            com_in_world.translation());
 }
 
-bool BulletSimulation::tire_touches_floor() const {
+bool BulletSimulation::floor_contact(bool tires) const {
   if (!world_->ground) return false;
   const int num_manifolds = world_->dispatcher.getNumManifolds();
   for (int m = 0; m < num_manifolds; ++m) {
@@ -333,12 +333,18 @@ bool BulletSimulation::tire_touches_floor() const {
     const btCollisionObject* body1 = manifold->getBody1();
     const btCollisionObject* other =
         body0 == world_->ground.get() ? body1 : (body1 == world_->ground.get() ? body0 : nullptr);
-    if (other == nullptr || (other != world_->tires[0] && other != world_->tires[1])) continue;
+    if (other == nullptr) continue;
+    const bool tire = other == world_->tires[0] || other == world_->tires[1];
+    if (tire != tires) continue;
     for (int p = 0; p < manifold->getNumContacts(); ++p) {
       if (manifold->getContactPoint(p).getDistance() < kTireContactDistance) return true;
     }
   }
   return false;
 }
+
+bool BulletSimulation::tire_touches_floor() const { return floor_contact(/*tires=*/true); }
+
+bool BulletSimulation::non_tire_touches_floor() const { return floor_contact(/*tires=*/false); }
 
 }  // namespace upkie_rl

@@ -41,6 +41,9 @@ class BulletSimulation final : public PhysicsSimulation {
   void step_physics(const ServoAction& action, bool braked) override;
   void measure(MeasuredJoints& joints, MeasuredBase& base) const override;
   bool tire_touches_floor() const override;
+  bool non_tire_touches_floor() const override;
+  /// Whether a tire (`tires`) or another robot part (`!tires`) is within 1 mm of the floor.
+  bool floor_contact(bool tires) const;
 
   std::shared_ptr<const RobotModel> model_;
   BulletConfig config_;

@@ -129,21 +129,32 @@ void MujocoSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const
       Eigen::Vector3d(root_velocity[3], root_velocity[4], root_velocity[5]);
 }
 
-bool MujocoSimulation::tire_touches_floor() const {
-  const MujocoRobotIndex& index = compiled_->index;
+namespace {
+
+/// Whether a geom of the robot that is (`tires`) or is not (`!tires`) a tire is within
+/// 1 mm of the floor (robot geoms collide with the floor only, never with each other).
+bool floor_contact(const mjData* d, const MujocoRobotIndex& index, bool tires) {
   if (index.floor_geom < 0) return false;
-  const mjData* d = data_.get();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& contact = d->contact[c];
     const int other = contact.geom[0] == index.floor_geom   ? contact.geom[1]
                       : contact.geom[1] == index.floor_geom ? contact.geom[0]
                                                             : -1;
-    if ((other == index.tire_geoms[0] || other == index.tire_geoms[1]) &&
-        contact.dist < kTireContactDistance) {
-      return true;
-    }
+    if (other < 0 || contact.dist >= kTireContactDistance) continue;
+    const bool tire = other == index.tire_geoms[0] || other == index.tire_geoms[1];
+    if (tire == tires) return true;
   }
   return false;
+}
+
+}  // namespace
+
+bool MujocoSimulation::tire_touches_floor() const {
+  return floor_contact(data_.get(), compiled_->index, /*tires=*/true);
+}
+
+bool MujocoSimulation::non_tire_touches_floor() const {
+  return floor_contact(data_.get(), compiled_->index, /*tires=*/false);
 }
 
 }  // namespace upkie_rl

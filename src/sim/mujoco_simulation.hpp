@@ -46,6 +46,7 @@ class MujocoSimulation final : public PhysicsSimulation {
   void step_physics(const ServoAction& action, bool braked) override;
   void measure(MeasuredJoints& joints, MeasuredBase& base) const override;
   bool tire_touches_floor() const override;
+  bool non_tire_touches_floor() const override;
 
   std::shared_ptr<const RobotModel> model_;
   MujocoConfig config_;

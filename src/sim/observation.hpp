@@ -50,6 +50,9 @@ struct WheelOdometryObservation {
 /// `floor_contact.*`.
 struct FloorContactObservation {
   bool contact = false;  ///< True when a tire touches the floor.
+  /// True when a part other than a tire (legs, base) touches the floor: ground truth that
+  /// physics backends fill (a real robot does not measure it; it stays false there).
+  bool non_wheel = false;
 };
 
 /// `sim.base.*`: ground truth of the base link, simulation only.

@@ -51,6 +51,7 @@ const Observation& PhysicsSimulation::advance(const ServoAction& action, bool br
   }
   try {
     sensors_.observe(joints, base, tire_touches_floor(), observation_);
+    observation_.floor_contact.non_wheel = non_tire_touches_floor();
   } catch (const SimulationDivergedError&) {
     diverged_ = true;
     throw;
@@ -68,6 +69,7 @@ const Observation& PhysicsSimulation::observe_reset() {
   MeasuredBase base;
   measure(joints, base);
   sensors_.reset(joints, base, tire_touches_floor(), observation_);
+  observation_.floor_contact.non_wheel = non_tire_touches_floor();
   return observation_;
 }
 

@@ -80,6 +80,8 @@ class PhysicsSimulation : public Simulation {
   virtual void measure(MeasuredJoints& joints, MeasuredBase& base) const = 0;
   /// Whether a tire is within 1 mm of the floor.
   virtual bool tire_touches_floor() const = 0;
+  /// Whether a part other than a tire touches the floor (floor_contact.non_wheel).
+  virtual bool non_tire_touches_floor() const = 0;
 
   /// Ends an engine's reset (which builds the variation() into its model): clears the base
   /// force, seeds the episode's noise and observes the state it set, at time 0.

@@ -31,6 +31,9 @@ EnvBatch::EnvBatch(std::vector<std::unique_ptr<Env>> envs, AutoresetMode autores
   running_returns_.assign(n, 0.0);
   running_lengths_.assign(n, 0);
   needs_reset_.assign(n, 0);
+  num_terms_ = envs_.front()->reward_term_names().size();
+  result_.episode_reward_terms.assign(n * num_terms_, 0.0);
+  running_terms_.assign(n * num_terms_, 0.0);
 }
 
 void EnvBatch::reset(std::size_t begin, std::size_t end, std::optional<std::uint64_t> seed) {
@@ -39,6 +42,8 @@ void EnvBatch::reset(std::size_t begin, std::size_t end, std::optional<std::uint
     envs_[i]->reset(seed ? std::optional<std::uint64_t>(*seed + i) : std::nullopt, row);
     running_returns_[i] = 0.0;
     running_lengths_[i] = 0;
+    std::fill_n(running_terms_.begin() + static_cast<std::ptrdiff_t>(i * num_terms_), num_terms_,
+                0.0);
     result_.terminated[i] = 0;
     result_.truncated[i] = 0;
     needs_reset_[i] = 0;
@@ -52,6 +57,18 @@ void EnvBatch::check_step(std::span<const float> actions) const {
                                 " components, expected " + std::to_string(envs_.size()) + " x " +
                                 std::to_string(action_size_));
   }
+}
+
+void EnvBatch::accumulate_reward_terms(std::size_t i) {
+  if (num_terms_ == 0) return;
+  const std::span<const double> terms = envs_[i]->reward_terms();
+  if (terms.size() != num_terms_) {
+    throw std::logic_error("vector env: environment " + std::to_string(i) + " gave " +
+                           std::to_string(terms.size()) + " reward terms, expected " +
+                           std::to_string(num_terms_));
+  }
+  double* sums = running_terms_.data() + i * num_terms_;
+  for (std::size_t k = 0; k < num_terms_; ++k) sums[k] += terms[k];
 }
 
 void EnvBatch::step(std::size_t begin, std::size_t end, std::span<const float> actions) {
@@ -74,6 +91,7 @@ void EnvBatch::step(std::size_t begin, std::size_t end, std::span<const float> a
     result_.truncated[i] = step.truncated;
     running_returns_[i] += step.reward;
     running_lengths_[i] += 1;
+    accumulate_reward_terms(i);
     if (step.terminated || step.truncated) {
       std::copy(observation, observation + observation_size_,
                 result_.final_observations.data() + i * observation_size_);
@@ -81,6 +99,9 @@ void EnvBatch::step(std::size_t begin, std::size_t end, std::span<const float> a
       result_.episode_lengths[i] = running_lengths_[i];
       running_returns_[i] = 0.0;
       running_lengths_[i] = 0;
+      double* terms = running_terms_.data() + i * num_terms_;
+      std::copy(terms, terms + num_terms_, result_.episode_reward_terms.data() + i * num_terms_);
+      std::fill(terms, terms + num_terms_, 0.0);
       if (autoreset_mode_ == AutoresetMode::kSameStep) {
         envs_[i]->reset(std::nullopt, row);
       } else {

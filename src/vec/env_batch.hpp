@@ -50,6 +50,9 @@ class EnvBatch {
   AutoresetMode autoreset_mode() const { return autoreset_mode_; }
 
  private:
+  /// Adds env i's last reward terms to its episode sums.
+  void accumulate_reward_terms(std::size_t i);
+
   std::vector<std::unique_ptr<Env>> envs_;
   AutoresetMode autoreset_mode_;
   std::vector<std::uint8_t> needs_reset_;  // kNextStep: the episode ended at the last step.
@@ -58,6 +61,8 @@ class EnvBatch {
   VectorStep result_;
   std::vector<double> running_returns_;
   std::vector<std::int64_t> running_lengths_;
+  std::size_t num_terms_ = 0;          // Env::reward_term_names().size()
+  std::vector<double> running_terms_;  // num_envs x num_terms_
   bool was_reset_ = false;
 };
 

@@ -31,6 +31,9 @@ class SyncVectorEnv final : public VectorEnv {
   /// Environment i (e.g. for its full observation).
   const Env& env(std::size_t i) const { return batch_.env(i); }
   void set_randomization_scale(double scale) override { batch_.set_randomization_scale(scale); }
+  std::span<const std::string_view> reward_term_names() const override {
+    return batch_.env(0).reward_term_names();
+  }
   const Observation* full_observation(std::size_t i) const override {
     return batch_.env(i).full_observation();
   }

@@ -38,6 +38,9 @@ class ThreadPoolVectorEnv final : public VectorEnv {
   std::size_t num_threads() const { return num_threads_; }
   const Env& env(std::size_t i) const { return batch_.env(i); }
   void set_randomization_scale(double scale) override { batch_.set_randomization_scale(scale); }
+  std::span<const std::string_view> reward_term_names() const override {
+    return batch_.env(0).reward_term_names();
+  }
   const Observation* full_observation(std::size_t i) const override {
     return batch_.env(i).full_observation();
   }

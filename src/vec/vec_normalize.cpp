@@ -99,6 +99,7 @@ const VectorStep& VecNormalize::step(std::span<const float> actions) {
   step_.truncated = inner.truncated;
   step_.episode_returns = inner.episode_returns;
   step_.episode_lengths = inner.episode_lengths;
+  step_.episode_reward_terms = inner.episode_reward_terms;
   step_.rewards = inner.rewards;
 
   if (training_ && config_.observations) observation_rms_.update(raw_observations_);

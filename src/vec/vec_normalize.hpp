@@ -88,6 +88,9 @@ class VecNormalize final : public VectorEnv {
   }
   const VectorStep& step(std::span<const float> actions) override;
   void set_randomization_scale(double scale) override { venv_->set_randomization_scale(scale); }
+  std::span<const std::string_view> reward_term_names() const override {
+    return venv_->reward_term_names();
+  }
 
  private:
   std::unique_ptr<VectorEnv> venv_;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "envs/box_space.hpp"
@@ -25,6 +26,9 @@ struct VectorStep {
   /// Raw (un-normalised) return and length of an episode that ended at this step.
   std::vector<double> episode_returns;
   std::vector<std::int64_t> episode_lengths;
+  /// num_envs x VectorEnv::reward_term_names().size(): each reward term summed over an
+  /// episode that ended at this step (raw, like episode_returns).
+  std::vector<double> episode_reward_terms;
 };
 
 /// When an environment whose episode ended is reset (Gymnasium's autoreset modes).
@@ -54,6 +58,10 @@ class VectorEnv {
   /// Steps every environment with its row of `actions` (num_envs x action_dim); envs
   /// whose episode ended are reset as the autoreset mode says (same step by default).
   virtual const VectorStep& step(std::span<const float> actions) = 0;
+
+  /// The environments' Env::reward_term_names() (empty when they do not break the reward
+  /// down).
+  virtual std::span<const std::string_view> reward_term_names() const { return {}; }
 
   /// Env::set_randomization_scale on every environment (between steps, never during one);
   /// vector envs of environments without randomisation ignore it.

@@ -30,6 +30,10 @@ TEST(AllocationFree, VectorStepsAllocateNothing) {
   EXPECT_EQ(allocations_over_steps(*pooled, 350), 0u);
   VecNormalize normalized(make_vector_env("Upkie-Mock-ServosTask", options, 2, 0), {});
   EXPECT_EQ(allocations_over_steps(normalized, 350), 0u);
+  // The velocity task sums its reward terms per episode as well.
+  VecNormalize velocity(
+      make_vector_env("Upkie-Mock-Velocity", {{"max_episode_steps", "100"}}, 2, 0), {});
+  EXPECT_EQ(allocations_over_steps(velocity, 350), 0u);
 }
 
 }  // namespace

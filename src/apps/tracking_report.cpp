@@ -1,0 +1,37 @@
+#include "apps/tracking_report.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace upkie_rl::apps {
+
+namespace {
+
+constexpr const char* kForwardKey = "tracking_rms_vx";
+constexpr const char* kYawKey = "tracking_rms_wz";
+constexpr const char* kFallRateKey = "fall_rate";
+
+nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+void add_tracking_json(nlohmann::json& json, const EpisodeSummary& summary) {
+  if (!summary.has_tracking) return;
+  json[kForwardKey] = number_or_null(summary.tracking.rms_forward());
+  json[kYawKey] = number_or_null(summary.tracking.rms_yaw());
+  json[kFallRateKey] = summary.fall_rate;
+}
+
+std::string tracking_text(const EpisodeSummary& summary) {
+  if (!summary.has_tracking) return "";
+  std::ostringstream text;
+  text << std::setprecision(3) << kForwardKey << ' ' << summary.tracking.rms_forward() << " m/s, "
+       << kYawKey << ' ' << summary.tracking.rms_yaw() << " rad/s, " << kFallRateKey << ' '
+       << summary.fall_rate << " (" << summary.tracking.steps << " steps up)";
+  return text.str();
+}
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,21 @@
+#pragma once
+/// @file
+/// The tracking figures of velocity tasks in the outputs of rollout and evaluate: one place
+/// for their keys and wording.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "envs/episode_runner.hpp"
+
+namespace upkie_rl::apps {
+
+/// Adds `tracking_rms_vx` [m/s], `tracking_rms_wz` [rad/s] and `fall_rate` to `json` when
+/// `summary` is of a velocity task (null for an RMS without any step up).
+void add_tracking_json(nlohmann::json& json, const EpisodeSummary& summary);
+
+/// "tracking_rms_vx 0.081 m/s, tracking_rms_wz 0.12 rad/s, fall_rate 0 (n steps up)", or ""
+/// when `summary` is not of a velocity task.
+std::string tracking_text(const EpisodeSummary& summary);
+
+}  // namespace upkie_rl::apps

@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// VelocityCommandSampler: the random commands of the velocity task, drawn at reset and
+/// redrawn during the episode.
+
+#include <cstdint>
+#include <random>
+
+#include "envs/velocity_command.hpp"
+
+namespace upkie_rl {
+
+/// Ranges of the random commands (environment options of the same names).
+struct VelocityCommandRanges {
+  double max_forward_velocity = 1.0;      ///< Forward velocity drawn in ± it [m/s].
+  double max_yaw_rate = 1.5;              ///< Yaw rate drawn in ± it [rad/s].
+  double zero_command_probability = 0.2;  ///< Share of draws that command standing still.
+  double resample_time_min = 2.0;         ///< A command holds U(min, max) seconds [s].
+  double resample_time_max = 5.0;         ///< 0 for min and max: one command per episode.
+
+  /// @throws std::invalid_argument naming the option at fault: a negative or non-finite
+  ///         value, a probability above 1, or resample_time_min above resample_time_max.
+  void validate() const;
+};
+
+/// Draws a command at reset, then a new one whenever the current one has held its drawn
+/// duration. Allocation-free; deterministic given its generator's seed.
+class VelocityCommandSampler {
+ public:
+  /// @throws std::invalid_argument as VelocityCommandRanges::validate.
+  explicit VelocityCommandSampler(const VelocityCommandRanges& ranges);
+
+  /// Re-seeds the generator (when `seed` is set) and draws the episode's first command.
+  void reset(const std::uint64_t* seed);
+
+  /// Advances time by `dt` [s]; returns true when a new command was drawn.
+  bool advance(double dt);
+
+  /// Multiplies the ranges of the next draws by `scale` in [0, 1] (a command curriculum).
+  void set_scale(double scale) { scale_ = scale; }
+
+  const VelocityCommand& command() const { return command_; }
+  const VelocityCommandRanges& ranges() const { return ranges_; }
+
+ private:
+  void draw();
+
+  VelocityCommandRanges ranges_;
+  std::mt19937_64 generator_{0};
+  VelocityCommand command_;
+  double scale_ = 1.0;
+  double time_left_ = 0.0;  ///< Until the next draw [s]; infinite without resampling.
+};
+
+}  // namespace upkie_rl

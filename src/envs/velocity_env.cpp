@@ -1,0 +1,82 @@
+#include "envs/velocity_env.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "envs/env_wrapper.hpp"
+#include "sim/random_draws.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+/// Stream of the command generator, derived from a reset's seed.
+constexpr std::uint64_t kCommandStream = 7;
+
+}  // namespace
+
+VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskConfig& task,
+                         const VelocityCommandRanges& commands)
+    : ServosWrapperEnv(std::move(servos), "VelocityEnv"),
+      task_(servos_->model(), task),
+      sampler_(commands) {
+  observation_space_ = VelocityTask::make_observation_space();
+  action_space_ = VelocityTask::make_action_space();
+}
+
+void VelocityEnv::set_command_override(const std::optional<VelocityCommand>& command) {
+  if (command && !(std::isfinite(command->forward_velocity) && std::isfinite(command->yaw_rate))) {
+    throw std::invalid_argument("velocity command: forward_velocity and yaw_rate must be finite");
+  }
+  override_ = command;
+}
+
+void VelocityEnv::refresh_command() { command_ = override_ ? *override_ : sampler_.command(); }
+
+BaseVelocity VelocityEnv::measured_velocity() const {
+  return VelocityTask::measured_velocity(*servos_->full_observation());
+}
+
+void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
+  const Observation& full = servos_->reset_servos(seed);
+  if (seed) {
+    const std::uint64_t command_seed = derive_seed(*seed, kCommandStream);
+    sampler_.reset(&command_seed);
+  } else {
+    sampler_.reset(nullptr);
+  }
+  refresh_command();
+  held_command_ = command_;
+  action_.fill(0.0f);
+  previous_action_.fill(0.0f);
+  task_.write_observation(full, action_, command_, observation);
+}
+
+StepResult VelocityEnv::step(std::span<const float> action, std::span<float> observation) {
+  previous_action_ = action_;
+  clamp_to_space(action_space_, action, action_);
+  task_.servo_action(action_, servo_action_);
+  const Observation& full = servos_->step_servos(servo_action_);
+  held_command_ = command_;
+  const StepResult result = task_.evaluate(full, command_, action_, previous_action_);
+  sampler_.advance(servos_->timestep());
+  refresh_command();
+  task_.write_observation(full, action_, command_, observation);
+  return result;
+}
+
+VelocityEnv* find_velocity_env(Env& env) {
+  Env* current = &env;
+  while (current != nullptr) {
+    if (auto* velocity = dynamic_cast<VelocityEnv*>(current)) return velocity;
+    auto* wrapper = dynamic_cast<EnvWrapper*>(current);
+    current = wrapper != nullptr ? &wrapper->inner() : nullptr;
+  }
+  return nullptr;
+}
+
+const VelocityEnv* find_velocity_env(const Env& env) {
+  return find_velocity_env(const_cast<Env&>(env));  // NOLINT: same walk, read-only use
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// VelocityEnv: drive anywhere. The velocity-tracking task of the whole robot (legs and
+/// wheels) on a ServosEnv, with random commands resampled during the episode or a command
+/// set from outside.
+
+#include <array>
+#include <memory>
+#include <optional>
+
+#include "envs/servos_wrapper_env.hpp"
+#include "envs/velocity_command_sampler.hpp"
+#include "envs/velocity_task.hpp"
+
+namespace upkie_rl {
+
+/// The task (VelocityTask: actions, observation, reward terms, terminations) with the
+/// command of each step: the sampler's random one, or the override when one is set.
+class VelocityEnv final : public ServosWrapperEnv {
+ public:
+  /// @throws std::invalid_argument on a null servos environment or bad command ranges.
+  VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskConfig& task,
+              const VelocityCommandRanges& commands);
+
+  /// Replaces the random commands by `command` from the next observation on (that of the
+  /// next reset or step: the step under way is still rewarded against the command its
+  /// observation showed); for a script, a runner or a browser. std::nullopt goes back to
+  /// the random ones.
+  /// @throws std::invalid_argument on a non-finite component.
+  void set_command_override(const std::optional<VelocityCommand>& command);
+  const std::optional<VelocityCommand>& command_override() const { return override_; }
+
+  /// The command the robot follows now (in the last observation).
+  const VelocityCommand& command() const { return command_; }
+  /// The command the last step was rewarded against (the one before the step).
+  const VelocityCommand& last_step_command() const { return held_command_; }
+  /// The base velocity measured after the last reset or step.
+  BaseVelocity measured_velocity() const;
+
+  VelocityTermination termination_reason() const { return task_.termination_reason(); }
+  const VelocityTask& task() const { return task_; }
+
+  void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
+  StepResult step(std::span<const float> action, std::span<float> observation) override;
+  std::span<const std::string_view> reward_term_names() const override {
+    return VelocityReward::kTermNames;
+  }
+  std::span<const double> reward_terms() const override { return task_.reward().terms(); }
+
+ private:
+  void refresh_command();
+
+  VelocityTask task_;
+  VelocityCommandSampler sampler_;
+  std::optional<VelocityCommand> override_;
+  VelocityCommand command_;
+  VelocityCommand held_command_;
+  std::array<float, VelocityTask::kActionSize> action_{};
+  std::array<float, VelocityTask::kActionSize> previous_action_{};
+  ServoAction servo_action_{};
+};
+
+/// The VelocityEnv inside `env`'s wrappers (TimeLimit, noise, lag), or nullptr.
+VelocityEnv* find_velocity_env(Env& env);
+const VelocityEnv* find_velocity_env(const Env& env);
+
+}  // namespace upkie_rl

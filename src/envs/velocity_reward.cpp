@@ -1,0 +1,41 @@
+#include "envs/velocity_reward.hpp"
+
+#include <cmath>
+
+namespace upkie_rl {
+
+namespace {
+
+/// Squared tilt (|g_xy|²) at which the upright kernel is 1/e.
+constexpr double kUprightWidth = 0.1;
+/// Σ Δq² [rad²] at which the pose kernel is 1/e.
+constexpr double kPoseWidth = 0.25;
+
+double kernel(double error, double sigma) { return std::exp(-(error * error) / (sigma * sigma)); }
+
+}  // namespace
+
+double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
+  const double forward_error = inputs.command.forward_velocity - inputs.velocity.forward_velocity;
+  const double yaw_error = inputs.command.yaw_rate - inputs.velocity.yaw_rate;
+  const Eigen::Vector3d& g = inputs.gravity_in_base;
+  double pose_error = 0.0;
+  for (const double deviation : inputs.leg_deviation) pose_error += deviation * deviation;
+  double action_change = 0.0;
+  for (std::size_t i = 0; i < inputs.action.size() && i < inputs.previous_action.size(); ++i) {
+    const double change = inputs.action[i] - inputs.previous_action[i];
+    action_change += change * change;
+  }
+  terms_[kTrackForwardVelocity] =
+      weights_.w_track_forward_velocity * kernel(forward_error, weights_.forward_velocity_sigma);
+  terms_[kTrackYawRate] = weights_.w_track_yaw_rate * kernel(yaw_error, weights_.yaw_rate_sigma);
+  terms_[kUpright] =
+      weights_.w_upright * std::exp(-(g.x() * g.x() + g.y() * g.y()) / kUprightWidth);
+  terms_[kPose] = weights_.w_pose * std::exp(-pose_error / kPoseWidth);
+  terms_[kActionRate] = -weights_.w_action_rate * action_change;
+  double sum = 0.0;
+  for (const double term : terms_) sum += term;
+  return sum;
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,135 @@
+#include "envs/velocity_task.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace upkie_rl {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+}  // namespace
+
+VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& config)
+    : config_(config), reward_(config.reward) {
+  for (std::size_t i = 0; i < kNumServos; ++i) effort_[i] = model.servo_limits(i).effort;
+}
+
+BoxSpace VelocityTask::make_observation_space() {
+  BoxSpace space;
+  for (const std::size_t joint : kLegJoints) {
+    space.add(std::string(kServoNames[joint]) + ".position", -kInf, kInf);
+  }
+  space.add("left_wheel.velocity", -kInf, kInf);
+  space.add("right_wheel.velocity", -kInf, kInf);
+  for (const char* axis : {"x", "y", "z"}) space.add(std::string("gravity.") + axis, -1.0f, 1.0f);
+  for (const char* axis : {"x", "y", "z"}) space.add(std::string("gyro.") + axis, -kInf, kInf);
+  for (const std::string_view joint : kServoNames) {
+    space.add("last_action." + std::string(joint), -1.0f, 1.0f);
+  }
+  space.add("command.forward_velocity", -kInf, kInf);
+  space.add("command.yaw_rate", -kInf, kInf);
+  return space;
+}
+
+BoxSpace VelocityTask::make_action_space() {
+  BoxSpace space;
+  for (const std::string_view joint : kServoNames) space.add(std::string(joint), -1.0f, 1.0f);
+  return space;
+}
+
+void VelocityTask::servo_action(std::span<const float> action, ServoAction& commands) const {
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    ServoCommand& command = commands[i];
+    command.feedforward_torque = 0.0;
+    command.maximum_torque = effort_[i];
+    if (is_wheel(i)) {
+      command.position = std::numeric_limits<double>::quiet_NaN();
+      command.velocity = config_.wheel_velocity_scale * action[i];
+      command.kp_scale = 0.0;
+      command.kd_scale = config_.wheel_kd_scale;
+    } else {
+      command.position = config_.leg_action_scale * action[i];  // default pose: 0
+      command.velocity = 0.0;
+      command.kp_scale = config_.leg_kp_scale;
+      command.kd_scale = config_.leg_kd_scale;
+    }
+  }
+}
+
+Eigen::Vector3d VelocityTask::gravity_in_base(const Observation& full) {
+  return full.base_orientation.rotation_base_to_world.transpose() * Eigen::Vector3d(0, 0, -1);
+}
+
+double VelocityTask::tilt(const Observation& full) {
+  return std::acos(std::clamp(-gravity_in_base(full).z(), -1.0, 1.0));
+}
+
+BaseVelocity VelocityTask::measured_velocity(const Observation& full) {
+  const Eigen::Matrix3d& rotation = full.base_orientation.rotation_base_to_world;
+  BaseVelocity velocity;
+  velocity.yaw_rate = (rotation * full.base_orientation.angular_velocity).z();
+  if (!full.has_sim) {
+    velocity.forward_velocity = full.wheel_odometry.velocity;
+    return velocity;
+  }
+  Eigen::Vector3d heading(rotation(0, 0), rotation(1, 0), 0.0);
+  const double norm = heading.norm();
+  if (norm > 1e-9) heading /= norm;
+  velocity.forward_velocity = heading.dot(full.sim_base.linear_velocity);
+  return velocity;
+}
+
+void VelocityTask::write_observation(const Observation& full, std::span<const float> last_action,
+                                     const VelocityCommand& command,
+                                     std::span<float> observation) const {
+  if (observation.size() != kObservationSize || last_action.size() != kActionSize) {
+    throw std::invalid_argument("VelocityTask: observation buffer has " +
+                                std::to_string(observation.size()) + " components, expected " +
+                                std::to_string(kObservationSize));
+  }
+  std::size_t k = 0;
+  for (const std::size_t joint : kLegJoints) {
+    observation[k++] = static_cast<float>(full.servo[joint].position);
+  }
+  observation[k++] = static_cast<float>(full.servo[kLeftWheel].velocity);
+  observation[k++] = static_cast<float>(full.servo[kRightWheel].velocity);
+  const Eigen::Vector3d gravity = gravity_in_base(full);
+  for (int i = 0; i < 3; ++i) observation[k++] = static_cast<float>(gravity[i]);
+  for (int i = 0; i < 3; ++i) {
+    observation[k++] = static_cast<float>(full.base_orientation.angular_velocity[i]);
+  }
+  for (const float u : last_action) observation[k++] = u;
+  observation[k++] = static_cast<float>(command.forward_velocity);
+  observation[k++] = static_cast<float>(command.yaw_rate);
+}
+
+StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand& command,
+                                  std::span<const float> action,
+                                  std::span<const float> previous_action) {
+  VelocityRewardInputs inputs;
+  inputs.command = command;
+  inputs.velocity = measured_velocity(full);
+  inputs.gravity_in_base = gravity_in_base(full);
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
+    inputs.leg_deviation[k] = full.servo[kLegJoints[k]].position;
+  }
+  inputs.action = action;
+  inputs.previous_action = previous_action;
+  StepResult result;
+  result.reward = reward_(inputs);
+  reason_ = VelocityTermination::kNone;
+  if (tilt(full) > config_.fall_tilt) {
+    reason_ = VelocityTermination::kTilt;
+  } else if (config_.terminate_on_contact && full.floor_contact.non_wheel) {
+    reason_ = VelocityTermination::kContact;
+  }
+  result.terminated = reason_ != VelocityTermination::kNone;
+  return result;
+}
+
+}  // namespace upkie_rl

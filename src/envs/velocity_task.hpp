@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// VelocityTask: the logic of the velocity-tracking task (action mapping, observation,
+/// reward, terminations) on the typed Observation, independent of the backend: the same
+/// code runs on Bullet, MuJoCo and the spine of a real robot.
+
+#include <array>
+#include <span>
+
+#include <Eigen/Core>
+
+#include "envs/box_space.hpp"
+#include "envs/env.hpp"
+#include "envs/velocity_command.hpp"
+#include "envs/velocity_reward.hpp"
+#include "model/robot_model.hpp"
+#include "sim/observation.hpp"
+#include "sim/servo_command.hpp"
+
+namespace upkie_rl {
+
+/// Settings of the task (environment options of the same names).
+struct VelocityTaskConfig {
+  double wheel_velocity_scale = 30.0;  ///< Wheel velocity target at |u| = 1 [rad/s].
+  double leg_action_scale = 0.5;       ///< Hip or knee target offset at |u| = 1 [rad].
+  double wheel_kd_scale = 1.0;         ///< Wheels: velocity loop only (kp unused).
+  double leg_kp_scale = 2.0;
+  double leg_kd_scale = 1.7;
+  double fall_tilt = 1.22;           ///< Terminate when the base tilts more than this [rad] (70°).
+  bool terminate_on_contact = true;  ///< Terminate when a non-wheel part touches the floor.
+  VelocityRewardWeights reward;
+};
+
+/// Why an episode of the velocity task ended.
+enum class VelocityTermination { kNone = 0, kTilt, kContact };
+
+/// "tilt", "contact" or "none".
+constexpr const char* to_string(VelocityTermination reason) {
+  switch (reason) {
+    case VelocityTermination::kTilt:
+      return "tilt";
+    case VelocityTermination::kContact:
+      return "contact";
+    default:
+      return "none";
+  }
+}
+
+/// Action u in [-1, 1]^6 in the joint order (left hip, knee, wheel, right hip, knee, wheel):
+/// hips and knees track position = default pose (0) + leg_action_scale·u; wheels track
+/// velocity = wheel_velocity_scale·u (joint convention: the right wheel turns backward
+/// when the robot drives forward).
+///
+/// Observation (20, what the robot measures): 4 hip and knee angles [rad] (deviation from
+/// the default pose), 2 wheel velocities [rad/s], the unit gravity vector in the base frame
+/// (3, from the IMU's attitude), the base angular velocity in the base frame (3, the
+/// gyroscope) [rad/s], the last action (6), the command (forward velocity [m/s], yaw rate
+/// [rad/s]). No base linear velocity: the robot does not measure it.
+class VelocityTask {
+ public:
+  static constexpr std::size_t kActionSize = kNumServos;
+  static constexpr std::size_t kObservationSize = 20;
+  /// Index of the command's forward velocity in the observation (yaw rate next).
+  static constexpr std::size_t kCommandIndex = 18;
+  /// Hip and knee joints, in the order of the observation.
+  static constexpr std::array<std::size_t, 4> kLegJoints = {kLeftHip, kLeftKnee, kRightHip,
+                                                            kRightKnee};
+
+  VelocityTask(const RobotModel& model, const VelocityTaskConfig& config);
+
+  static BoxSpace make_observation_space();
+  static BoxSpace make_action_space();
+
+  /// The servo commands of the normalised action `action` (already clamped to [-1, 1]).
+  void servo_action(std::span<const float> action, ServoAction& commands) const;
+
+  /// Writes the observation of `full` with the last action and the command to follow.
+  void write_observation(const Observation& full, std::span<const float> last_action,
+                         const VelocityCommand& command, std::span<float> observation) const;
+
+  /// Reward (terms in reward().terms()) and termination of a step that held `command`,
+  /// applied `action` after `previous_action` and led to `full`.
+  StepResult evaluate(const Observation& full, const VelocityCommand& command,
+                      std::span<const float> action, std::span<const float> previous_action);
+
+  /// Forward velocity and yaw rate of the base: ground truth in simulation (the base's
+  /// velocity along its heading, the world-vertical angular velocity), wheel odometry and
+  /// gyroscope on a real robot.
+  static BaseVelocity measured_velocity(const Observation& full);
+  /// Unit gravity vector in the base frame.
+  static Eigen::Vector3d gravity_in_base(const Observation& full);
+  /// Angle between the base's vertical and the world's [rad].
+  static double tilt(const Observation& full);
+
+  VelocityTermination termination_reason() const { return reason_; }
+  const VelocityReward& reward() const { return reward_; }
+  const VelocityTaskConfig& config() const { return config_; }
+
+ private:
+  VelocityTaskConfig config_;
+  std::array<double, kNumServos> effort_{};
+  VelocityReward reward_;
+  VelocityTermination reason_ = VelocityTermination::kNone;
+};
+
+}  // namespace upkie_rl

@@ -1,0 +1,323 @@
+#include "envs/velocity_env.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "envs/registry.hpp"
+#include "envs/scripted_simulation.hpp"
+#include "envs/velocity_command_sampler.hpp"
+#include "envs/velocity_reward.hpp"
+#include "envs/velocity_task.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using Obs = std::array<float, VelocityTask::kObservationSize>;
+using Act = std::array<float, VelocityTask::kActionSize>;
+
+/// The error message of `make`, or "" when it does not throw std::invalid_argument.
+template <class F>
+std::string error_of(F&& make) {
+  try {
+    make();
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(VelocityCommandSampler, DrawsWithinTheRangesWithAShareOfZeroCommands) {
+  VelocityCommandRanges ranges;
+  ranges.max_forward_velocity = 0.8;
+  ranges.max_yaw_rate = 1.2;
+  ranges.zero_command_probability = 0.25;
+  ranges.resample_time_min = 1.0;
+  ranges.resample_time_max = 2.0;
+  VelocityCommandSampler sampler(ranges);
+  const std::uint64_t seed = 3;
+  sampler.reset(&seed);
+  int draws = 1;
+  int zeros = 0;
+  double since_draw = 0.0;
+  double max_forward = 0.0;
+  constexpr double kDt = 0.02;
+  for (int step = 0; step < 200000; ++step) {
+    since_draw += kDt;
+    if (!sampler.advance(kDt)) continue;
+    EXPECT_GE(since_draw, 1.0 - 1e-9);
+    EXPECT_LE(since_draw, 2.0 + kDt + 1e-9);
+    since_draw = 0.0;
+    ++draws;
+    const VelocityCommand& command = sampler.command();
+    EXPECT_LE(std::abs(command.forward_velocity), 0.8);
+    EXPECT_LE(std::abs(command.yaw_rate), 1.2);
+    max_forward = std::max(max_forward, std::abs(command.forward_velocity));
+    if (command.forward_velocity == 0.0 && command.yaw_rate == 0.0) ++zeros;
+  }
+  EXPECT_GT(draws, 2000);
+  EXPECT_NEAR(static_cast<double>(zeros) / draws, 0.25, 0.03);
+  EXPECT_GT(max_forward, 0.75);
+}
+
+TEST(VelocityCommandSampler, SameSeedSameCommands) {
+  VelocityCommandSampler a({}), b({});
+  const std::uint64_t seed = 11;
+  a.reset(&seed);
+  b.reset(&seed);
+  for (int step = 0; step < 2000; ++step) {
+    a.advance(0.02);
+    b.advance(0.02);
+    ASSERT_EQ(a.command(), b.command());
+  }
+}
+
+TEST(VelocityCommandSampler, WithoutResamplingOneCommandPerEpisode) {
+  VelocityCommandRanges ranges;
+  ranges.resample_time_min = 0.0;
+  ranges.resample_time_max = 0.0;
+  ranges.zero_command_probability = 0.0;
+  VelocityCommandSampler sampler(ranges);
+  const std::uint64_t seed = 1;
+  sampler.reset(&seed);
+  const VelocityCommand first = sampler.command();
+  for (int step = 0; step < 1000; ++step) EXPECT_FALSE(sampler.advance(0.02));
+  EXPECT_EQ(sampler.command(), first);
+}
+
+TEST(VelocityReward, TermsAtPerfectTrackingAndAtOneKernelWidth) {
+  VelocityReward reward;
+  const std::array<float, 6> action{0.5f, 0, 0, 0, 0, 0};
+  const std::array<float, 6> previous{0.0f, 0, 0, 0, 0, 0.2f};
+  VelocityRewardInputs inputs;
+  inputs.command = {0.5, -1.0};
+  inputs.velocity = {0.5, -1.0};
+  inputs.action = action;
+  inputs.previous_action = previous;
+  double total = reward(inputs);
+  const auto& terms = reward.terms();
+  EXPECT_DOUBLE_EQ(terms[VelocityReward::kTrackForwardVelocity], 2.0);
+  EXPECT_DOUBLE_EQ(terms[VelocityReward::kTrackYawRate], 2.0);
+  EXPECT_DOUBLE_EQ(terms[VelocityReward::kUpright], 1.0);
+  EXPECT_DOUBLE_EQ(terms[VelocityReward::kPose], 0.5);
+  EXPECT_NEAR(terms[VelocityReward::kActionRate], -0.1 * (0.25 + 0.04), 1e-7);
+  EXPECT_NEAR(total, 5.5 - 0.029, 1e-7);
+
+  // One kernel width off on each velocity, tilted, legs off the default pose.
+  inputs.velocity = {0.25, -0.5};
+  inputs.gravity_in_base = Eigen::Vector3d(std::sqrt(0.1), 0.0, -std::sqrt(0.9));
+  inputs.leg_deviation = {0.5, 0.0, 0.0, 0.0};
+  total = reward(inputs);
+  EXPECT_NEAR(terms[VelocityReward::kTrackForwardVelocity], 2.0 / std::numbers::e, 1e-12);
+  EXPECT_NEAR(terms[VelocityReward::kTrackYawRate], 2.0 / std::numbers::e, 1e-12);
+  EXPECT_NEAR(terms[VelocityReward::kUpright], 1.0 / std::numbers::e, 1e-12);
+  EXPECT_NEAR(terms[VelocityReward::kPose], 0.5 / std::numbers::e, 1e-12);
+  double sum = 0.0;
+  for (const double term : terms) sum += term;
+  EXPECT_DOUBLE_EQ(total, sum);
+}
+
+/// An observation of a base rotated by `rotation`, moving at `velocity` in the world.
+Observation base_state(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& velocity,
+                       const Eigen::Vector3d& angular_velocity_in_base) {
+  Observation observation;
+  observation.has_sim = true;
+  observation.base_orientation.rotation_base_to_world = rotation;
+  observation.base_orientation.angular_velocity = angular_velocity_in_base;
+  observation.sim_base.linear_velocity = velocity;
+  return observation;
+}
+
+TEST(VelocityTask, MeasuredVelocityAlongTheHeadingAndAboutTheVertical) {
+  const Eigen::Matrix3d yawed =
+      Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  // Facing +y, moving +y at 0.7 m/s while turning at 0.3 rad/s.
+  Observation full = base_state(yawed, {0.0, 0.7, 0.0}, {0.0, 0.0, 0.3});
+  BaseVelocity velocity = VelocityTask::measured_velocity(full);
+  EXPECT_NEAR(velocity.forward_velocity, 0.7, 1e-12);
+  EXPECT_NEAR(velocity.yaw_rate, 0.3, 1e-12);
+  // A real robot: wheel odometry.
+  full.has_sim = false;
+  full.wheel_odometry.velocity = -0.4;
+  velocity = VelocityTask::measured_velocity(full);
+  EXPECT_NEAR(velocity.forward_velocity, -0.4, 1e-12);
+}
+
+TEST(VelocityTask, TerminatesOnTiltAndOnNonWheelContact) {
+  VelocityTask task(*RobotModel::default_model(), {});
+  const Act action{};
+  const auto pitched = [](double angle) {
+    return Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  };
+  Observation full = base_state(pitched(1.0), {}, {});
+  EXPECT_FALSE(task.evaluate(full, {}, action, action).terminated);
+  full = base_state(pitched(-1.3), {}, {});
+  EXPECT_TRUE(task.evaluate(full, {}, action, action).terminated);
+  EXPECT_EQ(task.termination_reason(), VelocityTermination::kTilt);
+  full = base_state(pitched(0.1), {}, {});
+  full.floor_contact.non_wheel = true;
+  EXPECT_TRUE(task.evaluate(full, {}, action, action).terminated);
+  EXPECT_EQ(task.termination_reason(), VelocityTermination::kContact);
+  VelocityTaskConfig lenient;
+  lenient.terminate_on_contact = false;
+  VelocityTask without_contact(*RobotModel::default_model(), lenient);
+  EXPECT_FALSE(without_contact.evaluate(full, {}, action, action).terminated);
+}
+
+TEST(VelocityTask, GravityAndPitchOfTheObservation) {
+  VelocityTask task(*RobotModel::default_model(), {});
+  const Eigen::Matrix3d pitched =
+      Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  Observation full = base_state(pitched, {}, {0.0, 0.5, 0.0});
+  full.servo[kLeftKnee].position = 0.3;
+  full.servo[kRightWheel].velocity = -4.0;
+  Obs observation{};
+  const Act last{0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
+  task.write_observation(full, last, {0.7, -0.2}, observation);
+  const BoxSpace space = VelocityTask::make_observation_space();
+  EXPECT_FLOAT_EQ(observation[space.index_of("left_knee.position")], 0.3f);
+  EXPECT_FLOAT_EQ(observation[space.index_of("right_wheel.velocity")], -4.0f);
+  // Leaning forward by θ: gravity (sin θ, 0, -cos θ) in the base frame.
+  EXPECT_NEAR(observation[space.index_of("gravity.x")], std::sin(0.2), 1e-6);
+  EXPECT_NEAR(observation[space.index_of("gravity.z")], -std::cos(0.2), 1e-6);
+  EXPECT_FLOAT_EQ(observation[space.index_of("gyro.y")], 0.5f);
+  EXPECT_FLOAT_EQ(observation[space.index_of("last_action.right_wheel")], 0.6f);
+  EXPECT_FLOAT_EQ(observation[VelocityTask::kCommandIndex], 0.7f);
+  EXPECT_FLOAT_EQ(observation[space.index_of("command.yaw_rate")], -0.2f);
+}
+
+TEST(VelocityEnv, ActionMappingAroundTheDefaultPose) {
+  auto simulation = std::make_unique<testing::ScriptedSimulation>(0.02);
+  testing::ScriptedSimulation* scripted = simulation.get();
+  VelocityEnv env(std::make_unique<ServosEnv>(std::move(simulation), RobotModel::default_model()),
+                  {}, {});
+  Obs observation{};
+  env.reset(0, observation);
+  const Act action{1.0f, -0.5f, 0.5f, 0.0f, 3.0f, -1.0f};
+  env.step(action, observation);
+  const ServoAction& sent = scripted->received.back();
+  EXPECT_NEAR(sent[kLeftHip].position, 0.5, 1e-9);
+  EXPECT_NEAR(sent[kLeftKnee].position, -0.25, 1e-9);
+  EXPECT_NEAR(sent[kRightKnee].position, 0.5, 1e-9);  // clamped to 1
+  EXPECT_NEAR(sent[kLeftWheel].velocity, 15.0, 1e-9);
+  EXPECT_NEAR(sent[kRightWheel].velocity, -30.0, 1e-9);
+  EXPECT_TRUE(std::isnan(sent[kLeftWheel].position));
+  // The last action, clamped, is observed.
+  EXPECT_FLOAT_EQ(observation[12 + 4], 1.0f);
+}
+
+TEST(VelocityEnv, OverrideReplacesTheRandomCommandsFromTheNextObservation) {
+  auto env = make_env("Upkie-Mock-Velocity");
+  VelocityEnv* velocity = find_velocity_env(*env);
+  ASSERT_NE(velocity, nullptr);
+  Obs observation{};
+  env->reset(5, observation);
+  const VelocityCommand random = velocity->command();
+  EXPECT_FLOAT_EQ(observation[VelocityTask::kCommandIndex], random.forward_velocity);
+  velocity->set_command_override(VelocityCommand{0.4, -0.9});
+  const Act action{};
+  env->step(action, observation);
+  EXPECT_EQ(velocity->last_step_command(), random);  // the step shown, rewarded
+  EXPECT_FLOAT_EQ(observation[VelocityTask::kCommandIndex], 0.4f);
+  EXPECT_FLOAT_EQ(observation[VelocityTask::kCommandIndex + 1], -0.9f);
+  EXPECT_THROW(velocity->set_command_override(VelocityCommand{NAN, 0.0}), std::invalid_argument);
+  velocity->set_command_override(std::nullopt);
+  env->step(action, observation);
+  EXPECT_EQ(velocity->command(), velocity->command_override().value_or(velocity->command()));
+}
+
+TEST(VelocityEnv, RewardIsTheSumOfItsLoggedTerms) {
+  auto env = make_env("Upkie-MuJoCo-Velocity");
+  ASSERT_EQ(env->reward_term_names().size(), static_cast<std::size_t>(VelocityReward::kNumTerms));
+  EXPECT_EQ(env->reward_term_names()[0], "track_forward_velocity");
+  Obs observation{};
+  env->reset(0, observation);
+  const Act action{0.1f, 0.0f, 0.05f, 0.0f, -0.1f, -0.05f};
+  for (int step = 0; step < 20; ++step) {
+    const StepResult result = env->step(action, observation);
+    double sum = 0.0;
+    for (const double term : env->reward_terms()) sum += term;
+    EXPECT_NEAR(result.reward, sum, 1e-12);
+  }
+}
+
+/// Steps `id` with legs straight and wheels free until the episode ends (the robot falls
+/// over); the reason it ended.
+VelocityTermination fall_over(const std::string& id) {
+  // No tilt limit: only the contact of a leg or the base with the floor ends it.
+  auto env = make_env(id, {{"fall_tilt", "3.2"}, {"init_rand_pitch", "0.3"}});
+  Obs observation{};
+  env->reset(1, observation);
+  const Act action{};
+  for (int step = 0; step < 250; ++step) {
+    if (env->step(action, observation).terminated) break;
+  }
+  return find_velocity_env(*env)->termination_reason();
+}
+
+TEST(VelocityEnv, NonWheelContactDetectedOnMujoco) {
+  EXPECT_EQ(fall_over("Upkie-MuJoCo-Velocity"), VelocityTermination::kContact);
+}
+
+TEST(VelocityEnv, NonWheelContactDetectedOnBullet) {
+  EXPECT_EQ(fall_over("Upkie-Bullet-Velocity"), VelocityTermination::kContact);
+}
+
+TEST(VelocityEnv, StandingUprightTouchesTheFloorWithTheWheelsOnly) {
+  for (const char* id : {"Upkie-MuJoCo-Velocity", "Upkie-Bullet-Velocity"}) {
+    auto env = make_env(id);
+    Obs observation{};
+    env->reset(0, observation);
+    const Act action{};
+    for (int step = 0; step < 10; ++step) env->step(action, observation);  // settle: 0.2 s
+    const Observation* full = env->full_observation();
+    EXPECT_TRUE(full->floor_contact.contact) << id;
+    EXPECT_FALSE(full->floor_contact.non_wheel) << id;
+  }
+}
+
+TEST(VelocityEnv, RegisteredWithTheTaskRateAndTimeLimit) {
+  for (const char* id :
+       {"Upkie-MuJoCo-Velocity", "Upkie-Bullet-Velocity", "Upkie-Spine-Velocity"}) {
+    const auto ids = registered_env_ids();
+    EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
+  }
+  auto env = make_env("Upkie-Bullet-Velocity");
+  EXPECT_DOUBLE_EQ(env->timestep(), 0.02);
+  EXPECT_EQ(env->physics_steps_per_step(), 20);  // 1 ms, the reference
+  EXPECT_EQ(make_env("Upkie-MuJoCo-Velocity")->physics_steps_per_step(), 20);
+}
+
+TEST(VelocityEnv, BadOptionsNameTheOption) {
+  const std::string id = "Upkie-Mock-Velocity";
+  for (const char* option : {"max_forward_velocity", "max_yaw_rate", "zero_command_probability",
+                             "command_resample_time_min", "fall_tilt"}) {
+    EXPECT_NE(error_of([&] {
+                make_env(id, {{option, "-1"}});
+              }).find(option),
+              std::string::npos)
+        << option;
+    EXPECT_NE(error_of([&] {
+                make_env(id, {{option, "nan"}});
+              }).find(option),
+              std::string::npos)
+        << option;
+  }
+  const std::string crossed = error_of([&] {
+    make_env(id, {{"command_resample_time_min", "6"}, {"command_resample_time_max", "3"}});
+  });
+  EXPECT_NE(crossed.find("command_resample_time_min"), std::string::npos) << crossed;
+  EXPECT_NE(crossed.find("command_resample_time_max"), std::string::npos) << crossed;
+  EXPECT_NE(error_of([&] {
+              make_env(id, {{"zero_command_probability", "1.5"}});
+            }).find("zero_command_probability"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace upkie_rl

@@ -1,0 +1,75 @@
+#include "envs/velocity_tracking.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <vector>
+
+#include "common/temp_files.hpp"
+#include "envs/episode_runner.hpp"
+#include "envs/velocity_command_schedule.hpp"
+
+namespace upkie_rl {
+namespace {
+
+TEST(VelocityTracking, RmsOfAHandBuiltTrajectory) {
+  // Commands 1 m/s and 0.5 rad/s; measured errors 0.1, -0.3 (vx) and 0.2, 0.0 (wz).
+  VelocityTracking tracking;
+  tracking.add({1.0, 0.5}, {0.9, 0.3});
+  tracking.add({1.0, 0.5}, {1.3, 0.5});
+  EXPECT_EQ(tracking.steps, 2);
+  EXPECT_NEAR(tracking.rms_forward(), std::sqrt((0.01 + 0.09) / 2), 1e-12);
+  EXPECT_NEAR(tracking.rms_yaw(), std::sqrt(0.04 / 2), 1e-12);
+}
+
+TEST(VelocityTracking, SummaryPoolsStepsAndCountsFalls) {
+  EpisodeOutcome up, fell;
+  up.tracking.add({0.5, 0.0}, {0.5, 0.0});
+  up.tracking.add({0.5, 0.0}, {0.5, 0.0});
+  up.tracking.add({0.5, 0.0}, {0.5, 0.0});
+  fell.terminated = true;
+  fell.tracking.add({0.0, 1.0}, {0.0, 0.0});  // the steps before the fall count...
+  fell.tracking.active = true;                // ...its falling step does not
+  const EpisodeSummary summary = summarize_episodes({up, fell});
+  ASSERT_TRUE(summary.has_tracking);
+  EXPECT_EQ(summary.tracking.steps, 4);
+  EXPECT_NEAR(summary.tracking.rms_forward(), 0.0, 1e-12);
+  EXPECT_NEAR(summary.tracking.rms_yaw(), std::sqrt(1.0 / 4), 1e-12);
+  EXPECT_DOUBLE_EQ(summary.fall_rate, 0.5);
+  EXPECT_FALSE(summarize_episodes({EpisodeOutcome{}}).has_tracking);
+}
+
+TEST(VelocityCommandSchedule, PiecewiseConstantCommands) {
+  const VelocityCommandSchedule schedule({{0.0, {0.0, 0.0}}, {1.0, {0.5, 0.1}}, {3.0, {-1, 0}}});
+  EXPECT_EQ(schedule.at(0.0), (VelocityCommand{0.0, 0.0}));
+  EXPECT_EQ(schedule.at(0.99), (VelocityCommand{0.0, 0.0}));
+  EXPECT_EQ(schedule.at(1.0), (VelocityCommand{0.5, 0.1}));
+  EXPECT_EQ(schedule.at(2.5), (VelocityCommand{0.5, 0.1}));
+  EXPECT_EQ(schedule.at(100.0), (VelocityCommand{-1.0, 0.0}));
+  using Rows = std::vector<VelocityCommandSchedule::Row>;
+  EXPECT_THROW(VelocityCommandSchedule(Rows{}), std::invalid_argument);
+  EXPECT_THROW(VelocityCommandSchedule(Rows{{1.0, {}}, {1.0, {}}}), std::invalid_argument);
+  EXPECT_THROW(VelocityCommandSchedule(Rows{{0.0, {NAN, 0.0}}}), std::invalid_argument);
+}
+
+TEST(VelocityCommandSchedule, LoadsACsvAndNamesTheBadLine) {
+  const auto good = testing::temp_path("good.csv");
+  std::ofstream(good) << "time,vx,wz\n# comment\n0,0,0\n\n2.5, 0.8 ,-0.4\n";
+  const VelocityCommandSchedule schedule = VelocityCommandSchedule::load(good);
+  ASSERT_EQ(schedule.rows().size(), 2u);
+  EXPECT_EQ(schedule.at(3.0), (VelocityCommand{0.8, -0.4}));
+  const auto bad = testing::temp_path("bad.csv");
+  std::ofstream(bad) << "time,vx,wz\n0,0,0\n1,fast,0\n";
+  try {
+    VelocityCommandSchedule::load(bad);
+    FAIL() << "a malformed row was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("bad.csv:3"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(VelocityCommandSchedule::load(testing::temp_path("missing.csv")),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace upkie_rl
