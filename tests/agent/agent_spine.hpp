@@ -21,7 +21,6 @@ namespace upkie_rl::testing {
 inline const std::string kPolicies = std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/";
 inline const std::string kPendulum = kPolicies + "pendulum_bullet_seed0.ckpt";
 inline const std::string kServosBalance = kPolicies + "servos_balance_mujoco_seed0.ckpt";
-constexpr std::uint32_t kStopRequest = 3;
 
 /// A real-time `upkie-rl spine` on its own shared memory, removed at the end.
 class Spine {

@@ -18,24 +18,82 @@
 #include <thread>
 #include <vector>
 
-#include "agent/agent_spine.hpp"
 #include "common/background_process.hpp"
 #include "common/temp_files.hpp"
 #include "policy/checkpoint_file.hpp"
-#include "policy/model_header.hpp"
-#include "policy/parameter_layout.hpp"
 
 namespace upkie_rl {
 namespace {
 
 using testing::BackgroundProcess;
-using testing::kPendulum;
-using testing::kServosBalance;
-using testing::kStopRequest;
-using testing::Spine;
-using testing::start_agent;
 using testing::temp_path;
-using testing::wait_running;
+
+const std::string kPolicies = std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/";
+const std::string kPendulum = kPolicies + "pendulum_bullet_seed0.ckpt";
+const std::string kServosBalance = kPolicies + "servos_balance_mujoco_seed0.ckpt";
+constexpr std::uint32_t kStopRequest = 3;
+
+/// A real-time `upkie-rl spine` on its own shared memory, removed at the end.
+class Spine {
+ public:
+  explicit Spine(const std::string& tag, std::vector<std::string> extra = {},
+                 const std::string& backend = "bullet")
+      : shm_name_("/upkie_rl_agent_" + tag + std::to_string(::getpid())),
+        process_(arguments(shm_name_, backend, std::move(extra)), "agent_spine_" + tag) {
+    for (int i = 0; i < 3000 && !std::filesystem::exists(path()); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+  ~Spine() {
+    process_.wait(SIGINT);
+    std::filesystem::remove(path());  // left by a killed spine
+  }
+  Spine(const Spine&) = delete;
+  Spine& operator=(const Spine&) = delete;
+
+  const std::string& shm_name() const { return shm_name_; }
+  std::filesystem::path path() const { return "/dev/shm" + shm_name_; }
+  BackgroundProcess& process() { return process_; }
+
+  /// The request word of the shared memory.
+  std::uint32_t request() const {
+    std::ifstream in(path(), std::ios::binary);
+    std::uint32_t word = 0;
+    in.read(reinterpret_cast<char*>(&word), sizeof(word));
+    return word;
+  }
+
+ private:
+  static std::vector<std::string> arguments(const std::string& shm_name, const std::string& backend,
+                                            std::vector<std::string> extra) {
+    std::vector<std::string> args = {UPKIE_RL_CLI_PATH, "spine",     "--shm-name",
+                                     shm_name,          "--backend", backend};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+
+  std::string shm_name_;
+  BackgroundProcess process_;
+};
+
+/// upkie-rl-agent with `model` on `spine`, in the background.
+std::unique_ptr<BackgroundProcess> start_agent(const Spine& spine, const std::string& model,
+                                               const std::string& tag,
+                                               std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {UPKIE_RL_AGENT_PATH, "--model", model, "--shm-name",
+                                   spine.shm_name()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return std::make_unique<BackgroundProcess>(args, "agent_" + tag);
+}
+
+/// Waits until the agent's log says it is running (at most 20 s).
+bool wait_running(const BackgroundProcess& agent) {
+  for (int i = 0; i < 2000; ++i) {
+    if (agent.output().find("starting -> running") != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
 
 /// The log of a run the supervisor stopped: stopping, stop commands, stopped, summary.
 void expect_supervised_stop(const std::string& output, const std::string& reason) {
@@ -106,38 +164,11 @@ TEST(AgentRunner, PushedOverRobotTripsTheAttitudeLimit) {
   EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
 }
 
-/// The pendulum policy made to output NaN with finite weights (the checkpoint gate refuses
-/// non-finite ones): normalisation means of -1000 put every normalised observation at the
-/// clip, +10; first-layer weights of 1e38 overflow to +inf, which ReLU and all-positive
-/// second-layer weights carry; output weights of alternating sign add +inf and -inf.
-CheckpointFile nan_output_policy() {
-  CheckpointFile file = read_checkpoint_file(kPendulum);
-  nlohmann::json& mean = file.header["normalization"]["observations"]["mean"];
-  for (auto& value : mean) value = -1000.0;
-  const PolicyShape shape = policy_shape_from_json(file.header.at("policy"));
-  const ActorCriticLayout layout =
-      actor_critic_layout(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
-                          shape.critic_hidden_sizes);
-  std::vector<float>& parameters = file.tensors.at("policy.parameters").values;
-  const auto fill = [&](const DenseLayerLayout& layer, auto value_of) {
-    for (std::int64_t i = 0; i < layer.out * layer.in; ++i) {
-      parameters[static_cast<std::size_t>(layer.weight + i)] = value_of(i);
-    }
-    for (std::int64_t i = 0; i < layer.out; ++i) {
-      parameters[static_cast<std::size_t>(layer.bias + i)] = 0.0f;
-    }
-  };
-  const std::vector<DenseLayerLayout>& actor = layout.actor;
-  fill(actor.front(), [](std::int64_t) { return 1e38f; });
-  for (std::size_t layer = 1; layer + 1 < actor.size(); ++layer) {
-    fill(actor[layer], [](std::int64_t) { return 1.0f; });
-  }
-  fill(actor.back(), [](std::int64_t i) { return i % 2 == 0 ? 1.0f : -1.0f; });
-  return file;
-}
-
 TEST(AgentRunner, PolicyOutputtingNanStops) {
-  const CheckpointFile file = nan_output_policy();
+  CheckpointFile file = read_checkpoint_file(kPendulum);
+  for (float& value : file.tensors.at("policy.parameters").values) {
+    value = std::numeric_limits<float>::quiet_NaN();
+  }
   const auto crafted = temp_path("agent_nan_policy.ckpt");
   write_checkpoint_file(file, crafted);
   Spine spine("nan");
