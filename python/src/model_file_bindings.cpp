@@ -11,6 +11,7 @@
 #include "onnx/onnx_error.hpp"
 #include "onnx/onnx_export.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/checkpoint_gate.hpp"
 #include "policy/deployed_policy.hpp"
 #include "policy/provenance.hpp"
 
@@ -21,8 +22,7 @@ namespace {
 
 // (header as JSON text, {name: float32 array}) of a checkpoint, checked as a model.
 py::tuple read_model_checkpoint(const std::string& path) {
-  CheckpointFile file = read_checkpoint_file(path);
-  DeployedPolicy::from_checkpoint(file, "checkpoint " + path);  // The checkpoint gate.
+  CheckpointFile file = read_checked_checkpoint(path);  // The gate of every command.
   py::dict tensors;
   for (auto& [name, tensor] : file.tensors) {
     py::array_t<float> array(tensor.shape);

@@ -4,6 +4,7 @@ observations and on observations recorded along episodes; its metadata names the
 environment, spaces, frequency and provenance."""
 
 import json
+import subprocess
 from pathlib import Path
 
 import gymnasium as gym
@@ -11,12 +12,16 @@ import numpy as np
 import pytest
 
 import upkie_rl
+from spine_process import cli_path
 
 ort = pytest.importorskip("onnxruntime")
 
 POLICIES = Path(__file__).resolve().parents[2] / "tests" / "data" / "policies"
-# Every trained policy of the test data: pendulum, servos-balance, velocity when present.
+# Every trained policy of the test data (pendulum, servos-balance), and a velocity policy
+# trained here (the test data has none).
 CHECKPOINTS = sorted(POLICIES.glob("*.ckpt"))
+CONFIGS = Path(__file__).resolve().parents[2] / "configs"
+VELOCITY = "velocity_one_iteration"
 
 
 def session_of(path):
@@ -52,16 +57,39 @@ def recorded_observations(policy, provenance, steps=300):
     return np.array(observations, dtype=np.float32)
 
 
-@pytest.fixture(scope="module", params=CHECKPOINTS, ids=lambda path: path.stem)
+@pytest.fixture(scope="module")
+def velocity_checkpoint(tmp_path_factory):
+    """One PPO iteration of configs/velocity.yaml (about 10 s): a velocity policy with its
+    observation normalisation, through `upkie-rl train` as a user makes one."""
+    run_dir = tmp_path_factory.mktemp("velocity_run")
+    subprocess.run(
+        [str(cli_path()), "train", "--config", str(CONFIGS / "velocity.yaml"), "--quiet",
+         "--set", "ppo.total_timesteps=1024", "--set", "ppo.n_steps=1024",
+         "--set", "ppo.batch_size=512", "--set", "env.num_envs=2", "--set", "env.threads=1",
+         "--run-dir", str(run_dir)], check=True, capture_output=True)
+    (checkpoint,) = run_dir.glob("model_*.ckpt")
+    return checkpoint
+
+
+@pytest.fixture(scope="module", params=CHECKPOINTS + [VELOCITY],
+                ids=lambda param: param if param == VELOCITY else param.stem)
 def exported(request, tmp_path_factory):
-    onnx_path = tmp_path_factory.mktemp("onnx") / (request.param.stem + ".onnx")
-    upkie_rl.export_onnx(request.param, onnx_path)
-    return request.param, onnx_path
+    checkpoint = (request.getfixturevalue("velocity_checkpoint") if request.param == VELOCITY
+                  else request.param)
+    onnx_path = tmp_path_factory.mktemp("onnx") / (checkpoint.stem + ".onnx")
+    upkie_rl.export_onnx(checkpoint, onnx_path)
+    return checkpoint, onnx_path
 
 
 def test_test_data_has_the_pendulum_and_servos_policies():
     names = {path.stem for path in CHECKPOINTS}
     assert "pendulum_mujoco_seed0" in names and "servos_balance_mujoco_seed0" in names
+
+
+def test_the_velocity_policy_is_one(velocity_checkpoint):
+    policy = upkie_rl.load_policy(velocity_checkpoint)
+    assert policy.env_id == "Upkie-MuJoCo-Velocity"
+    assert policy.observation_space.shape == (20,) and policy.action_space.shape == (6,)
 
 
 def test_one_float_input_with_free_batch_and_one_output(exported):

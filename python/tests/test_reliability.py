@@ -67,3 +67,46 @@ def test_extra_provenance_keys_are_tolerated(tmp_path):
 def test_vector_env_sizes_are_bounded_before_anything_is_built():
     with pytest.raises(ValueError, match=r"num_envs: 3000000 is outside \[1, 4096\]"):
         upkie_rl.make_vec("Upkie-Bullet-Pendulum", 3_000_000)
+
+
+@pytest.mark.parametrize("name, change, message", [
+    ("v2.ckpt", dict(change_header=lambda h: h.update(version=2)),
+     "checkpoint version 2 is not the version 1 this build reads"),
+    ("nan.ckpt", dict(change_tensors=lambda t: t.__setitem__(
+        slice(2 * len(t) // 3, 2 * len(t) // 3 + 4), struct.pack("<f", float("nan")))),
+     "tensor 'policy.parameters' value 0 is nan"),
+])
+def test_model_file_readers_go_through_the_gate(tmp_path, name, change, message):
+    """read_model_checkpoint (model_provenance, the SB3 export) and export_onnx refuse what
+    load_policy refuses, with the gate's message naming the file."""
+    from upkie_rl import sb3_convert
+
+    path = crafted(tmp_path, name, **change)
+    expected = f"checkpoint {path}: {message}"
+    with pytest.raises(upkie_rl.CheckpointError) as refused:
+        upkie_rl.load_policy(path)
+    assert str(refused.value) == expected
+    for reader in (lambda: upkie_rl._core.read_model_checkpoint(str(path)),
+                   lambda: upkie_rl.model_provenance(path),
+                   lambda: upkie_rl.export_onnx(path, tmp_path / "never.onnx"),
+                   lambda: sb3_convert.export_sb3(path, tmp_path / "never.zip")):
+        with pytest.raises(upkie_rl.CheckpointError) as refused:
+            reader()
+        assert str(refused.value) == expected
+    assert not (tmp_path / "never.onnx").exists() and not (tmp_path / "never.zip").exists()
+
+
+def test_a_flipped_byte_is_refused_by_every_model_file_reader(tmp_path):
+    data = bytearray(MODEL.read_bytes())
+    data[len(data) // 2] ^= 0x01
+    path = tmp_path / "flipped.ckpt"
+    path.write_bytes(bytes(data))
+    with pytest.raises(upkie_rl.CheckpointError) as refused:
+        upkie_rl.load_policy(path)
+    expected = str(refused.value)
+    assert "flipped.ckpt" in expected
+    for reader in (lambda: upkie_rl._core.read_model_checkpoint(str(path)),
+                   lambda: upkie_rl.export_onnx(path, tmp_path / "never.onnx")):
+        with pytest.raises(upkie_rl.CheckpointError, match="flipped.ckpt") as refused:
+            reader()
+        assert str(refused.value) == expected

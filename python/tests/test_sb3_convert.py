@@ -69,8 +69,9 @@ def load_sb3(directory, zip_name="ppo.zip", statistics="vecnormalize.pkl"):
     return model, normalize
 
 
-def sb3_episodes(model, normalize):
-    """Actions and returns of PPO.predict on the environment, episode e seeded SEED + e."""
+def drive(actor):
+    """Actions and returns of `actor` (observation -> action) driving the environment,
+    episode e seeded SEED + e."""
     import gymnasium as gym
 
     env = gym.make(f"upkie_rl/{ENV_ID}")
@@ -79,14 +80,20 @@ def sb3_episodes(model, normalize):
         observation, _ = env.reset(seed=SEED + episode)
         total, done = 0.0, False
         while not done:
-            action, _ = model.predict(normalize.normalize_obs(observation[None]), deterministic=True)
-            actions.append(action[0])
-            observation, reward, terminated, truncated, _ = env.step(action[0])
+            action = actor(observation)
+            actions.append(action)
+            observation, reward, terminated, truncated, _ = env.step(action)
             total += reward
             done = terminated or truncated
         returns.append(total)
     env.close()
     return np.array(actions), returns
+
+
+def sb3_episodes(model, normalize):
+    """Actions and returns of PPO.predict on the environment."""
+    return drive(lambda observation: model.predict(normalize.normalize_obs(observation[None]),
+                                                   deterministic=True)[0][0])
 
 
 def cli_episodes(model_path, tmp_path):
@@ -119,20 +126,70 @@ def test_imported_model_acts_in_upkie_rl_rollout_as_ppo_predict(sb3_model, tmp_p
     assert [total for total, _ in results] == returns
 
 
-def test_ppo_predict_driving_the_env_gets_the_cli_returns(tmp_path):
-    """A balancing policy (the test data's, through an SB3 zip and back): PPO.predict driving
-    the environment in Python and the imported .ckpt in `upkie-rl rollout` get the same
-    episode lengths and returns within 0.2%. Not bitwise: their actions differ by ~1e-8
-    (float32 summation order), and Bullet's contacts turn a 1e-7 change of the actions into
-    a 0.01% change of the return (docs/interop.md)."""
+def replay_returns(actions_by_episode):
+    """Returns of the environment driven open loop by recorded actions (episode e seeded
+    SEED + e, as in sb3_episodes and the CLI rollout)."""
+    import gymnasium as gym
+
+    env = gym.make(f"upkie_rl/{ENV_ID}")
+    returns = []
+    for episode, actions in enumerate(actions_by_episode):
+        env.reset(seed=SEED + episode)
+        returns.append(sum(env.step(action)[1] for action in actions))
+    env.close()
+    return returns
+
+
+def float64_actions(model, normalize, observations):
+    """PPO's deterministic actions computed in float64 from the same float32 weights and
+    float32 network input: the reference both float32 evaluations round from."""
+    network = torch.nn.Sequential(*model.policy.mlp_extractor.policy_net,
+                                  model.policy.action_net)
+    inputs = torch.as_tensor(normalize.normalize_obs(observations)).float().double()
+    with torch.no_grad():
+        for layer in network:
+            inputs = torch.nn.functional.linear(inputs, layer.weight.double(),
+                                                layer.bias.double()) \
+                if isinstance(layer, torch.nn.Linear) else layer(inputs)
+    return np.clip(inputs.numpy(), -1.0, 1.0)
+
+
+def test_ppo_predict_and_the_imported_policy_differ_only_by_float32_rounding(tmp_path):
+    """Why PPO.predict driving the environment and `upkie-rl rollout` of the same policy
+    imported get returns 297.988 and 297.845 (docs/interop.md), checked step by step on a
+    balancing policy (the test data's, through an SB3 zip and back):
+    - on the same observations their actions differ by float32 rounding only: each is within
+      1e-7 of the network evaluated in float64 (torch sums in float32, DeployedPolicy in
+      double then rounds), and they differ by at most 1e-7 from each other;
+    - the environment is not the cause: PPO.predict's actions replayed open loop give its
+      returns exactly, and the CLI's recorded actions replayed give the CLI's exactly;
+    - the closed loop amplifies rounding: moving the imported policy's actions by one float32
+      ulp changes its return by more than the gap between the two;
+    - so the returns agree within 0.1%, not bit for bit."""
     export_sb3(POLICIES / "pendulum_bullet_seed0.ckpt", tmp_path / "ppo.zip",
                tmp_path / "vecnormalize.pkl")
     imported = import_sb3(tmp_path / "ppo.zip", ENV_ID, tmp_path / "imported.ckpt",
                           tmp_path / "vecnormalize.pkl")
-    expected_actions, expected_returns = sb3_episodes(*load_sb3(tmp_path))
-    _, actions, returns = cli_episodes(imported, tmp_path)
+    model, normalize = load_sb3(tmp_path)
+    expected_actions, expected_returns = sb3_episodes(model, normalize)
+    observations, actions, returns = cli_episodes(imported, tmp_path)
     assert len(actions) == len(expected_actions) == EPISODES * 300
-    np.testing.assert_allclose(returns, expected_returns, rtol=2e-3)
+    # Same observations (the CLI's), both evaluations, and the float64 reference.
+    predicted, _ = model.predict(normalize.normalize_obs(observations), deterministic=True)
+    reference = float64_actions(model, normalize, observations)
+    assert np.abs(predicted - actions).max() <= 1e-7
+    assert np.abs(predicted - reference).max() <= 1e-7
+    assert np.abs(actions - reference).max() <= 1e-7
+    # Open-loop replays: each side's actions give its own returns exactly.
+    steps = 300
+    assert replay_returns(expected_actions.reshape(EPISODES, steps, -1)) == expected_returns
+    assert replay_returns(actions.reshape(EPISODES, steps, -1)) == returns
+    # One ulp on every action of the imported policy moves the return more than the gap.
+    policy = upkie_rl.load_policy(imported)
+    _, nudged = drive(lambda observation: np.nextafter(policy(observation), np.float32(np.inf)))
+    gap = abs(returns[0] - expected_returns[0])
+    assert 0 < gap < abs(nudged[0] - returns[0])
+    np.testing.assert_allclose(returns, expected_returns, rtol=1e-3)
 
 
 def test_imported_model_loads_in_python_and_says_where_it_came_from(sb3_model):

@@ -12,8 +12,10 @@
 #include "agent/loop_monitor.hpp"
 #include "agent/supervised_spine.hpp"
 #include "agent/supervisor.hpp"
+#include "agent/velocity_commander.hpp"
 #include "envs/env_settings.hpp"
 #include "envs/registry.hpp"
+#include "envs/velocity_env.hpp"
 #include "policy/deployed_policy.hpp"
 
 namespace upkie_rl {
@@ -26,9 +28,23 @@ using Clock = std::chrono::steady_clock;
 struct RobotEnv {
   std::unique_ptr<Supervisor> supervisor;  // Outlives env, whose link refers to it.
   std::unique_ptr<Env> env;
-  SupervisedSpine* link = nullptr;  // Owned by env.
-  double frequency = 0.0;           // [Hz]
+  SupervisedSpine* link = nullptr;               // Owned by env.
+  double frequency = 0.0;                        // [Hz]
+  std::unique_ptr<VelocityCommander> commander;  // Velocity tasks only; refers to env.
 };
+
+/// The velocity task's command input, made (a file read, a terminal set up) before the spine
+/// is touched; refused for other tasks.
+std::unique_ptr<VelocityCommandInput> make_task_command_input(const EnvId& trained,
+                                                              const DeployedPolicy& policy,
+                                                              const RunnerOptions& options) {
+  if (trained.kind == EnvKind::kVelocity) return make_command_input(options);
+  if (!options.commands.empty() || options.keyboard) {
+    throw AgentError("--commands and --keyboard need a velocity policy (Upkie-*-Velocity); " +
+                     options.model.string() + " was trained on " + policy.env_id());
+  }
+  return nullptr;
+}
 
 RobotEnv make_robot_env(const DeployedPolicy& policy, const RunnerOptions& options) {
   const EnvId trained = parse_env_id(policy.env_id());
@@ -39,6 +55,8 @@ RobotEnv make_robot_env(const DeployedPolicy& policy, const RunnerOptions& optio
   env_options.emplace_back("max_episode_steps", "0");
   env_options.emplace_back("request_timeout", std::to_string(options.limits.spine_timeout));
   env_options.emplace_back("open_tries", std::to_string(options.open_tries));
+  std::unique_ptr<VelocityCommandInput> commands =
+      make_task_command_input(trained, policy, options);
   const EnvSettings settings = parse_env_settings(robot, name, env_options);
   RobotEnv robot_env;
   robot_env.supervisor = std::make_unique<Supervisor>(options.limits, RobotModel::default_model(),
@@ -50,6 +68,13 @@ RobotEnv make_robot_env(const DeployedPolicy& policy, const RunnerOptions& optio
   robot_env.frequency = settings.frequency;
   robot_env.env = assemble_env(robot, settings, std::move(link), 0);
   policy.check_spaces(robot_env.env->observation_space(), robot_env.env->action_space());
+  if (VelocityEnv* velocity = find_velocity_env(*robot_env.env)) {
+    // The ranges of the training's commands, randomisation options included.
+    const VelocityCommandRanges trained_ranges =
+        parse_env_settings(trained, policy.env_id(), policy.env_options()).commands;
+    robot_env.commander =
+        std::make_unique<VelocityCommander>(*velocity, std::move(commands), trained_ranges);
+  }
   spdlog::info("policy {} ({}), on {} at {} Hz", options.model.string(), policy.env_id(), name,
                settings.frequency);
   return robot_env;
@@ -90,6 +115,7 @@ std::string run_loop(DeployedPolicy& policy, RobotEnv& robot, Supervisor& superv
     const double policy_time = std::chrono::duration<double>(Clock::now() - cycle_start).count();
     supervisor.check_policy_output(action, env.action_space());
     if (recorder) recorder->before_step(env, observation);
+    if (robot.commander) robot.commander->update((cycle + 1) / robot.frequency);
     const StepResult result = env.step(action, observation);
     if (options.dry_run) log_dry_run(*robot.link, cycle, robot.frequency);
     monitor.on_cycle_start(Clock::now());
@@ -162,6 +188,7 @@ RunSummary run_policy(const RunnerOptions& options, const std::atomic<bool>& int
         "starting the spine " + options.shm_name +
             (options.dry_run ? " (dry run: only stop commands are sent)" : ""));
     std::vector<float> observation(robot.env->observation_space().size());
+    if (robot.commander) robot.commander->start();
     robot.env->reset(0, observation);
     robot.supervisor->transition(SupervisorState::kRunning, "first observation within limits");
     summary.stop_reason = run_loop(policy, robot, *robot.supervisor, options, interrupt, *monitor,

@@ -17,6 +17,10 @@ struct RunnerOptions {
   std::filesystem::path record;     ///< Flight record CSV; empty for none.
   bool dry_run = false;             ///< Send stop commands only; log the policy's commands.
   int open_tries = 10;              ///< Attempts at opening the spine, 1 s apart.
+  /// Velocity tasks: a CSV file of rows time,vx,wz (`rollout --commands`'s format), or "-"
+  /// for lines vx,wz on the standard input; empty for none.
+  std::string commands;
+  bool keyboard = false;  ///< Velocity tasks: steer with the keys of the terminal.
   SupervisorLimits limits;
 };
 

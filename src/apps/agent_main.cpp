@@ -67,6 +67,16 @@ int run(int argc, char** argv) {
   app.add_option("--open-tries", options.open_tries, "Attempts at opening the spine, 1 s apart")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  CLI::Option* commands =
+      app.add_option("--commands", options.commands,
+                     "Velocity tasks: commands from a CSV file of rows time,vx,wz ([s], [m/s], "
+                     "[rad/s], each held until the next row's time, as `upkie-rl rollout "
+                     "--commands`), or - for lines vx,wz on the standard input, each taking "
+                     "effect when read; without it, or --keyboard, the robot stands still");
+  app.add_flag("--keyboard", options.keyboard,
+               "Velocity tasks: steer with the keys of the terminal (w/s forward, a/d turn, "
+               "space stop)")
+      ->excludes(commands);
   add_limit_options(app, options.limits);
   try {
     app.parse(argc, argv);

@@ -12,8 +12,8 @@
 #include "apps/commands.hpp"
 #include "onnx/onnx_metadata.hpp"
 #include "onnx/onnx_model_info.hpp"
-#include "policy/checkpoint_file.hpp"
-#include "policy/deployed_policy.hpp"
+#include "policy/checkpoint_gate.hpp"
+#include "policy/model_header.hpp"
 #include "policy/provenance.hpp"
 #include "policy/space_json.hpp"
 
@@ -32,12 +32,11 @@ std::string describe_space(const nlohmann::json& json) {
 }
 
 void print_checkpoint(const std::filesystem::path& path) {
-  const CheckpointFile file = read_checkpoint_file(path);
-  const DeployedPolicy policy = DeployedPolicy::from_checkpoint(file, "checkpoint " + path.string());
+  const CheckpointFile file = read_checked_checkpoint(path);  // the gate of every command
   std::cout << "format: upkie-rl checkpoint\n"
             << "observation_space: " << describe_space(file.header.at("observation_space")) << "\n"
             << "action_space: " << describe_space(file.header.at("action_space")) << "\n"
-            << "policy: " << policy_shape_to_json(policy.shape()).dump() << "\n"
+            << "policy: " << policy_shape_to_json(policy_shape_from_json(file.header.at("policy"))).dump() << "\n"
             << format_provenance(model_provenance(file.header));
 }
 

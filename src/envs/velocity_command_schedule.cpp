@@ -2,35 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
 
+#include "envs/number_row.hpp"
+
 namespace upkie_rl {
-
-namespace {
-
-/// Parses "a,b,c" into three finite numbers; false if it is not that.
-bool parse_row(const std::string& line, std::array<double, 3>& values) {
-  std::size_t start = 0;
-  for (std::size_t k = 0; k < values.size(); ++k) {
-    const std::size_t comma = k + 1 < values.size() ? line.find(',', start) : line.size();
-    if (comma == std::string::npos) return false;
-    std::string item = line.substr(start, comma - start);
-    const auto first = item.find_first_not_of(" \t\r");
-    const auto last = item.find_last_not_of(" \t\r");
-    if (first == std::string::npos) return false;
-    item = item.substr(first, last - first + 1);
-    const char* end = item.data() + item.size();
-    const auto [stop, error] = std::from_chars(item.data(), end, values[k]);
-    if (error != std::errc() || stop != end) return false;
-    start = comma + 1;
-  }
-  return true;
-}
-
-}  // namespace
 
 VelocityCommandSchedule::VelocityCommandSchedule(std::vector<Row> rows) : rows_(std::move(rows)) {
   if (rows_.empty()) throw std::invalid_argument("velocity command schedule: no rows");
@@ -58,7 +36,7 @@ VelocityCommandSchedule VelocityCommandSchedule::load(const std::filesystem::pat
     ++number;
     if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
     std::array<double, 3> values{};
-    if (!parse_row(line, values)) {
+    if (!parse_number_row(line, values)) {
       if (number == 1) continue;  // a header
       throw std::invalid_argument(path.string() + ":" + std::to_string(number) +
                                   ": expected time,vx,wz (three numbers)");

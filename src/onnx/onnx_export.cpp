@@ -13,6 +13,7 @@
 #include "onnx/onnx_metadata.hpp"
 #include "policy/build_info.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/checkpoint_gate.hpp"
 #include "policy/parameter_layout.hpp"
 #include "policy/provenance.hpp"
 #include "policy/space_json.hpp"
@@ -249,7 +250,8 @@ void export_onnx(const DeployedPolicy& policy, const nlohmann::json& provenance,
 
 void export_onnx_file(const std::filesystem::path& model_path,
                       const std::filesystem::path& onnx_path) {
-  const CheckpointFile file = read_checkpoint_file(model_path);
+  // The checkpoint gate, as for every command; from_checkpoint repeats its (cheap) checks.
+  const CheckpointFile file = read_checked_checkpoint(model_path);
   const DeployedPolicy policy =
       DeployedPolicy::from_checkpoint(file, "checkpoint " + model_path.string());
   export_onnx(policy, model_provenance(file.header), onnx_path);

@@ -1,58 +1,42 @@
 // The flight record of upkie-rl-agent: a record file of `rollout --record` with the runner's
-// columns, which `upkie-rl view` and `upkie-rl render` replay, and whose actions are those
-// that `upkie-rl rollout --model` computes (its policy controller is a DeployedPolicy of the
-// checkpoint) for the recorded observations.
+// columns, which `upkie-rl view` and `upkie-rl render` replay; and the actions of the runner
+// and of `upkie-rl rollout --model` against the same spine, each recorded with its
+// observations, are one function of the checkpoint bit for bit.
 
 #include <gtest/gtest.h>
 #include <signal.h>
 
-#include <chrono>
-#include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <thread>
-#include <vector>
 
+#include "agent/agent_spine.hpp"
+#include "agent/record_columns.hpp"
 #include "apps/cli_runner.hpp"
-#include "common/background_process.hpp"
 #include "common/temp_files.hpp"
-#include "policy/deployed_policy.hpp"
 
 namespace upkie_rl {
 namespace {
 
-using testing::BackgroundProcess;
+using testing::expect_checkpoint_actions;
+using testing::kPendulum;
+using testing::read_record;
+using testing::RecordTable;
 using testing::run_cli;
+using testing::Spine;
+using testing::start_agent;
 using testing::temp_path;
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
-  return fields;
-}
 
 class AgentRecord : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     record_ = temp_path("agent_flight.csv");
-    const std::string shm_name = "/upkie_rl_agent_record" + std::to_string(::getpid());
-    BackgroundProcess spine({UPKIE_RL_CLI_PATH, "spine", "--shm-name", shm_name}, "record_spine");
-    for (int i = 0; i < 3000 && !std::filesystem::exists("/dev/shm" + shm_name); ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    BackgroundProcess agent({UPKIE_RL_AGENT_PATH, "--model", model_, "--shm-name", shm_name,
-                             "--duration", "2", "--record", record_.string()},
-                            "record_agent");
-    agent_status_ = agent.wait();
-    agent_output_ = agent.output();
-    spine.wait(SIGINT);
+    Spine spine("record");
+    auto agent =
+        start_agent(spine, kPendulum, "record", {"--duration", "2", "--record", record_.string()});
+    agent_status_ = agent->wait();
+    agent_output_ = agent->output();
   }
 
-  static inline std::string model_ =
-      std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/pendulum_bullet_seed0.ckpt";
   static inline std::filesystem::path record_;
   static inline int agent_status_ = -1;
   static inline std::string agent_output_;
@@ -60,9 +44,9 @@ class AgentRecord : public ::testing::Test {
 
 TEST_F(AgentRecord, HasTheRolloutColumnsThenTheRunnersOwn) {
   ASSERT_EQ(agent_status_, 0) << agent_output_;
-  std::ifstream in(record_);
+  const RecordTable table = read_record(record_.string());
   std::string header;
-  std::getline(in, header);
+  for (const std::string& column : table.columns) header += (header.empty() ? "" : ",") + column;
   EXPECT_EQ(header.rfind("episode,step,t,theta,p,theta_dot,p_dot,action.ground_velocity,reward,"
                          "terminated,truncated,base_x",
                          0),
@@ -72,14 +56,11 @@ TEST_F(AgentRecord, HasTheRolloutColumnsThenTheRunnersOwn) {
       ",pitch,ground_position,supervisor_state,loop_period,policy_time,"
       "deadline_miss";
   EXPECT_EQ(header.substr(header.size() - own.size()), own) << header;
-  long rows = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++rows;
-    const std::vector<std::string> fields = split(line);
-    ASSERT_EQ(fields.size(), split(header).size()) << line;
-    EXPECT_EQ(fields[fields.size() - 4], "2") << line;  // running
+  for (const auto& row : table.rows) {
+    ASSERT_EQ(row.size(), table.columns.size());
+    EXPECT_EQ(row[table.column("supervisor_state")], "2");  // running
   }
-  EXPECT_GT(rows, 380);
+  EXPECT_GT(table.rows.size(), 380u);
 }
 
 TEST_F(AgentRecord, ViewAndRenderReplayIt) {
@@ -95,23 +76,27 @@ TEST_F(AgentRecord, ViewAndRenderReplayIt) {
   EXPECT_GT(std::filesystem::file_size(video), 1000u);
 }
 
-TEST_F(AgentRecord, ActionsAreThoseOfRolloutsPolicyController) {
+TEST_F(AgentRecord, RunnerAndRolloutActAsOneFunctionOfTheCheckpoint) {
   ASSERT_EQ(agent_status_, 0) << agent_output_;
-  DeployedPolicy policy = DeployedPolicy::load(model_);
-  std::ifstream in(record_);
-  std::string line;
-  std::getline(in, line);
-  std::vector<float> observation(4);
-  std::vector<float> action(1);
-  long compared = 0;
-  while (std::getline(in, line)) {
-    const std::vector<std::string> fields = split(line);
-    for (std::size_t i = 0; i < 4; ++i) observation[i] = std::stof(fields[3 + i]);
-    policy.act(observation, action);
-    ASSERT_NEAR(action[0], std::stof(fields[7]), 1e-6) << line;
-    ++compared;
+  // `upkie-rl rollout --model` on the same kind of spine, recording what it saw and did.
+  const auto rollout_record = temp_path("rollout_on_spine.csv");
+  {
+    Spine spine("rollout_record");
+    const auto rollout =
+        run_cli("rollout --env Upkie-Spine-Pendulum --env-option shm_name=" + spine.shm_name() +
+                " --model " + kPendulum + " --max-steps 300 --record " + rollout_record.string());
+    ASSERT_EQ(rollout.exit_code, 0) << rollout.output;
   }
-  EXPECT_GT(compared, 380);
+  const RecordTable runner = read_record(record_.string());
+  const RecordTable rollout = read_record(rollout_record.string());
+  // Same observation and action columns in both records.
+  for (std::size_t i = 0; i <= rollout.column("action.ground_velocity"); ++i) {
+    EXPECT_EQ(runner.columns.at(i), rollout.columns.at(i));
+  }
+  // Each binary's actions are, bit for bit, the checkpoint's DeployedPolicy on its own
+  // recorded observations: the same function in both.
+  EXPECT_GT(expect_checkpoint_actions(runner, kPendulum), 380u);
+  EXPECT_EQ(expect_checkpoint_actions(rollout, kPendulum), 300u);
 }
 
 }  // namespace

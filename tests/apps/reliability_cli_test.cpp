@@ -6,11 +6,13 @@
 
 #include <chrono>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "apps/cli_runner.hpp"
 #include "common/temp_files.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/checkpoint_gate.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -73,6 +75,41 @@ TEST(ReliabilityCli, EveryReaderRefusesACraftedCheckpointWithTheSameMessage) {
   expect_clean_refusal(
       "evaluate --env Upkie-Bullet-Pendulum --episodes 1 --model " + crafted.string(), message);
   expect_clean_refusal("train --quiet --resume " + crafted.string(), message);
+  const std::string onnx = testing::temp_path("never.onnx", "upkie_rl_cli_gate").string();
+  expect_clean_refusal("export " + crafted.string() + " --onnx " + onnx, message);
+  expect_clean_refusal("info " + crafted.string(), message);
+  EXPECT_FALSE(std::filesystem::exists(onnx));
+}
+
+TEST(ReliabilityCli, ExportAndInfoRefuseNanWeightsAndABrokenChecksumThroughTheGate) {
+  CheckpointFile file = read_checkpoint_file(kModel);
+  file.tensors.at("policy.parameters").values.at(3) = std::numeric_limits<float>::quiet_NaN();
+  const std::filesystem::path nan_weights =
+      testing::temp_path("nan_weights.ckpt", "upkie_rl_cli_gate");
+  write_checkpoint_file(file, nan_weights);
+  const std::string onnx = testing::temp_path("never.onnx", "upkie_rl_cli_gate").string();
+  const std::string nan_message =
+      "checkpoint " + nan_weights.string() + ": tensor 'policy.parameters' value 3 is nan";
+  expect_clean_refusal("export " + nan_weights.string() + " --onnx " + onnx, nan_message);
+  expect_clean_refusal("info " + nan_weights.string(), nan_message);
+  std::string bytes = testing::read_bytes(kModel);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x01);
+  const std::filesystem::path flipped = testing::temp_path("flipped.ckpt", "upkie_rl_cli_gate");
+  testing::write_bytes(flipped, bytes);
+  // What read_checked_checkpoint says of it, word for word, from every command.
+  std::string gate_message;
+  try {
+    read_checked_checkpoint(flipped);
+  } catch (const CheckpointError& error) {
+    gate_message = error.what();
+  }
+  ASSERT_NE(gate_message.find("flipped.ckpt"), std::string::npos) << gate_message;
+  expect_clean_refusal("export " + flipped.string() + " --onnx " + onnx, gate_message);
+  expect_clean_refusal("info " + flipped.string(), gate_message);
+  expect_clean_refusal(
+      "rollout --env Upkie-Bullet-Pendulum --episodes 1 --model " + flipped.string(),
+      gate_message);
+  EXPECT_FALSE(std::filesystem::exists(onnx));
 }
 
 }  // namespace

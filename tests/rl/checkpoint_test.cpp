@@ -47,19 +47,25 @@ TrainingConfig small_config() {
 }
 
 TEST(Checkpoint, RoundTripKeepsHeaderAndTensors) {
-  Checkpoint checkpoint;
-  checkpoint.header = {{"answer", 42}, {"name", "x"}};
-  checkpoint.tensors["a"] = torch::arange(6, torch::kFloat32).view({2, 3});
-  checkpoint.tensors["b"] = torch::tensor({1.5f});
+  // A trainer's checkpoint (the gate refuses anything else), plus a header key and a
+  // tensor of our own: both must come back unchanged.
+  PointMassVectorEnv env(2);
+  Ppo ppo(env, small_config());
+  Checkpoint checkpoint = make_ppo_checkpoint(ppo, nullptr);
+  checkpoint.header["answer"] = 42;
+  checkpoint.tensors["extra"] = torch::arange(6, torch::kFloat32).view({2, 3});
   const auto path = temp_path("round_trip.ckpt");
   save_checkpoint(checkpoint, path);
   const Checkpoint loaded = load_checkpoint(path);
   EXPECT_EQ(loaded.header.at("answer"), 42);
-  EXPECT_EQ(loaded.header.at("name"), "x");
-  EXPECT_TRUE(torch::equal(loaded.tensor("a", 6), checkpoint.tensors["a"]));
-  EXPECT_TRUE(torch::equal(loaded.tensor("b"), checkpoint.tensors["b"]));
-  EXPECT_THROW(loaded.tensor("c"), CheckpointError);
-  EXPECT_THROW(loaded.tensor("a", 5), CheckpointError);
+  EXPECT_EQ(loaded.header.at("config"), checkpoint.header.at("config"));
+  EXPECT_EQ(loaded.header.at("policy"), checkpoint.header.at("policy"));
+  const std::int64_t parameter_count = ppo.policy().flat_parameters().numel();
+  EXPECT_TRUE(torch::equal(loaded.tensor("policy.parameters", parameter_count),
+                           checkpoint.tensors["policy.parameters"]));
+  EXPECT_TRUE(torch::equal(loaded.tensor("extra").view({2, 3}), checkpoint.tensors["extra"]));
+  EXPECT_THROW(loaded.tensor("missing"), CheckpointError);
+  EXPECT_THROW(loaded.tensor("extra", 5), CheckpointError);
   // No temporary file is left behind.
   for (const auto& entry : std::filesystem::directory_iterator(path.parent_path())) {
     EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();

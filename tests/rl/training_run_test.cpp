@@ -94,7 +94,12 @@ TEST(TrainingRun, WritesTheRunDirectoryAndResumesToTheSameResult) {
 
 TEST(TrainingRun, RefusesAnExistingRunAndBadInput) {
   const auto directory = fresh_directory("existing");
-  { TrainingRun run(tiny_pendulum(0), directory); }
+  {
+    // A run with checkpoints is refused (one killed before its first one starts over:
+    // RunSafety tests that).
+    TrainingRun run(tiny_pendulum(0), directory);
+    run.train();
+  }
   EXPECT_THROW(TrainingRun(tiny_pendulum(0), directory), std::runtime_error);
   TrainingConfig unknown = tiny_pendulum(0);
   unknown.env_id = "Upkie-Bullet-Unicycle";

@@ -1,0 +1,197 @@
+// upkie-rl-agent with a velocity policy (Upkie-*-Velocity) against `upkie-rl spine`: the
+// commands of a file (`rollout --commands`'s format), of lines on the standard input and of
+// keys reach the policy's observation, clamped to the trained ranges; without an input the
+// robot is told to stand still. The policy is a short training made here (the robot it
+// drives falls within about a second: these tests check the commands and the stop path,
+// not the balance).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "agent/agent_spine.hpp"
+#include "agent/record_columns.hpp"
+#include "apps/cli_runner.hpp"
+#include "common/temp_files.hpp"
+#include "envs/velocity_command_schedule.hpp"
+#include "policy/deployed_policy.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using testing::BackgroundProcess;
+using testing::expect_checkpoint_actions;
+using testing::read_record;
+using testing::RecordTable;
+using testing::Spine;
+using testing::start_agent;
+using testing::temp_path;
+
+constexpr double kFrequency = 50.0;  // [Hz] of the velocity task
+
+class VelocityRunner : public ::testing::Test {
+ protected:
+  /// One iteration of PPO on the velocity task (about 10 s on a loaded 2-core machine).
+  static void SetUpTestSuite() {
+    const auto run_dir = temp_path("agent_velocity_run");
+    std::filesystem::remove_all(run_dir);
+    const std::string configs = std::string(UPKIE_RL_TEST_DATA_DIR) + "/../../configs/";
+    BackgroundProcess train(
+        {UPKIE_RL_CLI_PATH, "train", "--config", configs + "velocity.yaml", "--set",
+         "ppo.total_timesteps=1024", "--set", "ppo.n_steps=1024", "--set", "ppo.batch_size=512",
+         "--set", "env.num_envs=2", "--set", "env.threads=1", "--run-dir", run_dir.string()},
+        "agent_velocity_train");
+    ASSERT_EQ(train.wait(), 0) << train.output();
+    for (const auto& entry : std::filesystem::directory_iterator(run_dir)) {
+      if (entry.path().extension() == ".ckpt") model_ = entry.path().string();
+    }
+    ASSERT_FALSE(model_.empty()) << train.output();
+  }
+
+  /// Runs the agent on a MuJoCo spine with `extra` options, through `sh -c` when `feed` (a
+  /// shell command whose output becomes the agent's standard input) is given.
+  static std::string run_agent(const std::string& tag, std::vector<std::string> extra,
+                               const std::string& feed = "") {
+    Spine spine("velocity_" + tag, {}, "mujoco");
+    std::vector<std::string> args = {"--duration", "3", "--max-pitch", "1.2"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::unique_ptr<BackgroundProcess> agent;
+    if (feed.empty()) {
+      agent = start_agent(spine, model_, "velocity_" + tag, args);
+    } else {
+      std::string command = "(" + feed + ") | " + UPKIE_RL_AGENT_PATH + " --model " + model_ +
+                            " --shm-name " + spine.shm_name();
+      for (const std::string& arg : args) command += " " + arg;
+      agent = std::make_unique<BackgroundProcess>(std::vector<std::string>{"sh", "-c", command},
+                                                  "velocity_" + tag);
+    }
+    const int status = agent->wait();
+    const std::string output = agent->output();
+    EXPECT_TRUE(status == 0 || status == 2) << output;  // 2: the supervisor stopped a fall
+    EXPECT_NE(output.find("on Upkie-Spine-Velocity at 50 Hz"), std::string::npos) << output;
+    EXPECT_NE(output.find("stopping -> stopped: detached"), std::string::npos) << output;
+    return output;
+  }
+
+  static inline std::string model_;
+};
+
+/// The command columns of each row of `record`.
+std::vector<VelocityCommand> recorded_commands(const RecordTable& record) {
+  const std::size_t forward = record.column("command.forward_velocity");
+  const std::size_t yaw = record.column("command.yaw_rate");
+  EXPECT_LT(yaw, record.columns.size());
+  std::vector<VelocityCommand> commands;
+  for (const auto& row : record.rows) {
+    commands.push_back({std::stod(row.at(forward)), std::stod(row.at(yaw))});
+  }
+  return commands;
+}
+
+bool same_float(double recorded, double expected) {
+  return static_cast<float>(recorded) == static_cast<float>(expected);
+}
+
+TEST_F(VelocityRunner, FileCommandsHoldFromTheirTimeAsInRolloutAndTheRecordReplays) {
+  const auto commands = temp_path("agent_velocity_commands.csv");
+  testing::write_bytes(commands, "time,vx,wz\n0,0,0\n0.1,0.3,0\n0.2,0.3,-0.5\n0.3,5,0\n");
+  const auto record = temp_path("agent_velocity_file.csv");
+  const std::string output =
+      run_agent("file", {"--commands", commands.string(), "--record", record.string()});
+  EXPECT_NE(output.find("from file " + commands.string() +
+                        ": forward velocity 0.3 m/s, yaw rate "
+                        "-0.5 rad/s"),
+            std::string::npos)
+      << output;
+  // velocity.yaml keeps the default range of forward velocity commands, +-1 m/s.
+  EXPECT_NE(output.find("(5 m/s, 0 rad/s) clamped to the trained ranges +-1 m/s"),
+            std::string::npos)
+      << output;
+  const VelocityCommandSchedule schedule(
+      {{0.0, {0.0, 0.0}}, {0.1, {0.3, 0.0}}, {0.2, {0.3, -0.5}}, {0.3, {1.0, 0.0}}});
+  const RecordTable table = read_record(record.string());
+  const std::vector<VelocityCommand> seen = recorded_commands(table);
+  ASSERT_GT(seen.size(), 20u) << output;  // past the last row's time (0.3 s: 15 cycles)
+  const std::size_t step = table.column("step");
+  for (std::size_t row = 0; row < seen.size(); ++row) {
+    // Row k holds the observation of cycle k, which shows the command at k / frequency.
+    const VelocityCommand& wanted = schedule.at(std::stoi(table.rows[row].at(step)) / kFrequency);
+    EXPECT_TRUE(same_float(seen[row].forward_velocity, wanted.forward_velocity) &&
+                same_float(seen[row].yaw_rate, wanted.yaw_rate))
+        << "row " << row;
+  }
+  EXPECT_GT(expect_checkpoint_actions(table, model_), 20u);
+  const auto html = temp_path("agent_velocity_replay.html");
+  const auto view = testing::run_cli("view " + record.string() + " --html " + html.string());
+  EXPECT_EQ(view.exit_code, 0) << view.output;
+  EXPECT_NE(view.output.find("1 episode(s), " + std::to_string(seen.size()) + " steps"),
+            std::string::npos)
+      << view.output;
+  const auto video = temp_path("agent_velocity_replay.mp4");
+  const auto render = testing::run_cli("render " + record.string() +
+                                       " --video-size 160x120 --video " + video.string());
+  EXPECT_EQ(render.exit_code, 0) << render.output;
+  EXPECT_GT(std::filesystem::file_size(video), 1000u);
+}
+
+TEST_F(VelocityRunner, StandardInputLinesTakeEffectWhenRead) {
+  const auto record = temp_path("agent_velocity_stdin.csv");
+  const std::string output =
+      run_agent("stdin", {"--commands", "-", "--record", record.string()},
+                "echo 0.25,0; echo not a command; sleep 0.5; echo 0.25,-0.5; sleep 3");
+  EXPECT_NE(output.find("from standard input: forward velocity 0.25 m/s, yaw rate 0 rad/s"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("ignored the line 'not a command'"), std::string::npos) << output;
+  const std::vector<VelocityCommand> seen = recorded_commands(read_record(record.string()));
+  ASSERT_FALSE(seen.empty()) << output;
+  bool first_seen = false;
+  bool second_seen = false;
+  for (const VelocityCommand& command : seen) {
+    first_seen |= same_float(command.forward_velocity, 0.25) && command.yaw_rate == 0.0;
+    second_seen |= same_float(command.forward_velocity, 0.25) && same_float(command.yaw_rate, -0.5);
+  }
+  EXPECT_TRUE(first_seen) << output;
+  // The robot falls about a second after the start: the second line, 0.5 s later, comes
+  // before, unless the machine is loaded enough to start the agent late.
+  if (output.find("yaw rate -0.5 rad/s") != std::string::npos) EXPECT_TRUE(second_seen) << output;
+}
+
+TEST_F(VelocityRunner, KeysStepTheCommand) {
+  const std::string output = run_agent("keyboard", {"--keyboard"}, "printf 'wwd'; sleep 3");
+  EXPECT_NE(output.find("from keyboard: forward velocity 0.2 m/s, yaw rate -0.25 rad/s"),
+            std::string::npos)
+      << output;
+}
+
+TEST_F(VelocityRunner, WithoutAnInputTheRobotIsToldToStandStill) {
+  const auto record = temp_path("agent_velocity_still.csv");
+  const std::string output = run_agent("still", {"--record", record.string()});
+  EXPECT_NE(output.find("from no input (stand still): forward velocity 0 m/s, yaw rate 0 rad/s"),
+            std::string::npos)
+      << output;
+  const std::vector<VelocityCommand> seen = recorded_commands(read_record(record.string()));
+  ASSERT_FALSE(seen.empty()) << output;
+  for (const VelocityCommand& command : seen) {  // never the training's random commands
+    EXPECT_EQ(command.forward_velocity, 0.0);
+    EXPECT_EQ(command.yaw_rate, 0.0);
+  }
+}
+
+TEST(VelocityRunnerOptions, CommandsNeedAVelocityPolicy) {
+  auto agent = std::make_unique<BackgroundProcess>(
+      std::vector<std::string>{UPKIE_RL_AGENT_PATH, "--model", testing::kPendulum, "--shm-name",
+                               "/upkie_rl_agent_no_spine", "--commands", "-", "--open-tries", "1"},
+      "velocity_refused");
+  EXPECT_EQ(agent->wait(), 2);
+  const std::string output = agent->output();
+  EXPECT_NE(output.find("--commands and --keyboard need a velocity policy (Upkie-*-Velocity); "),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("was trained on Upkie-Bullet-Pendulum"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace upkie_rl
