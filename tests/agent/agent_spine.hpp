@@ -14,6 +14,8 @@
 #include <thread>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "common/background_process.hpp"
 
 namespace upkie_rl::testing {
@@ -21,6 +23,8 @@ namespace upkie_rl::testing {
 inline const std::string kPolicies = std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/";
 inline const std::string kPendulum = kPolicies + "pendulum_bullet_seed0.ckpt";
 inline const std::string kServosBalance = kPolicies + "servos_balance_mujoco_seed0.ckpt";
+/// The spine protocol's Stop request word.
+constexpr std::uint32_t kStopRequest = 3;
 
 /// A real-time `upkie-rl spine` on its own shared memory, removed at the end.
 class Spine {
@@ -82,6 +86,14 @@ inline bool wait_running(const BackgroundProcess& agent) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   return false;
+}
+
+/// The log of a run the supervisor stopped: stopping, stop commands, stopped, summary.
+inline void expect_supervised_stop(const std::string& output, const std::string& reason) {
+  EXPECT_NE(output.find("-> stopping: " + reason), std::string::npos) << output;
+  EXPECT_NE(output.find("Stop request"), std::string::npos) << output;
+  EXPECT_NE(output.find("stopping -> stopped: detached"), std::string::npos) << output;
+  EXPECT_NE(output.find("summary: "), std::string::npos) << output;
 }
 
 }  // namespace upkie_rl::testing

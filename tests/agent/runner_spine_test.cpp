@@ -1,7 +1,7 @@
 // upkie-rl-agent against `upkie-rl spine` in real time: it balances the test policies, and
-// every supervisor path (spine killed, spine frozen, robot pushed over, NaN policy output,
-// corrupted checkpoint, SIGTERM) ends in stopping with the stop commands sent and a clear
-// message, never a crash.
+// every supervisor path (spine killed, spine frozen, robot pushed over, NaN policy output in
+// nan_policy_test.cpp, corrupted checkpoint, SIGTERM) ends in stopping with the stop commands sent
+// and a clear message, never a crash.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "agent/agent_spine.hpp"
 #include "common/background_process.hpp"
 #include "common/temp_files.hpp"
 #include "policy/checkpoint_file.hpp"
@@ -25,82 +26,14 @@ namespace upkie_rl {
 namespace {
 
 using testing::BackgroundProcess;
+using testing::expect_supervised_stop;
+using testing::kPendulum;
+using testing::kServosBalance;
+using testing::kStopRequest;
+using testing::Spine;
+using testing::start_agent;
 using testing::temp_path;
-
-const std::string kPolicies = std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/";
-const std::string kPendulum = kPolicies + "pendulum_bullet_seed0.ckpt";
-const std::string kServosBalance = kPolicies + "servos_balance_mujoco_seed0.ckpt";
-constexpr std::uint32_t kStopRequest = 3;
-
-/// A real-time `upkie-rl spine` on its own shared memory, removed at the end.
-class Spine {
- public:
-  explicit Spine(const std::string& tag, std::vector<std::string> extra = {},
-                 const std::string& backend = "bullet")
-      : shm_name_("/upkie_rl_agent_" + tag + std::to_string(::getpid())),
-        process_(arguments(shm_name_, backend, std::move(extra)), "agent_spine_" + tag) {
-    for (int i = 0; i < 3000 && !std::filesystem::exists(path()); ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-  }
-  ~Spine() {
-    process_.wait(SIGINT);
-    std::filesystem::remove(path());  // left by a killed spine
-  }
-  Spine(const Spine&) = delete;
-  Spine& operator=(const Spine&) = delete;
-
-  const std::string& shm_name() const { return shm_name_; }
-  std::filesystem::path path() const { return "/dev/shm" + shm_name_; }
-  BackgroundProcess& process() { return process_; }
-
-  /// The request word of the shared memory.
-  std::uint32_t request() const {
-    std::ifstream in(path(), std::ios::binary);
-    std::uint32_t word = 0;
-    in.read(reinterpret_cast<char*>(&word), sizeof(word));
-    return word;
-  }
-
- private:
-  static std::vector<std::string> arguments(const std::string& shm_name, const std::string& backend,
-                                            std::vector<std::string> extra) {
-    std::vector<std::string> args = {UPKIE_RL_CLI_PATH, "spine",     "--shm-name",
-                                     shm_name,          "--backend", backend};
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-  }
-
-  std::string shm_name_;
-  BackgroundProcess process_;
-};
-
-/// upkie-rl-agent with `model` on `spine`, in the background.
-std::unique_ptr<BackgroundProcess> start_agent(const Spine& spine, const std::string& model,
-                                               const std::string& tag,
-                                               std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {UPKIE_RL_AGENT_PATH, "--model", model, "--shm-name",
-                                   spine.shm_name()};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return std::make_unique<BackgroundProcess>(args, "agent_" + tag);
-}
-
-/// Waits until the agent's log says it is running (at most 20 s).
-bool wait_running(const BackgroundProcess& agent) {
-  for (int i = 0; i < 2000; ++i) {
-    if (agent.output().find("starting -> running") != std::string::npos) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return false;
-}
-
-/// The log of a run the supervisor stopped: stopping, stop commands, stopped, summary.
-void expect_supervised_stop(const std::string& output, const std::string& reason) {
-  EXPECT_NE(output.find("-> stopping: " + reason), std::string::npos) << output;
-  EXPECT_NE(output.find("Stop request"), std::string::npos) << output;
-  EXPECT_NE(output.find("stopping -> stopped: detached"), std::string::npos) << output;
-  EXPECT_NE(output.find("summary: "), std::string::npos) << output;
-}
+using testing::wait_running;
 
 void expect_balances(const std::string& model, const std::string& backend) {
   Spine spine("balance_" + backend, {}, backend);
