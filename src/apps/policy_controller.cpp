@@ -33,38 +33,11 @@ std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& 
   return std::make_unique<PolicyController>(std::move(policy));
 }
 
-namespace {
-
-constexpr std::string_view kVelocitySuffix = "-Velocity";
-
-/// The pendulum of a velocity task's backend, at the task's rate and physics step: the
-/// model its balancer's gains are designed on. Other ids: themselves.
-std::pair<std::string, EnvOptions> design_env(const std::string& env_id,
-                                              const EnvOptions& nominal) {
-  const std::string_view id(env_id);
-  if (id.size() <= kVelocitySuffix.size() ||
-      id.substr(id.size() - kVelocitySuffix.size()) != kVelocitySuffix) {
-    return {env_id, nominal};
-  }
-  const std::string pendulum =
-      std::string(id.substr(0, id.size() - kVelocitySuffix.size())) + "-Pendulum";
-  EnvOptions options;
-  for (const OptionInfo& info : env_option_info(env_id)) {
-    if (info.name == "frequency" || info.name == "nb_substeps") {
-      options.emplace_back(info.name, info.default_value);
-    }
-  }
-  for (const auto& [key, value] : task_options(env_id, nominal, pendulum)) {
-    options.emplace_back(key, value);  // later keys win: the user's rate and step
-  }
-  return {pendulum, options};
-}
-
-}  // namespace
-
 DesignEnvFactory design_env_factory(const std::string& env_id, const EnvOptions& options) {
-  auto [design_id, design_options] = design_env(env_id, task_options(env_id, options, env_id));
-  return [design_id, design_options] { return make_env(design_id, design_options); };
+  // The task's options without the randomisation: controllers are designed in nominal
+  // conditions (the velocity balancer on the velocity task itself).
+  EnvOptions design_options = task_options(env_id, options, env_id);
+  return [env_id, design_options] { return make_env(env_id, design_options); };
 }
 
 EnvOptions options_for_model(const std::filesystem::path& model, const std::string& env_id,

@@ -19,15 +19,13 @@ namespace upkie_rl::apps {
 std::unique_ptr<Controller> make_policy_controller(const std::filesystem::path& model,
                                                    const Env& env);
 
+/// Makes, for controller designs (LQR, the velocity balancer), the environment `env_id`
+/// with the task options of `options` and none of its randomisation: the nominal robot.
+DesignEnvFactory design_env_factory(const std::string& env_id, const EnvOptions& options);
+
 /// The environment options that the model was trained with, without its randomisation
 /// ones, that `env_id` accepts (envs/registry.hpp task_options), followed by `extra` (which
 /// override them): the environment the policy's task needs, under the caller's conditions.
-/// Makes, for controller designs (LQR), the environment `env_id` with the task options of
-/// `options` and none of its randomisation: the nominal robot. For a velocity task
-/// (`Upkie-<backend>-Velocity`), the pendulum of the same backend at the task's rate and
-/// physics step, on which its balancer's gains are designed.
-DesignEnvFactory design_env_factory(const std::string& env_id, const EnvOptions& options);
-
 EnvOptions options_for_model(const std::filesystem::path& model, const std::string& env_id,
                              const EnvOptions& extra);
 

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "envs/lqr_design.hpp"
 #include "envs/velocity_balancer.hpp"
+#include "envs/velocity_balancer_design.hpp"
 #include "envs/velocity_env.hpp"
 
 namespace upkie_rl {
@@ -15,7 +17,8 @@ namespace upkie_rl {
 namespace {
 
 constexpr const char* kValidSpecs =
-    "valid controllers: zero, linear:k1,k2,k3,k4, lqr, lqr:theta,p,theta_dot,p_dot,command";
+    "valid controllers: zero, linear:k1,k2,k3,k4, lqr, lqr:theta,p,theta_dot,p_dot,command, "
+    "balancer:k_theta,k_theta_dot,k_v,k_e,theta0,theta_per_v,u0,u_per_v (velocity tasks)";
 
 /// `N` finite numbers separated by commas in `list`.
 template <std::size_t N>
@@ -44,6 +47,27 @@ std::array<float, N> parse_numbers(const std::string& spec, const std::string& l
 }
 
 constexpr const char* kLinearExpected = "four finite gains, linear:k1,k2,k3,k4";
+constexpr const char* kBalancerExpected =
+    "eight finite numbers, balancer:k_theta,k_theta_dot,k_v,k_e,theta0,theta_per_v,u0,u_per_v";
+constexpr std::string_view kBalancerPrefix = "balancer:";
+
+/// The pendulum's law k·[θ, p, θ̇, ṗ] as a velocity balancer without feedforward (the
+/// position p becomes the integral of the velocity error).
+VelocityBalancerGains balancer_of_linear(const std::array<float, 4>& gains) {
+  VelocityBalancerGains balancer;
+  balancer.feedback = {gains[0], gains[2], gains[3], gains[1]};
+  return balancer;
+}
+
+std::string balancer_spec(const VelocityBalancerGains& gains) {
+  std::ostringstream spec;
+  spec.precision(9);
+  spec << kBalancerPrefix;
+  for (const double k : gains.feedback) spec << k << ',';
+  spec << gains.pitch_offset << ',' << gains.pitch_per_velocity << ',' << gains.command_offset
+       << ',' << gains.command_per_velocity;
+  return spec.str();
+}
 
 }  // namespace
 
@@ -91,21 +115,32 @@ std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, con
     const std::array<float, 4> gains =
         parse_numbers<4>(spec, spec.substr(kLinearPrefix.size()), kLinearExpected);
     // The velocity task has no pendulum state: the same law in error coordinates drives it.
-    if (find_velocity_env(env) != nullptr) return std::make_unique<VelocityBalancer>(env, gains);
+    if (find_velocity_env(env) != nullptr) {
+      return std::make_unique<VelocityBalancer>(env, balancer_of_linear(gains));
+    }
     return std::make_unique<LinearController>(env, gains);
+  }
+  if (spec.rfind(kBalancerPrefix, 0) == 0) {
+    const auto numbers = parse_numbers<VelocityBalancerGains::kNumValues>(
+        spec, spec.substr(kBalancerPrefix.size()), kBalancerExpected);
+    VelocityBalancerGains gains;
+    for (std::size_t k = 0; k < 4; ++k) gains.feedback[k] = numbers[k];
+    gains.pitch_offset = numbers[4];
+    gains.pitch_per_velocity = numbers[5];
+    gains.command_offset = numbers[6];
+    gains.command_per_velocity = numbers[7];
+    return std::make_unique<VelocityBalancer>(env, gains);
   }
   throw std::invalid_argument("unknown controller \"" + spec + "\"; " + kValidSpecs);
 }
 
 std::string resolve_controller_spec(const std::string& spec, const DesignEnvFactory& design_env) {
   if (spec != "lqr" && spec.rfind("lqr:", 0) != 0) return spec;
-  LqrWeights weights;
+  std::optional<std::array<float, 5>> deviations;
   if (spec != "lqr") {
-    const auto numbers = parse_numbers<5>(
-        spec, spec.substr(4), "five positive deviations, lqr:theta,p,theta_dot,p_dot,command");
-    for (std::size_t k = 0; k < 4; ++k) weights.max_state[k] = numbers[k];
-    weights.max_command = numbers[4];
-    for (const float number : numbers) {
+    deviations = parse_numbers<5>(spec, spec.substr(4),
+                                  "five positive deviations, lqr:theta,p,theta_dot,p_dot,command");
+    for (const float number : *deviations) {
       if (!(number > 0.0f)) {
         throw std::invalid_argument("controller \"" + spec + "\": deviations must be positive");
       }
@@ -113,6 +148,21 @@ std::string resolve_controller_spec(const std::string& spec, const DesignEnvFact
   }
   if (!design_env) throw std::invalid_argument("controller lqr: no environment to design it on");
   const std::unique_ptr<Env> env = design_env();
+  if (find_velocity_env(*env) != nullptr) {
+    // Velocity tasks: the balancer designed on the task itself; p is the integral of the
+    // velocity error and ṗ the velocity error.
+    VelocityBalancerWeights weights;
+    if (deviations) {
+      const std::array<float, 5>& d = *deviations;
+      weights = {d[0], d[2], d[3], d[1], d[4]};
+    }
+    return balancer_spec(design_velocity_balancer(*env, weights));
+  }
+  LqrWeights weights;
+  if (deviations) {
+    for (std::size_t k = 0; k < 4; ++k) weights.max_state[k] = (*deviations)[k];
+    weights.max_command = (*deviations)[4];
+  }
   const std::array<float, 4> gains = design_lqr_gains(*env, weights);
   std::ostringstream linear;
   linear.precision(9);

@@ -41,8 +41,9 @@ class LinearController final : public Controller {
   float high_ = 0.0f;
 };
 
-/// "zero" or "linear:k1,k2,k3,k4" (see resolve_controller_spec for "lqr"). On a velocity
-/// task (Upkie-*-Velocity) the linear law is a VelocityBalancer.
+/// "zero", "linear:k1,k2,k3,k4" (see resolve_controller_spec for "lqr") or, on a velocity
+/// task (Upkie-*-Velocity), "balancer:" and the eight numbers of VelocityBalancerGains. On
+/// a velocity task the linear law is a VelocityBalancer without feedforward.
 /// @throws std::invalid_argument naming the spec and listing the valid ones.
 std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, const Env& env);
 
@@ -51,8 +52,10 @@ using DesignEnvFactory = std::function<std::unique_ptr<Env>()>;
 
 /// Turns a spec that needs a design into the linear law it designs: "lqr" or
 /// "lqr:θmax,pmax,θ̇max,ṗmax,umax" (Bryson weights, envs/lqr_design.hpp) becomes
-/// "linear:k1,k2,k3,k4" designed on an environment of `design_env`; other specs pass
-/// unchanged.
+/// "linear:k1,k2,k3,k4" designed on an environment of `design_env`; on a velocity task it
+/// becomes "balancer:..." designed by envs/velocity_balancer_design.hpp (the deviations
+/// then bound the pitch, the integral of the velocity error, the pitch rate, the velocity
+/// error and the command); other specs pass unchanged.
 /// @throws std::invalid_argument on malformed weights or a failed design.
 std::string resolve_controller_spec(const std::string& spec, const DesignEnvFactory& design_env);
 

@@ -99,6 +99,11 @@ void add_velocity_options(OptionTable& table, VelocityTaskConfig& task,
       "terminate_on_contact", {"true", "false"},
       [&task](std::size_t choice) { task.terminate_on_contact = choice == 0; },
       "terminate when a part other than a wheel touches the floor");
+  table.add_string("base_controller", &task.base_controller,
+                   "residual mode: a controller spec (balancer:... from `rollout --controller "
+                   "lqr`) whose action is added to residual_scale times the agent's");
+  table.add_double("residual_scale", &task.residual_scale, 0.0, 1.0,
+                   "residual mode: weight of the agent's action");
   VelocityRewardWeights& reward = task.reward;
   table.add_double("w_track_forward_velocity", &reward.w_track_forward_velocity, 0.0, kHuge,
                    "reward weight of forward velocity tracking");

@@ -16,8 +16,10 @@ constexpr std::size_t kRightWheelVelocity = 5;
 constexpr std::size_t kGravityX = 6;
 constexpr std::size_t kGravityZ = 8;
 constexpr std::size_t kGyroY = 10;
-constexpr double kMaxPositionError = 5.0;  // [m]
-constexpr double kMaxAcceleration = 1.0;   // of the velocity reference [m/s²]
+constexpr std::size_t kGyroZ = 11;
+constexpr double kMaxPositionError = 5.0;    // [m]
+constexpr double kMaxAcceleration = 2.0;     // of the velocity reference [m/s²]
+constexpr double kMaxYawRateIntegral = 1.0;  // [rad]
 
 const VelocityEnv& velocity_env(const Env& env) {
   const VelocityEnv* velocity = find_velocity_env(env);
@@ -30,7 +32,13 @@ const VelocityEnv& velocity_env(const Env& env) {
 
 }  // namespace
 
-VelocityBalancer::VelocityBalancer(const Env& env, const std::array<float, 4>& gains)
+double velocity_task_pitch(std::span<const float> observation) {
+  return std::atan2(observation[kGravityX], -observation[kGravityZ]);
+}
+
+double velocity_task_pitch_rate(std::span<const float> observation) { return observation[kGyroY]; }
+
+VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& gains)
     : gains_(gains) {
   const VelocityEnv& velocity = velocity_env(env);
   const RobotModel& model = velocity.servos().model();
@@ -40,32 +48,51 @@ VelocityBalancer::VelocityBalancer(const Env& env, const std::array<float, 4>& g
   timestep_ = env.timestep();
 }
 
+void VelocityBalancer::reset() {
+  position_error_ = 0.0;
+  reference_velocity_ = 0.0;
+  filtered_velocity_ = 0.0;
+  ground_velocity_ = 0.0;
+  yaw_rate_error_integral_ = 0.0;
+}
+
 void VelocityBalancer::act(std::span<const float> observation, std::span<float> action) {
   // The reference ramps toward the command: a step of the wheel speed would kick the body
   // over (it tilts backward when the wheels leap forward).
   const double commanded = observation[VelocityTask::kCommandIndex];
   const double max_change = kMaxAcceleration * timestep_;
   reference_velocity_ += std::clamp(commanded - reference_velocity_, -max_change, max_change);
-  const double forward_command = reference_velocity_;
-  const double yaw_command = observation[VelocityTask::kCommandIndex + 1];
-  const double pitch = std::atan2(observation[kGravityX], -observation[kGravityZ]);
-  const double pitch_rate = observation[kGyroY];
-  const double ground_velocity =
+  const double odometry =
       0.5 * wheel_radius_ * (observation[kLeftWheelVelocity] - observation[kRightWheelVelocity]);
-  const double velocity_error = ground_velocity - forward_command;
+  filtered_velocity_ += kVelocityFilterGain * (odometry - filtered_velocity_);
+  const double velocity_error = filtered_velocity_ - reference_velocity_;
   // Bounded, so that a command the robot cannot follow does not wind the integral up.
   position_error_ = std::clamp(position_error_ + velocity_error * timestep_, -kMaxPositionError,
                                kMaxPositionError);
-  const double command = forward_command + gains_[0] * pitch + gains_[1] * position_error_ +
-                         gains_[2] * pitch_rate + gains_[3] * velocity_error;
+  const double steady_pitch = gains_.pitch_offset + gains_.pitch_per_velocity * reference_velocity_;
+  const double steady_command =
+      gains_.command_offset + gains_.command_per_velocity * reference_velocity_;
+  const std::array<double, 4>& k = gains_.feedback;
+  ground_velocity_ = steady_command + k[0] * (velocity_task_pitch(observation) - steady_pitch) +
+                     k[1] * velocity_task_pitch_rate(observation) + k[2] * velocity_error +
+                     k[3] * position_error_ + excitation_;
+
+  // Yaw: the differential wheel speed of the command, corrected by a PI loop on the
+  // gyroscope (the tires slip a little when turning).
+  const double yaw_command = observation[VelocityTask::kCommandIndex + 1];
+  const double yaw_error = yaw_command - observation[kGyroZ];
+  yaw_rate_error_integral_ = std::clamp(yaw_rate_error_integral_ + yaw_error * timestep_,
+                                        -kMaxYawRateIntegral, kMaxYawRateIntegral);
+  const double yaw_rate =
+      yaw_command + kYawRateGain * yaw_error + kYawRateIntegralGain * yaw_rate_error_integral_;
   // Joint convention: the left wheel forward and the right one backward turn clockwise.
-  const double turn = -yaw_factor_ * yaw_command;
+  const double turn = -yaw_factor_ * yaw_rate;
   std::fill(action.begin(), action.end(), 0.0f);
   const auto normalized = [this](double wheel_velocity) {
     return static_cast<float>(std::clamp(wheel_velocity / wheel_velocity_scale_, -1.0, 1.0));
   };
-  action[kLeftWheel] = normalized(command / wheel_radius_ + turn);
-  action[kRightWheel] = normalized(-command / wheel_radius_ + turn);
+  action[kLeftWheel] = normalized(ground_velocity_ / wheel_radius_ + turn);
+  action[kRightWheel] = normalized(-ground_velocity_ / wheel_radius_ + turn);
 }
 
 }  // namespace upkie_rl

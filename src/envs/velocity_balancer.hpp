@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// VelocityBalancer: the classical baseline of the velocity task. Legs held at the default
-/// pose; the wheels driven by the pendulum's linear balance law in error coordinates, so
-/// that the robot balances while its ground velocity tracks the command, plus a
-/// differential wheel speed for the yaw rate.
+/// pose; the wheels driven by a linear balance law that tracks the commanded forward
+/// velocity (a wheeled inverted pendulum with a velocity reference and an integral state),
+/// plus a differential wheel speed for the yaw rate.
 
 #include <array>
 
@@ -12,36 +12,73 @@
 
 namespace upkie_rl {
 
+/// The numbers of the law (see VelocityBalancer); envs/velocity_balancer_design.hpp
+/// designs them on the environment.
+struct VelocityBalancerGains {
+  /// k of u = u_ss + k·[θ - θ_ss, θ̇, v̂ - v_ref, e] in the order pitch [m/s/rad], pitch
+  /// rate [m/s/(rad/s)], velocity error [1], integral of the velocity error [1/s].
+  std::array<double, 4> feedback{};
+  double pitch_offset = 0.0;          ///< θ_ss at rest [rad] (the centre of mass's offset).
+  double pitch_per_velocity = 0.0;    ///< dθ_ss/dv_ref [rad/(m/s)] (rolling losses).
+  double command_offset = 0.0;        ///< u_ss at rest [m/s].
+  double command_per_velocity = 1.0;  ///< du_ss/dv_ref [1].
+
+  /// How many numbers the `balancer:` spec gives: the members in order.
+  static constexpr std::size_t kNumValues = 8;
+};
+
 /// With θ the pitch (from the gravity vector of the observation), θ̇ the gyroscope's pitch
-/// rate, ṗ = r(ω_left - ω_right)/2 the wheel odometry velocity, v* and ψ̇* the command,
-/// v_ref a reference that ramps toward v* at 1 m/s², and e_p the integral of ṗ - v_ref
-/// since reset (bounded to ±5 m):
+/// rate, v̂ the wheel odometry velocity r(ω_left - ω_right)/2 low-pass filtered (the tire
+/// contact makes the wheel speeds jitter by several tenths of a m/s from one step to the
+/// next), v* and ψ̇* the command, v_ref a reference ramping toward v* at 1 m/s² and e the
+/// integral of v̂ - v_ref since reset (bounded to ±5 m):
 ///
-///   ground velocity u = v_ref + k·[θ, e_p, θ̇, ṗ - v_ref]
-///   ω_left = u/r - (track/2)/r·ψ̇*,  ω_right = -u/r - (track/2)/r·ψ̇*
+///   ground velocity u = u_ss + k·[θ - θ_ss, θ̇, v̂ - v_ref, e],
+///   θ_ss = pitch_offset + pitch_per_velocity·v_ref, u_ss = command_offset +
+///   command_per_velocity·v_ref (the steady state of a robot driving at v_ref),
+///   yaw rate ω = ψ̇* + k_ψ(ψ̇* - ψ̇) + k_ψi∫(ψ̇* - ψ̇) with ψ̇ the gyroscope's yaw rate,
+///   ω_left = u/r - (track/2)/r·ω,  ω_right = -u/r - (track/2)/r·ω
 ///
-/// written as the normalised wheel actions of the velocity task, legs at 0. The gains k are
-/// the pendulum's (`linear:k1,k2,k3,k4`, or `lqr`: designed on the pendulum at the task's
-/// rate).
+/// written as the normalised wheel actions of the velocity task, legs at 0.
 class VelocityBalancer final : public Controller {
  public:
-  /// @throws std::invalid_argument when `env` is not a velocity environment.
-  VelocityBalancer(const Env& env, const std::array<float, 4>& gains);
+  /// Low-pass gain of the velocity estimate per agent step.
+  static constexpr double kVelocityFilterGain = 0.15;
+  /// Proportional and integral gains of the yaw-rate loop ([1], [1/s]).
+  static constexpr double kYawRateGain = 0.5;
+  static constexpr double kYawRateIntegralGain = 1.0;
 
-  void reset() override {
-    position_error_ = 0.0;
-    reference_velocity_ = 0.0;
-  }
+  /// @throws std::invalid_argument when `env` is not a velocity environment.
+  VelocityBalancer(const Env& env, const VelocityBalancerGains& gains);
+
+  void reset() override;
   void act(std::span<const float> observation, std::span<float> action) override;
 
+  /// Adds `offset` [m/s] to the ground velocity of the next actions (excitation for the
+  /// identification of envs/velocity_balancer_design.hpp; 0 otherwise).
+  void set_excitation(double offset) { excitation_ = offset; }
+  /// v̂ after the last act() [m/s].
+  double filtered_velocity() const { return filtered_velocity_; }
+  /// u of the last act() [m/s].
+  double ground_velocity() const { return ground_velocity_; }
+
  private:
-  std::array<float, 4> gains_;
+  VelocityBalancerGains gains_;
   double wheel_radius_;
   double yaw_factor_;            ///< (track / 2) / r
   double wheel_velocity_scale_;  ///< rad/s at action 1
   double timestep_;
-  double position_error_ = 0.0;      ///< ∫(ṗ - v_ref) dt [m]
-  double reference_velocity_ = 0.0;  ///< v_ref, ramped toward v* at 1 m/s² [m/s]
+  double excitation_ = 0.0;
+  double position_error_ = 0.0;           ///< e = ∫(v̂ - v_ref) dt [m]
+  double reference_velocity_ = 0.0;       ///< v_ref [m/s]
+  double filtered_velocity_ = 0.0;        ///< v̂ [m/s]
+  double ground_velocity_ = 0.0;          ///< u [m/s]
+  double yaw_rate_error_integral_ = 0.0;  ///< ∫(ψ̇* - ψ̇) dt [rad]
 };
+
+/// Pitch of the base from the velocity task's observation [rad] (positive leaning forward).
+double velocity_task_pitch(std::span<const float> observation);
+/// Pitch rate from the velocity task's observation (gyroscope) [rad/s].
+double velocity_task_pitch_rate(std::span<const float> observation);
 
 }  // namespace upkie_rl

@@ -32,12 +32,15 @@ VelocityCommandSchedule VelocityCommandSchedule::load(const std::filesystem::pat
   std::vector<Row> rows;
   std::string line;
   int number = 0;
+  bool first_content = true;  // a header may come after blank and comment lines
   while (std::getline(file, line)) {
     ++number;
     if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
     std::array<double, 3> values{};
+    const bool header_allowed = first_content;
+    first_content = false;
     if (!parse_number_row(line, values)) {
-      if (number == 1) continue;  // a header
+      if (header_allowed) continue;  // a header
       throw std::invalid_argument(path.string() + ":" + std::to_string(number) +
                                   ": expected time,vx,wz (three numbers)");
     }

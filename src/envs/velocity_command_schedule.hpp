@@ -23,8 +23,9 @@ class VelocityCommandSchedule {
   ///         times are negative or not increasing.
   explicit VelocityCommandSchedule(std::vector<Row> rows);
 
-  /// Reads a CSV file of rows `time,vx,wz` ([s], [m/s], [rad/s]); a first line that is not
-  /// numbers is a header, blank lines and lines starting with '#' are skipped.
+  /// Reads a CSV file of rows `time,vx,wz` ([s], [m/s], [rad/s]); the first line that is
+  /// neither blank nor a comment may be a header (not numbers); blank lines and lines starting with
+  /// '#' are skipped.
   /// @throws std::invalid_argument naming the file and line of a malformed row, or as the
   ///         constructor.
   static VelocityCommandSchedule load(const std::filesystem::path& path);

@@ -1,8 +1,10 @@
 #include "envs/velocity_env.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "envs/builtin_controllers.hpp"
 #include "envs/env_wrapper.hpp"
 #include "sim/random_draws.hpp"
 
@@ -22,6 +24,13 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
       sampler_(commands) {
   observation_space_ = VelocityTask::make_observation_space();
   action_space_ = VelocityTask::make_action_space();
+  if (!task.base_controller.empty()) {
+    try {
+      base_ = make_builtin_controller(task.base_controller, *this);
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument(std::string("base_controller: ") + error.what());
+    }
+  }
 }
 
 void VelocityEnv::set_command_override(const std::optional<VelocityCommand>& command) {
@@ -50,11 +59,23 @@ void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> obse
   action_.fill(0.0f);
   previous_action_.fill(0.0f);
   task_.write_observation(full, action_, command_, observation);
+  if (base_) {
+    base_->reset();
+    std::copy(observation.begin(), observation.end(), last_observation_.begin());
+  }
 }
 
 StepResult VelocityEnv::step(std::span<const float> action, std::span<float> observation) {
   previous_action_ = action_;
   clamp_to_space(action_space_, action, action_);
+  if (base_) {
+    base_->act(last_observation_, base_action_);
+    const double scale = task_.config().residual_scale;
+    for (std::size_t i = 0; i < action_.size(); ++i) {
+      action_[i] =
+          std::clamp(static_cast<float>(base_action_[i] + scale * action_[i]), -1.0f, 1.0f);
+    }
+  }
   task_.servo_action(action_, servo_action_);
   const Observation& full = servos_->step_servos(servo_action_);
   held_command_ = command_;
@@ -62,6 +83,7 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   sampler_.advance(servos_->timestep());
   refresh_command();
   task_.write_observation(full, action_, command_, observation);
+  if (base_) std::copy(observation.begin(), observation.end(), last_observation_.begin());
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include "envs/controller.hpp"
 #include "envs/servos_wrapper_env.hpp"
 #include "envs/velocity_command_sampler.hpp"
 #include "envs/velocity_task.hpp"
@@ -16,9 +17,16 @@ namespace upkie_rl {
 
 /// The task (VelocityTask: actions, observation, reward terms, terminations) with the
 /// command of each step: the sampler's random one, or the override when one is set.
+///
+/// Residual mode (option `base_controller`, e.g. the classical baseline's "balancer:..."
+/// spec): the servo action is clamp(base + residual_scale·a) with `base` the built-in
+/// controller's action for the last observation and `a` the agent's, so that a policy
+/// learns corrections to a controller that already balances and drives. The base sees the
+/// task's observation before the wrappers' noise and acts without their lag.
 class VelocityEnv final : public ServosWrapperEnv {
  public:
-  /// @throws std::invalid_argument on a null servos environment or bad command ranges.
+  /// @throws std::invalid_argument on a null servos environment, bad command ranges or a
+  ///         base_controller that is not a velocity controller spec.
   VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskConfig& task,
               const VelocityCommandRanges& commands);
 
@@ -57,6 +65,9 @@ class VelocityEnv final : public ServosWrapperEnv {
   VelocityCommand held_command_;
   std::array<float, VelocityTask::kActionSize> action_{};
   std::array<float, VelocityTask::kActionSize> previous_action_{};
+  std::unique_ptr<Controller> base_;  ///< Residual mode's controller, or null.
+  std::array<float, VelocityTask::kObservationSize> last_observation_{};
+  std::array<float, VelocityTask::kActionSize> base_action_{};
   ServoAction servo_action_{};
 };
 

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <span>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -21,13 +22,17 @@ namespace upkie_rl {
 
 /// Settings of the task (environment options of the same names).
 struct VelocityTaskConfig {
-  double wheel_velocity_scale = 30.0;  ///< Wheel velocity target at |u| = 1 [rad/s].
+  double wheel_velocity_scale = 60.0;  ///< Wheel velocity target at |u| = 1 [rad/s].
   double leg_action_scale = 0.5;       ///< Hip or knee target offset at |u| = 1 [rad].
   double wheel_kd_scale = 1.0;         ///< Wheels: velocity loop only (kp unused).
   double leg_kp_scale = 2.0;
   double leg_kd_scale = 1.7;
   double fall_tilt = 1.22;           ///< Terminate when the base tilts more than this [rad] (70°).
   bool terminate_on_contact = true;  ///< Terminate when a non-wheel part touches the floor.
+  /// Residual mode (VelocityEnv): a built-in controller spec ("balancer:..."), whose action
+  /// is added to residual_scale times the agent's; empty for none.
+  std::string base_controller;
+  double residual_scale = 1.0;
   VelocityRewardWeights reward;
 };
 

@@ -204,8 +204,8 @@ TEST(VelocityEnv, ActionMappingAroundTheDefaultPose) {
   EXPECT_NEAR(sent[kLeftHip].position, 0.5, 1e-9);
   EXPECT_NEAR(sent[kLeftKnee].position, -0.25, 1e-9);
   EXPECT_NEAR(sent[kRightKnee].position, 0.5, 1e-9);  // clamped to 1
-  EXPECT_NEAR(sent[kLeftWheel].velocity, 15.0, 1e-9);
-  EXPECT_NEAR(sent[kRightWheel].velocity, -30.0, 1e-9);
+  EXPECT_NEAR(sent[kLeftWheel].velocity, 30.0, 1e-9);
+  EXPECT_NEAR(sent[kRightWheel].velocity, -60.0, 1e-9);
   EXPECT_TRUE(std::isnan(sent[kLeftWheel].position));
   // The last action, clamped, is observed.
   EXPECT_FLOAT_EQ(observation[12 + 4], 1.0f);
@@ -317,6 +317,20 @@ TEST(VelocityEnv, BadOptionsNameTheOption) {
               make_env(id, {{"zero_command_probability", "1.5"}});
             }).find("zero_command_probability"),
             std::string::npos);
+  for (const char* value : {"-1", "nan", "2"}) {
+    EXPECT_NE(error_of([&] {
+                make_env(id, {{"residual_scale", value}});
+              }).find("residual_scale"),
+              std::string::npos)
+        << value;
+  }
+  for (const char* spec : {"balancer:1,2", "zero2", "linear:1,2,3,nan"}) {
+    EXPECT_NE(error_of([&] {
+                make_env(id, {{"base_controller", spec}});
+              }).find("base_controller"),
+              std::string::npos)
+        << spec;
+  }
 }
 
 }  // namespace

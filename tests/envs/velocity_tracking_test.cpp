@@ -59,6 +59,10 @@ TEST(VelocityCommandSchedule, LoadsACsvAndNamesTheBadLine) {
   const VelocityCommandSchedule schedule = VelocityCommandSchedule::load(good);
   ASSERT_EQ(schedule.rows().size(), 2u);
   EXPECT_EQ(schedule.at(3.0), (VelocityCommand{0.8, -0.4}));
+  // configs/velocity_commands.csv's layout: comments before the header.
+  const auto commented = testing::temp_path("commented.csv");
+  std::ofstream(commented) << "# commands\n\ntime,vx,wz\n0,0.5,1\n";
+  EXPECT_EQ(VelocityCommandSchedule::load(commented).at(0.0), (VelocityCommand{0.5, 1.0}));
   const auto bad = testing::temp_path("bad.csv");
   std::ofstream(bad) << "time,vx,wz\n0,0,0\n1,fast,0\n";
   try {
