@@ -102,7 +102,8 @@ def cli_episodes(model_path, tmp_path):
     record = tmp_path / "rollout.csv"
     output = subprocess.run(
         [str(cli_path()), "rollout", "--env", ENV_ID, "--model", str(model_path),
-         "--episodes", str(EPISODES), "--seed", str(SEED), "--record", str(record), "--json"],
+         "--episodes", str(EPISODES), "--seed", str(SEED), "--record", str(record), "--json",
+         "--exact-start"],  # PPO.predict's gym.make episodes start exactly upright
         check=True, capture_output=True, text=True).stdout
     summary = json.loads(output.strip().splitlines()[-1])
     lines = record.read_text().splitlines()
@@ -122,7 +123,8 @@ def test_imported_model_acts_in_upkie_rl_rollout_as_ppo_predict(sb3_model, tmp_p
     predicted, _ = model.predict(normalize.normalize_obs(observations), deterministic=True)
     np.testing.assert_allclose(actions, predicted, rtol=0, atol=1e-5)
     # The Python policy of the imported file gives the CLI's returns exactly.
-    results = upkie_rl.evaluate(upkie_rl.load_policy(imported), ENV_ID, EPISODES, SEED)
+    results = upkie_rl.evaluate(upkie_rl.load_policy(imported), ENV_ID, EPISODES, SEED,
+                                exact_start=True)
     assert [total for total, _ in results] == returns
 
 

@@ -15,6 +15,7 @@ Any other name raises ``UnsafePickleError`` naming it; so does a file over ``MAX
 
 from __future__ import annotations
 
+import importlib
 import io
 import pickle
 from pathlib import Path
@@ -46,9 +47,11 @@ def _inert_factory(*args, **kwargs):
 
 
 _NUMPY_CORE = ("numpy.core.multiarray", "numpy._core.multiarray")
+# numpy's pickles name these private functions; numpy's stubs do not declare them.
+_MULTIARRAY = importlib.import_module("numpy.core.multiarray")
 _ALLOWED = {
-    **{(module, "_reconstruct"): np.core.multiarray._reconstruct for module in _NUMPY_CORE},
-    **{(module, "scalar"): np.core.multiarray.scalar for module in _NUMPY_CORE},
+    **{(module, "_reconstruct"): _MULTIARRAY._reconstruct for module in _NUMPY_CORE},
+    **{(module, "scalar"): _MULTIARRAY.scalar for module in _NUMPY_CORE},
     ("numpy", "ndarray"): np.ndarray,
     ("numpy", "dtype"): np.dtype,
     ("stable_baselines3.common.vec_env.vec_normalize", "VecNormalize"): InertRecord,

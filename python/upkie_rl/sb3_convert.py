@@ -34,6 +34,7 @@ from typing import Dict, List, Optional, Tuple, Union
 import numpy as np
 
 from . import _core
+from .env import UpkieEnv
 from .safe_pickle import InertRecord, load_allowlisted
 from .vector import canonical_id
 
@@ -260,6 +261,8 @@ def read_vec_normalize(path: PathLike, observation_size: int) -> dict:
         if size == 1 and mean.shape == () and var.shape == ():
             mean, var = mean.reshape(1), var.reshape(1)
         count = record.state.get("count")
+        if count is None:
+            raise ConversionError(f"{path}: {name} has no sample count")
         if mean.dtype.kind != "f" or var.dtype.kind != "f" or mean.shape != (size,) or var.shape != (size,):
             raise ConversionError(f"{path}: {name} is not {size} floating-point means and variances")
         if not np.all(np.isfinite(mean)) or not np.all(var >= 0) or not np.isfinite(float(count)):
@@ -296,7 +299,10 @@ def _env_spaces(env_id: str, options: Dict[str, str]):
 
     env = gym.make(f"upkie_rl/{canonical_id(env_id)}", **{k: _typed(v) for k, v in options.items()})
     try:
-        core = env.unwrapped._core
+        unwrapped = env.unwrapped
+        if not isinstance(unwrapped, UpkieEnv):
+            raise ConversionError(f"{env_id} is not an upkie_rl environment")
+        core = unwrapped._core
         return core.observation_space, core.action_space
     finally:
         env.close()
@@ -416,7 +422,7 @@ def _import_header(data, contents, zip_path, env_id, options, normalization, obs
     })
     if original:
         provenance["original"] = original
-    import yaml
+    import yaml  # type: ignore[import-untyped]  # PyYAML ships no stubs; Debian has none
 
     return {
         "format": _CHECKPOINT_FORMAT,
@@ -599,7 +605,7 @@ def _write_vec_normalize(normalization, venv, path: Path) -> None:
     from stable_baselines3.common.vec_env import VecNormalize
 
     if not normalization:
-        VecNormalize(venv, norm_obs=False, norm_reward=False).save(path)
+        VecNormalize(venv, norm_obs=False, norm_reward=False).save(str(path))
         return
     config = normalization["config"]
     wrapper = VecNormalize(
@@ -615,7 +621,7 @@ def _write_vec_normalize(normalization, venv, path: Path) -> None:
             rms.var = np.array(statistics["var"], dtype=np.float64).reshape(rms.var.shape)
             rms.count = float(statistics["count"])
     wrapper.training = False
-    wrapper.save(path)
+    wrapper.save(str(path))
 
 
 # ---------------------------------------------------------------------------------------
