@@ -60,7 +60,14 @@ TEST_F(AgentRecord, HasTheRolloutColumnsThenTheRunnersOwn) {
     ASSERT_EQ(row.size(), table.columns.size());
     EXPECT_EQ(row[table.column("supervisor_state")], "2");  // running
   }
-  EXPECT_GT(table.rows.size(), 380u);
+  // One row per cycle the runner reports (2 s at 200 Hz is 400 on an idle machine; a
+  // loaded one misses deadlines and runs fewer).
+  const std::string summary = "summary: ";
+  const std::size_t at = agent_output_.find(summary);
+  ASSERT_NE(at, std::string::npos) << agent_output_;
+  const std::size_t cycles = std::stoul(agent_output_.substr(at + summary.size()));
+  EXPECT_EQ(table.rows.size(), cycles) << agent_output_;
+  EXPECT_GT(cycles, 100u) << agent_output_;
 }
 
 TEST_F(AgentRecord, ViewAndRenderReplayIt) {

@@ -421,8 +421,11 @@ TEST(SpineServer, CycleJitterMakesCyclesLate) {
   };
   const double steady = mean_deviation(0.0);
   const double jittered = mean_deviation(0.012);
-  EXPECT_GT(jittered - steady, 0.002) << steady << " vs " << jittered;
-  EXPECT_LT(jittered - steady, 0.007) << steady << " vs " << jittered;
+  // Uniform jitter in [0, 12 ms] moves each period by 4 ms on average on an idle machine;
+  // a loaded one makes the steady periods late too, which hides part of it (1.8 ms seen at
+  // load 17), so the bounds are wide: the test tells jitter from none, not its exact size.
+  EXPECT_GT(jittered - steady, 0.001) << steady << " vs " << jittered;
+  EXPECT_LT(jittered - steady, 0.008) << steady << " vs " << jittered;
 }
 
 }  // namespace
