@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace upkie_rl {
 
@@ -12,44 +14,66 @@ namespace {
 
 struct ActivationNames {
   Activation activation;
-  const char* name;        // Ours, in configurations and checkpoint headers.
-  const char* torch_name;  // PyTorch's class, as Stable-Baselines3 names it.
+  const char* name;         // Ours, in configurations and checkpoint headers.
+  const char* torch_name;   // PyTorch's class, as Stable-Baselines3 names it.
+  const char* torchscript;  // The aten function TorchScript calls, with default parameters.
 };
 
 constexpr std::array<ActivationNames, 9> kActivations{{
-    {Activation::kReLU, "relu", "ReLU"},
-    {Activation::kTanh, "tanh", "Tanh"},
-    {Activation::kELU, "elu", "ELU"},
-    {Activation::kLeakyReLU, "leaky_relu", "LeakyReLU"},
-    {Activation::kSiLU, "silu", "SiLU"},
-    {Activation::kGELU, "gelu", "GELU"},
-    {Activation::kSigmoid, "sigmoid", "Sigmoid"},
-    {Activation::kSoftplus, "softplus", "Softplus"},
-    {Activation::kSELU, "selu", "SELU"},
+    {Activation::kReLU, "relu", "ReLU", "torch.relu"},
+    {Activation::kTanh, "tanh", "Tanh", "torch.tanh"},
+    {Activation::kELU, "elu", "ELU", "torch.elu"},
+    {Activation::kLeakyReLU, "leaky_relu", "LeakyReLU", "torch.leaky_relu"},
+    {Activation::kSiLU, "silu", "SiLU", "torch.silu"},
+    {Activation::kGELU, "gelu", "GELU", "torch.gelu"},
+    {Activation::kSigmoid, "sigmoid", "Sigmoid", "torch.sigmoid"},
+    {Activation::kSoftplus, "softplus", "Softplus", "torch.softplus"},
+    {Activation::kSELU, "selu", "SELU", "torch.selu"},
 }};
 
 double sigmoid(double value) { return 1.0 / (1.0 + std::exp(-value)); }
 
+// Null for a value outside the enumeration (a corrupted cast).
+const ActivationNames* names_of(Activation activation) {
+  for (const ActivationNames& entry : kActivations) {
+    if (entry.activation == activation) return &entry;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 Activation parse_activation(const std::string& name) {
-  std::string known;
   for (const ActivationNames& entry : kActivations) {
     if (name == entry.name || name == entry.torch_name) return entry.activation;
-    known += (known.empty() ? "" : ", ") + std::string(entry.name);
   }
-  throw std::invalid_argument("unknown activation '" + name + "' (expected " + known + ")");
+  throw std::invalid_argument("unknown activation '" + name + "' (expected " + activation_names() +
+                              ")");
 }
 
 const char* activation_name(Activation activation) {
-  for (const ActivationNames& entry : kActivations) {
-    if (entry.activation == activation) return entry.name;
-  }
-  return "unknown";
+  const ActivationNames* names = names_of(activation);
+  return names != nullptr ? names->name : "unknown";
 }
 
-bool is_trainable(Activation activation) {
-  return activation == Activation::kReLU || activation == Activation::kTanh;
+std::vector<Activation> all_activations() {
+  std::vector<Activation> activations;
+  for (const ActivationNames& entry : kActivations) activations.push_back(entry.activation);
+  return activations;
+}
+
+std::string activation_names() {
+  std::string known;
+  for (const ActivationNames& entry : kActivations) {
+    known += (known.empty() ? "" : ", ") + std::string(entry.name);
+  }
+  return known;
+}
+
+std::string activation_torchscript(Activation activation, const std::string& x) {
+  const ActivationNames* names = names_of(activation);
+  if (names == nullptr) throw std::invalid_argument("no TorchScript for an unknown activation");
+  return std::string(names->torchscript) + "(" + x + ")";
 }
 
 double apply_activation(Activation activation, double value) {

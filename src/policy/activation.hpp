@@ -1,14 +1,18 @@
 #pragma once
 /// @file
-/// Activation of the hidden layers of the policy and value networks.
+/// Activation of the hidden layers of the policy and value networks: the one list of
+/// activations, with their names, scalar definitions and TorchScript spellings, shared by
+/// training (rl/tensor_activation.hpp applies them to tensors), deployment
+/// (policy/deployed_policy.hpp), and export (rl/torchscript_export.hpp, onnx/).
 
 #include <string>
+#include <vector>
 
 namespace upkie_rl {
 
-/// The trainer (rl/) trains ReLU and Tanh networks; the others, with PyTorch's definitions
-/// and default parameters, come with policies imported from Stable-Baselines3 and are only
-/// evaluated (DeployedPolicy, ONNX export).
+/// PyTorch's definitions with its default parameters (Stable-Baselines3 policies use them).
+/// The trainer trains every one: with the hand-written gradient for those it covers
+/// (rl/ppo_gradient.hpp, ReLU and Tanh), with autograd for the others (`ppo.gradient`).
 enum class Activation {
   kReLU,
   kTanh,
@@ -26,8 +30,12 @@ enum class Activation {
 Activation parse_activation(const std::string& name);
 /// The lower-case name parse_activation reads back.
 const char* activation_name(Activation activation);
-/// Whether `upkie-rl train` can train networks with it (ReLU and Tanh).
-bool is_trainable(Activation activation);
+/// Every activation, in the order of the enumeration.
+std::vector<Activation> all_activations();
+/// The accepted lower-case names, for messages: "relu, tanh, elu, ...".
+std::string activation_names();
+/// The TorchScript expression applying it to `x`, e.g. "torch.elu(x)".
+std::string activation_torchscript(Activation activation, const std::string& x);
 /// The activation of one value, computed in double.
 double apply_activation(Activation activation, double value);
 

@@ -4,13 +4,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "policy/diagonal_gaussian.hpp"
+#include "rl/tensor_activation.hpp"
+
 namespace upkie_rl {
-
-namespace {
-
-constexpr double kHalfLog2Pi = 0.91893853320467274178;  // ½·log(2π)
-
-}  // namespace
 
 std::int64_t count_parameters(std::int64_t observation_size, std::int64_t action_size,
                               const PolicyConfig& config) {
@@ -86,9 +83,7 @@ std::vector<DenseLayer> ActorCritic::make_mlp(const std::string& name,
 torch::Tensor ActorCritic::run_mlp(const std::vector<DenseLayer>& layers, torch::Tensor x) const {
   for (std::size_t i = 0; i < layers.size(); ++i) {
     x = torch::addmm(layers[i].bias, x, layers[i].weight.t());
-    if (i + 1 < layers.size()) {
-      x = config_.activation == Activation::kReLU ? torch::relu(x) : torch::tanh(x);
-    }
+    if (i + 1 < layers.size()) x = activate(config_.activation, x);
   }
   return x;
 }
@@ -104,7 +99,7 @@ torch::Tensor ActorCritic::value(const torch::Tensor& observations) const {
 ActionEvaluation ActorCritic::evaluate_actions(const torch::Tensor& observations,
                                                const torch::Tensor& actions) const {
   const torch::Tensor mean = action_mean(observations);
-  // log N(a; μ, σ) = −½((a − μ)/σ)² − log σ − ½log 2π, summed over components.
+  // policy/diagonal_gaussian.hpp's formulas on tensors: log π = −½Σ z² − log_normaliser.
   const torch::Tensor z = (actions - mean) * torch::exp(-log_std_);
   ActionEvaluation out;
   out.log_prob = (z.square().sum(1)).mul(-0.5) -
@@ -131,18 +126,12 @@ PolicyInference::PolicyInference(const ActorCritic& policy, std::int64_t batch_s
 void PolicyInference::forward(const std::vector<DenseLayer>& layers,
                               const std::vector<torch::Tensor>& weights_t,
                               std::vector<torch::Tensor>& outputs) {
-  const bool relu = policy_.config().activation == Activation::kReLU;
+  const Activation activation = policy_.config().activation;
   const torch::Tensor* x = &input_;
   for (std::size_t i = 0; i < layers.size(); ++i) {
     at::mm_out(outputs[i], *x, weights_t[i]);
     outputs[i].add_(layers[i].bias);
-    if (i + 1 < layers.size()) {
-      if (relu) {
-        outputs[i].relu_();
-      } else {
-        outputs[i].tanh_();
-      }
-    }
+    if (i + 1 < layers.size()) activate_in_place(activation, outputs[i]);
     x = &outputs[i];
   }
 }

@@ -7,14 +7,14 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "policy/diagonal_gaussian.hpp"
+#include "rl/autograd_ppo_gradient.hpp"
 #include "rl/ppo_gradient.hpp"
 #include "rl/ppo_loss.hpp"
 
 namespace upkie_rl {
 
 namespace {
-
-constexpr double kHalfLog2Pi = 0.91893853320467274178;
 
 using Clock = std::chrono::steady_clock;
 
@@ -51,7 +51,6 @@ Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
       learning_rate_{config.ppo.learning_rate_initial, config.ppo.learning_rate_final},
       buffer_(config.steps_per_env(), num_envs_, observation_size_, action_size_),
       inference_(*policy_, num_envs_),
-      gradient_(*policy_, std::min(config.ppo.batch_size, buffer_.size())),
       reward_terms_(env.reward_term_names().size()),
       rng_(config.seed),
       last_observations_(num_envs_ * observation_size_),
@@ -69,6 +68,9 @@ Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
     throw std::invalid_argument("PPO: action space bounds do not match its size");
   }
   permutation_.resize(static_cast<std::size_t>(buffer_.size()));
+  if (upkie_rl::uses_hand_gradient(config_)) {
+    gradient_.emplace(*policy_, std::min(config_.ppo.batch_size, buffer_.size()));
+  }
 }
 
 void Ppo::reset_environments(std::uint64_t seed) {
@@ -89,14 +91,13 @@ void Ppo::collect_rollout() {
   const double gamma = config_.ppo.gamma;
   // σ is constant during a rollout.
   std::vector<double> stds(action_size_);
-  double log_normaliser = 0.0;
-  {
-    const float* log_std = policy_->log_std().data_ptr<float>();
-    for (std::int64_t j = 0; j < action_size_; ++j) {
-      stds[j] = std::exp(static_cast<double>(log_std[j]));
-      log_normaliser += log_std[j] + kHalfLog2Pi;
-    }
+  const std::span<const float> log_std(policy_->log_std().data_ptr<float>(),
+                                       static_cast<std::size_t>(action_size_));
+  for (std::int64_t j = 0; j < action_size_; ++j) {
+    stds[j] = std::exp(static_cast<double>(log_std[j]));
   }
+  // The sampled noise is z of policy/diagonal_gaussian.hpp's log π.
+  const double log_normaliser = gaussian_log_normaliser(log_std);
   const std::size_t observation_bytes = last_observations_.size() * sizeof(float);
   for (std::int64_t t = 0; t < buffer_.num_steps(); ++t) {
     auto start = Clock::now();
@@ -264,10 +265,11 @@ PpoUpdateStatistics Ppo::update() {
     const PpoMinibatchView shuffled_view = view_minibatch(shuffled);
     for (std::int64_t begin = 0; begin < size; begin += ppo.batch_size) {
       const std::int64_t length = std::min(ppo.batch_size, size - begin);
-      // The hand-written equivalent of compute_ppo_loss(...).total.backward(): it
+      // compute_ppo_loss(...).total.backward(), hand-written or by autograd: either
       // overwrites the flat gradients.
-      const PpoLossStatistics loss =
-          gradient_.compute(shuffled_view.rows(begin, length), *policy_, ppo);
+      const PpoMinibatchView minibatch = shuffled_view.rows(begin, length);
+      const PpoLossStatistics loss = gradient_ ? gradient_->compute(minibatch, *policy_, ppo)
+                                               : autograd_ppo_gradient(minibatch, *policy_, ppo);
       // DD-PPO: the gradient of the minibatch of every rank together.
       if (communicator_->world_size() > 1) average_over_ranks(policy_->flat_gradients());
       clip_gradient_norm(policy_->flat_gradients(), ppo.max_grad_norm);

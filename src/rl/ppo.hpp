@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <random>
 #include <span>
 #include <string>
@@ -88,6 +89,8 @@ class Ppo {
   PpoUpdateStatistics iterate();
 
   std::int64_t num_timesteps() const { return num_timesteps_; }
+  /// Whether update() uses the hand-written gradient (else autograd): uses_hand_gradient.
+  bool uses_hand_gradient() const { return gradient_.has_value(); }
   std::int64_t iterations() const { return iterations_; }
   std::int64_t n_updates() const { return n_updates_; }
   const TrainingConfig& config() const { return config_; }
@@ -122,7 +125,9 @@ class Ppo {
   LinearSchedule learning_rate_;
   RolloutBuffer buffer_;
   PolicyInference inference_;
-  PpoGradient gradient_;  ///< Loss and gradient of a minibatch, buffers sized once.
+  /// Loss and gradient of a minibatch, buffers sized once; empty when the config trains
+  /// with autograd (uses_hand_gradient).
+  std::optional<PpoGradient> gradient_;
   EpisodeStatistics episodes_;
   RewardTermStatistics reward_terms_;
   PpoTimings timings_;

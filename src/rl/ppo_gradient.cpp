@@ -11,11 +11,11 @@
 #include <immintrin.h>
 #endif
 
+#include "policy/diagonal_gaussian.hpp"
+
 namespace upkie_rl {
 
 namespace {
-
-constexpr double kHalfLog2Pi = 0.91893853320467274178;  // ½·log(2π)
 
 using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using MatrixMap = Eigen::Map<RowMatrix>;
@@ -346,9 +346,14 @@ PpoMinibatchView view_minibatch(const PpoMinibatch& batch) {
   return view;
 }
 
+bool PpoGradient::covers(Activation activation) {
+  return activation == Activation::kReLU || activation == Activation::kTanh;
+}
+
 PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
                          PpoGradientKernel kernel)
     : avx2_(kernel == PpoGradientKernel::kFastest && cpu_has_avx2_fma()),
+      activation_(policy.config().activation),
       observation_size_(policy.observation_size()),
       action_size_(policy.action_size()),
       max_batch_size_(max_batch_size),
@@ -356,6 +361,12 @@ PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
                                   policy.config().actor_hidden_sizes,
                                   policy.config().critic_hidden_sizes)) {
   if (max_batch_size < 1) throw std::invalid_argument("PpoGradient: max_batch_size must be >= 1");
+  if (!covers(activation_)) {
+    throw std::invalid_argument(std::string("PpoGradient: the hand-written gradient covers relu "
+                                            "and tanh, not ") +
+                                activation_name(activation_) +
+                                " (train with ppo.gradient: " + "autograd)");
+  }
   const auto rows = static_cast<std::size_t>(max_batch_size);
   const auto allocate = [rows](Network& network, const std::vector<DenseLayerLayout>& layout) {
     network.layout = layout;
@@ -380,7 +391,8 @@ PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
 }
 
 void PpoGradient::forward(Network& network, const float* parameters, const float* input,
-                          std::int64_t rows, bool relu) {
+                          std::int64_t rows) {
+  const bool relu = activation_ == Activation::kReLU;  // else tanh: covers() allows no other
   const float* x = input;
   for (std::size_t i = 0; i < network.layout.size(); ++i) {
     const DenseLayerLayout& layer = network.layout[i];
@@ -417,7 +429,8 @@ void PpoGradient::forward(Network& network, const float* parameters, const float
 }
 
 void PpoGradient::backward(const Network& network, const float* parameters, const float* input,
-                           std::int64_t rows, bool relu, float* gradients) {
+                           std::int64_t rows, float* gradients) {
+  const bool relu = activation_ == Activation::kReLU;  // else tanh: covers() allows no other
   // output_gradient_ holds ∂L/∂(output of the last layer) on entry, and ∂L/∂z (before the
   // activation) of the layer below at the end of each iteration. Through the activation,
   // from its output y: relu passes the gradient where y > 0 (none at 0, like torch's
@@ -489,6 +502,7 @@ void PpoGradient::backward(const Network& network, const float* parameters, cons
 bool PpoGradient::same_shape(const ActorCritic& policy) const {
   const PolicyConfig& config = policy.config();
   if (policy.observation_size() != observation_size_ || policy.action_size() != action_size_ ||
+      config.activation != activation_ ||
       config.actor_hidden_sizes.size() + 1 != layout_.actor.size() ||
       config.critic_hidden_sizes.size() + 1 != layout_.critic.size() ||
       policy.flat_parameters().numel() != layout_.size) {
@@ -522,11 +536,10 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
 
   const float* parameters = policy.flat_parameters().data_ptr<float>();
   float* gradients = policy.flat_gradients().data_ptr<float>();
-  const bool relu = policy.config().activation == Activation::kReLU;
   const std::int64_t a_size = action_size_;
 
-  forward(actor_, parameters, batch.observations.data(), n, relu);
-  forward(critic_, parameters, batch.observations.data(), n, relu);
+  forward(actor_, parameters, batch.observations.data(), n);
+  forward(critic_, parameters, batch.observations.data(), n);
   const float* means = actor_.outputs.back().data();
   const float* values = critic_.outputs.back().data();
 
@@ -548,15 +561,12 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
     std::copy_n(batch.advantages.data(), n, advantages_.data());
   }
 
-  // Policy term. log π = −½Σ z² − Σ log σ − ½·A·log 2π with z = (a − μ)/σ, so
-  // ∂log π/∂μ = z/σ and ∂log π/∂log σ = z² − 1.
+  // Policy term (policy/diagonal_gaussian.hpp). log π = −½Σ z² − log_normaliser with
+  // z = (a − μ)/σ, so ∂log π/∂μ = z/σ and ∂log π/∂log σ = z² − 1.
   const float* log_std = parameters + layout_.log_std;
-  double log_normaliser = kHalfLog2Pi * static_cast<double>(a_size);
-  double entropy = 0.0;
-  for (std::int64_t j = 0; j < a_size; ++j) {
-    log_normaliser += log_std[j];
-    entropy += log_std[j] + 0.5 + kHalfLog2Pi;
-  }
+  const std::span<const float> log_stds(log_std, static_cast<std::size_t>(a_size));
+  const double log_normaliser = gaussian_log_normaliser(log_stds);
+  const double entropy = gaussian_entropy(log_stds);
   // Float bounds, as torch compares float tensors with the double scalars cast to float.
   const float low = static_cast<float>(1.0 - config.clip_range);
   const float high = static_cast<float>(1.0 + config.clip_range);
@@ -609,7 +619,7 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
     }
     d_log_std[j] = static_cast<float>(sum);
   }
-  backward(actor_, parameters, batch.observations.data(), n, relu, gradients);
+  backward(actor_, parameters, batch.observations.data(), n, gradients);
 
   // Value term: V_pred = V_old + clamp(V − V_old, ±c) (clamp passes the gradient inside
   // the range, bounds included), L_v = mean((R − V_pred)²).
@@ -630,7 +640,7 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
     output_gradient_[i] =
         inside ? static_cast<float>(-2.0 * config.vf_coef * inverse_n * error) : 0.0f;
   }
-  backward(critic_, parameters, batch.observations.data(), n, relu, gradients);
+  backward(critic_, parameters, batch.observations.data(), n, gradients);
 
   PpoLossStatistics statistics;
   statistics.policy_gradient_loss = -surrogate_sum * inverse_n;

@@ -16,6 +16,9 @@
 /// kernel compiled for them and chosen at run time: the project is built for baseline
 /// x86-64, where Eigen only has SSE2 and spends more instructions on these products than
 /// libtorch's AVX2 sgemm did (about 1.4 per multiply-add against 0.25 for the kernel).
+///
+/// It covers the relu and tanh activations only and refuses the others, which train through
+/// rl/autograd_ppo_gradient.hpp (`ppo.gradient` in docs/training.md).
 
 #include <cstdint>
 #include <span>
@@ -72,14 +75,18 @@ class PpoGradient {
  public:
   /// Buffers for minibatches of up to `max_batch_size` samples of policies shaped like
   /// `policy` (its sizes and hidden layers; the weights are read at each call).
+  /// Throws std::invalid_argument when covers(policy's activation) is false.
   PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
               PpoGradientKernel kernel = PpoGradientKernel::kFastest);
+
+  /// Whether the hand-written backward pass knows this activation's derivative.
+  static bool covers(Activation activation);
 
   /// Evaluates `policy` on `batch`, then overwrites policy.flat_gradients() with the
   /// gradient of compute_ppo_loss(policy.evaluate_actions(...), batch, config).total
   /// (no need to zero it first) and returns the loss terms. Throws std::invalid_argument
   /// when the batch is empty, larger than max_batch_size(), has spans of the wrong sizes,
-  /// or the policy is not shaped like the constructor's.
+  /// or the policy is not shaped like the constructor's (sizes and activation).
   PpoLossStatistics compute(const PpoMinibatchView& batch, ActorCritic& policy,
                             const PpoConfig& config);
 
@@ -96,12 +103,12 @@ class PpoGradient {
   };
 
   bool same_shape(const ActorCritic& policy) const;
-  void forward(Network& network, const float* parameters, const float* input, std::int64_t rows,
-               bool relu);
+  void forward(Network& network, const float* parameters, const float* input, std::int64_t rows);
   void backward(const Network& network, const float* parameters, const float* input,
-                std::int64_t rows, bool relu, float* gradients);
+                std::int64_t rows, float* gradients);
 
   bool avx2_;
+  Activation activation_;
   std::int64_t observation_size_;
   std::int64_t action_size_;
   std::int64_t max_batch_size_;

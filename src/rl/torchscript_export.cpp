@@ -35,7 +35,7 @@ std::string add_layers(torch::jit::Module& module, const std::vector<DenseLayer>
     module.register_parameter(bias, layers[i].bias.detach().clone(), false);
     std::string affine = "torch.matmul(x, self." + weight + ".t()) + self." + bias;
     if (i + 1 < layers.size()) {
-      affine = (activation == Activation::kReLU ? "torch.relu(" : "torch.tanh(") + affine + ")";
+      affine = activation_torchscript(activation, affine);
     }
     source += "    x = " + affine + "\n";
   }

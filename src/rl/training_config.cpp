@@ -8,10 +8,12 @@
 #include <functional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "model/integer_text.hpp"
 #include "model/setting_bounds.hpp"
 #include "policy/network_limits.hpp"
+#include "rl/ppo_gradient.hpp"
 #include "vec/make_vector_env.hpp"
 #include "vec/vec_normalize.hpp"
 
@@ -55,6 +57,22 @@ bool parse_bool(const std::string& key, const std::string& raw) {
   if (text == "true" || text == "yes" || text == "on" || text == "1") return true;
   if (text == "false" || text == "no" || text == "off" || text == "0") return false;
   bad_value(key, raw, "true or false");
+}
+
+// The values of ppo.gradient, spelled once for parsing, writing and messages.
+constexpr std::pair<GradientMethod, const char*> kGradientMethods[] = {
+    {GradientMethod::kAuto, "auto"},
+    {GradientMethod::kHand, "hand"},
+    {GradientMethod::kAutograd, "autograd"},
+};
+
+GradientMethod parse_gradient_method(const std::string& key, const std::string& text) {
+  std::string known;
+  for (const auto& [method, name] : kGradientMethods) {
+    if (text == name) return method;
+    known += (known.empty() ? "" : ", ") + std::string(name);
+  }
+  bad_value(key, text, "one of " + known);
 }
 
 std::vector<std::int64_t> parse_sizes(const std::string& key, const std::string& raw) {
@@ -136,11 +154,7 @@ std::vector<Field> fields(TrainingConfig& c) {
                    try {
                      c.policy.activation = parse_activation(trim(text));
                    } catch (const std::invalid_argument&) {
-                     bad_value("policy.activation", text, "relu or tanh");
-                   }
-                   // The others are for imported policies, which are evaluated, not trained.
-                   if (!is_trainable(c.policy.activation)) {
-                     bad_value("policy.activation", text, "relu or tanh");
+                     bad_value("policy.activation", text, activation_names());
                    }
                  },
                  [&c] { return std::string(activation_name(c.policy.activation)); }});
@@ -160,6 +174,11 @@ std::vector<Field> fields(TrainingConfig& c) {
   real("ppo.learning_rate_final", c.ppo.learning_rate_final);
   real("ppo.adam_eps", c.ppo.adam_eps);
   boolean("ppo.normalize_advantage", c.ppo.normalize_advantage);
+  out.push_back({"ppo.gradient",
+                 [&c](const std::string& text) {
+                   c.ppo.gradient = parse_gradient_method("ppo.gradient", trim(text));
+                 },
+                 [&c] { return std::string(gradient_method_name(c.ppo.gradient)); }});
   out.push_back(
       {"seed",
        [&c](const std::string& text) { c.seed = parse_integer<std::uint64_t>("seed", text); },
@@ -238,6 +257,19 @@ void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& con
 
 }  // namespace
 
+const char* gradient_method_name(GradientMethod method) {
+  for (const auto& [known, name] : kGradientMethods) {
+    if (known == method) return name;
+  }
+  return "unknown";
+}
+
+bool uses_hand_gradient(const TrainingConfig& config) {
+  return config.ppo.gradient == GradientMethod::kHand ||
+         (config.ppo.gradient == GradientMethod::kAuto &&
+          PpoGradient::covers(config.policy.activation));
+}
+
 std::int64_t TrainingConfig::steps_per_env() const {
   return std::max<std::int64_t>(1, ppo.n_steps / std::max<std::int64_t>(1, num_envs));
 }
@@ -247,7 +279,9 @@ void TrainingConfig::validate() const {
     if (!condition) throw std::invalid_argument("config key '" + key + "': " + what);
   };
   auto integer = [](const std::string& key, std::int64_t value, std::int64_t min,
-                    std::int64_t max) { check_setting("config key '" + key + "'", value, min, max); };
+                    std::int64_t max) {
+    check_setting("config key '" + key + "'", value, min, max);
+  };
   auto real = [](const std::string& key, double value, double min, double max,
                  LowerBound lower = LowerBound::kIncluded) {
     check_setting("config key '" + key + "'", value, min, max, lower);
@@ -282,6 +316,10 @@ void TrainingConfig::validate() const {
   real("ppo.learning_rate_initial", ppo.learning_rate_initial, 0, 1, kExcluded);
   real("ppo.learning_rate_final", ppo.learning_rate_final, 0, 1);
   real("ppo.adam_eps", ppo.adam_eps, 0, 1, kExcluded);
+  require(ppo.gradient != GradientMethod::kHand || PpoGradient::covers(policy.activation),
+          "ppo.gradient",
+          std::string("hand covers the relu and tanh activations, not ") +
+              activation_name(policy.activation) + "; use autograd or auto");
   integer("checkpoint_every", checkpoint_every, 0, kMaxTimesteps);
   integer("torch_threads", torch_threads, 1, kMaxTorchThreads);
 }

@@ -31,6 +31,16 @@ struct PolicyConfig {
   double log_std_init = 0.0;  ///< Initial log standard deviation of the Gaussian.
 };
 
+/// How Ppo::update computes the gradient of the loss (`ppo.gradient`; docs/training.md).
+enum class GradientMethod {
+  kAuto,      ///< hand when it covers the activation (relu, tanh), else autograd.
+  kHand,      ///< The hand-written forward and backward pass (rl/ppo_gradient.hpp).
+  kAutograd,  ///< libtorch's autograd (rl/autograd_ppo_gradient.hpp): every activation.
+};
+
+/// "auto", "hand" or "autograd".
+const char* gradient_method_name(GradientMethod method);
+
 /// PPO hyperparameters with SB3 names and defaults of the seed.
 struct PpoConfig {
   std::int64_t total_timesteps = 1'000'000;
@@ -49,6 +59,7 @@ struct PpoConfig {
   double learning_rate_final = 1e-5;    ///< ...to this at the end of training.
   double adam_eps = 1e-5;
   bool normalize_advantage = true;
+  GradientMethod gradient = GradientMethod::kAuto;  ///< Not SB3's: how the gradient is made.
 };
 
 /// Observation and reward normalisation (SB3 VecNormalize).
@@ -109,6 +120,10 @@ TrainingConfig load_training_config(const std::string& path);
 /// Applies overrides "dotted.key=value" (`env.options.NAME=value` adds an env option).
 /// Unknown keys and malformed values raise std::invalid_argument naming the key.
 void apply_overrides(TrainingConfig& config, const std::vector<std::string>& overrides);
+
+/// Whether `config` trains with the hand-written gradient (ppo.gradient hand, or auto and
+/// an activation it covers) rather than autograd.
+bool uses_hand_gradient(const TrainingConfig& config);
 
 /// The full, resolved configuration as YAML, readable by parse_training_config.
 std::string to_yaml(const TrainingConfig& config);

@@ -1,12 +1,15 @@
-// Activations: names (ours and PyTorch's) round-trip, only ReLU and Tanh are trainable, and
-// the values are PyTorch's (reference values of torch.nn's default modules).
+// Activations: names (ours and PyTorch's) round-trip, the list is complete, and the values
+// are PyTorch's (reference values of torch.nn's default modules).
 
 #include "policy/activation.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace upkie_rl {
 namespace {
@@ -24,11 +27,20 @@ TEST(Activation, NamesRoundTripAndPyTorchNamesAreRead) {
   EXPECT_THROW(parse_activation("Hardswish"), std::invalid_argument);
 }
 
-TEST(Activation, OnlyReluAndTanhAreTrainable) {
-  for (const Activation activation : kAll) {
-    EXPECT_EQ(is_trainable(activation),
-              activation == Activation::kReLU || activation == Activation::kTanh)
-        << activation_name(activation);
+TEST(Activation, TheListHoldsEveryOneOnceAndNamesThemAll) {
+  const std::vector<Activation> listed = all_activations();
+  ASSERT_EQ(listed.size(), std::size(kAll));
+  const std::string names = activation_names();
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    EXPECT_EQ(listed[i], kAll[i]);
+    EXPECT_NE(names.find(activation_name(kAll[i])), std::string::npos) << names;
+  }
+  EXPECT_EQ(activation_torchscript(Activation::kELU, "x"), "torch.elu(x)");
+  try {
+    parse_activation("swish");
+    FAIL() << "swish parsed";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find(names), std::string::npos) << error.what();
   }
 }
 

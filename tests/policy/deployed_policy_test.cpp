@@ -61,6 +61,13 @@ struct ModelFixture {
     return file;
   }
 
+  /// The hidden layers' activation, written independently of policy/activation.hpp.
+  double hidden_activation(double x) const {
+    if (activation == "tanh") return std::tanh(x);
+    if (activation == "elu") return x > 0.0 ? x : std::expm1(x);
+    return std::max(x, 0.0);
+  }
+
   /// The policy's action computed independently, in double precision.
   std::vector<double> reference(const std::vector<float>& observation) const {
     std::vector<double> x(3);
@@ -77,8 +84,7 @@ struct ModelFixture {
       for (std::size_t i = 0; i < out; ++i) {
         double sum = parameters[offset + out * in + i];
         for (std::size_t j = 0; j < in; ++j) sum += parameters[offset + i * in + j] * x[j];
-        y[i] = l + 1 < sizes.size() ? (activation == "tanh" ? std::tanh(sum) : std::max(sum, 0.0))
-                                    : std::clamp(sum, -0.5, 0.5);
+        y[i] = l + 1 < sizes.size() ? hidden_activation(sum) : std::clamp(sum, -0.5, 0.5);
       }
       offset += out * in + out;
       x = y;
@@ -88,7 +94,7 @@ struct ModelFixture {
 };
 
 TEST(DeployedPolicy, ActsLikeAnIndependentReference) {
-  for (const std::string activation : {"tanh", "relu"}) {
+  for (const std::string activation : {"tanh", "relu", "elu"}) {
     SCOPED_TRACE(activation);
     ModelFixture model;
     model.activation = activation;

@@ -110,7 +110,8 @@ TEST(ActorCritic, LogProbabilityAndEntropyOfTheDiagonalGaussian) {
 }
 
 TEST(PolicyInference, MatchesTheDifferentiableForward) {
-  for (const Activation activation : {Activation::kReLU, Activation::kTanh}) {
+  for (const Activation activation : all_activations()) {
+    SCOPED_TRACE(activation_name(activation));
     PolicyConfig config = small_config();
     config.activation = activation;
     const ActorCritic policy(3, 2, config, 5);

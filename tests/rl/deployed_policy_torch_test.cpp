@@ -46,7 +46,7 @@ TEST(DeployedPolicyVsTorch, SameActionsAsTheActorCriticForEachActivation) {
   const double clip = 3.0;
   const nlohmann::json normalization = testing::normalization_state(mean, var, clip);
 
-  for (const Activation activation : {Activation::kReLU, Activation::kTanh}) {
+  for (const Activation activation : all_activations()) {
     SCOPED_TRACE(activation_name(activation));
     SpacesOnlyVectorEnv env(observation_space, action_space);
     TrainingConfig config;

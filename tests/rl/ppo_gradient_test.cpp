@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "rl/autograd_ppo_gradient.hpp"
 #include "rl/flat_adam.hpp"
 #include "rl/point_mass_vector_env.hpp"
 #include "rl/ppo.hpp"
@@ -98,14 +99,29 @@ double relative_error(const torch::Tensor& a, const torch::Tensor& b, std::int64
   return (x - y).norm().item<double>() / std::max(y.norm().item<double>(), 1e-30);
 }
 
-// Checks PpoGradient against autograd on `batch`, with `gradient` possibly used before.
-void expect_same_as_autograd(PpoGradient& gradient, ActorCritic& policy, const PpoMinibatch& batch,
-                             const PpoConfig& config) {
+// The reference: the loss on `batch` and its gradient by the loss's own backward pass.
+// Checks on the way that the trainer's autograd path (autograd_ppo_gradient) computes
+// exactly these.
+std::pair<PpoLoss, torch::Tensor> reference_gradient(ActorCritic& policy, const PpoMinibatch& batch,
+                                                     const PpoConfig& config) {
   policy.zero_gradients();
   const PpoLoss loss =
       compute_ppo_loss(policy.evaluate_actions(batch.observations, batch.actions), batch, config);
   loss.total.backward();
   const torch::Tensor expected = policy.flat_gradients().clone();
+  policy.flat_gradients().fill_(std::numeric_limits<float>::quiet_NaN());
+  const PpoLossStatistics autograd = autograd_ppo_gradient(view_minibatch(batch), policy, config);
+  EXPECT_TRUE(torch::equal(policy.flat_gradients(), expected));
+  EXPECT_EQ(autograd.total, loss.total.item<double>());
+  EXPECT_EQ(autograd.approx_kl, loss.approx_kl.item<double>());
+  EXPECT_EQ(autograd.clip_fraction, loss.clip_fraction.item<double>());
+  return {loss, expected};
+}
+
+// Checks PpoGradient against autograd on `batch`, with `gradient` possibly used before.
+void expect_same_as_autograd(PpoGradient& gradient, ActorCritic& policy, const PpoMinibatch& batch,
+                             const PpoConfig& config) {
+  const auto [loss, expected] = reference_gradient(policy, batch, config);
 
   // NaN everywhere: any entry compute() does not overwrite fails the comparison.
   policy.flat_gradients().fill_(std::numeric_limits<float>::quiet_NaN());
@@ -311,9 +327,10 @@ TEST(PpoGradient, ValueClippingBoundsPassTheGradientLikeTorch) {
   }
 }
 
-// Ppo::update() (PpoGradient) against the update it replaced, written out here with
-// autograd: same permutations, minibatches, clipping and Adam steps on the same rollout.
-// The parameters after a whole update (40 Adam steps) differ by float rounding only.
+// Ppo::update() with the hand-written gradient against the same update by autograd
+// (ppo.gradient: autograd, what Ppo::update did before PpoGradient): same permutations,
+// minibatches, clipping and Adam steps on the same rollout. The parameters after a whole
+// update (45 Adam steps) differ by float rounding only.
 TEST(PpoGradient, PpoUpdateMatchesTheAutogradUpdate) {
   TrainingConfig config;
   config.env_id = "point-mass";
@@ -325,65 +342,121 @@ TEST(PpoGradient, PpoUpdateMatchesTheAutogradUpdate) {
   config.ppo.n_epochs = 5;
   config.ppo.learning_rate_initial = 1e-3;
   config.seed = 3;
-  testing::PointMassVectorEnv env_a(4), env_b(4);
-  Ppo ppo(env_a, config), reference(env_b, config);
-  ppo.reset_environments(1);
-  reference.reset_environments(1);
-  ppo.collect_rollout();
-  reference.collect_rollout();
-  const torch::Tensor initial = ppo.policy().flat_parameters().clone();
-  ASSERT_TRUE(torch::equal(initial, reference.policy().flat_parameters()));
+  for (const Activation activation : {Activation::kReLU, Activation::kTanh}) {
+    SCOPED_TRACE(activation_name(activation));
+    config.policy.activation = activation;
+    config.ppo.gradient = GradientMethod::kHand;
+    TrainingConfig autograd_config = config;
+    autograd_config.ppo.gradient = GradientMethod::kAutograd;
+    testing::PointMassVectorEnv env_a(4), env_b(4);
+    Ppo ppo(env_a, config), reference(env_b, autograd_config);
+    ASSERT_TRUE(ppo.uses_hand_gradient());
+    ASSERT_FALSE(reference.uses_hand_gradient());
+    ppo.reset_environments(1);
+    reference.reset_environments(1);
+    ppo.collect_rollout();
+    reference.collect_rollout();
+    const torch::Tensor initial = ppo.policy().flat_parameters().clone();
+    ASSERT_TRUE(torch::equal(initial, reference.policy().flat_parameters()));
 
-  // The reference: Ppo::update() before PpoGradient.
-  const PpoConfig& ppo_config = config.ppo;
-  std::mt19937_64 rng;
-  std::istringstream random_state(reference.counters_state()["random_state"].get<std::string>());
-  random_state >> rng;
-  ActorCritic& policy = reference.policy();
-  reference.optimizer().set_learning_rate(reference.learning_rate_at(reference.num_timesteps()));
-  const RolloutBuffer& buffer = reference.buffer();
-  const std::int64_t size = buffer.size();
-  std::vector<std::int64_t> permutation(static_cast<std::size_t>(size));
-  double last_loss = 0.0, sum_kl = 0.0;
-  std::int64_t minibatches = 0;
-  for (std::int64_t epoch = 0; epoch < ppo_config.n_epochs; ++epoch) {
-    for (std::int64_t i = 0; i < size; ++i) permutation[i] = i;
-    for (std::int64_t i = size - 1; i > 0; --i) {
-      std::uniform_int_distribution<std::int64_t> pick(0, i);
-      std::swap(permutation[i], permutation[pick(rng)]);
-    }
-    const torch::Tensor index = torch::from_blob(permutation.data(), {size}, torch::kInt64);
-    for (std::int64_t begin = 0; begin < size; begin += ppo_config.batch_size) {
-      const std::int64_t length = std::min(ppo_config.batch_size, size - begin);
-      const torch::Tensor rows = index.narrow(0, begin, length);
-      const PpoMinibatch batch{buffer.flat_observations().index_select(0, rows),
-                               buffer.flat_actions().index_select(0, rows),
-                               buffer.flat_log_probs().index_select(0, rows),
-                               buffer.flat_values().index_select(0, rows),
-                               buffer.flat_advantages().index_select(0, rows),
-                               buffer.flat_returns().index_select(0, rows)};
-      const PpoLoss loss = compute_ppo_loss(
-          policy.evaluate_actions(batch.observations, batch.actions), batch, ppo_config);
-      policy.zero_gradients();
-      loss.total.backward();
-      clip_gradient_norm(policy.flat_gradients(), ppo_config.max_grad_norm);
-      reference.optimizer().step();
-      last_loss = loss.total.item<double>();
-      sum_kl += loss.approx_kl.item<double>();
-      ++minibatches;
+    const PpoUpdateStatistics expected = reference.update();
+    const PpoUpdateStatistics statistics = ppo.update();
+    EXPECT_EQ(ppo.optimizer().step_count(), 45);
+    EXPECT_EQ(reference.optimizer().step_count(), 45);
+    const torch::Tensor step = (reference.policy().flat_parameters() - initial).to(torch::kFloat64);
+    const torch::Tensor difference =
+        (ppo.policy().flat_parameters() - reference.policy().flat_parameters()).to(torch::kFloat64);
+    ASSERT_GT(step.norm().item<double>(), 1e-5);
+    EXPECT_LT(difference.norm().item<double>() / step.norm().item<double>(), 1e-5);
+    EXPECT_NEAR(statistics.loss, expected.loss, 1e-4 * std::max(1.0, std::abs(expected.loss)));
+    EXPECT_NEAR(statistics.approx_kl, expected.approx_kl, 1e-6);
+    EXPECT_NEAR(statistics.value_loss, expected.value_loss,
+                1e-4 * std::max(1.0, std::abs(expected.value_loss)));
+  }
+}
+
+// Every activation the backward pass does not know is refused, not treated as another one;
+// a policy differing only by its activation is "another policy".
+TEST(PpoGradient, RefusesActivationsItDoesNotCover) {
+  EXPECT_TRUE(PpoGradient::covers(Activation::kReLU));
+  EXPECT_TRUE(PpoGradient::covers(Activation::kTanh));
+  for (const Activation activation : all_activations()) {
+    if (activation == Activation::kReLU || activation == Activation::kTanh) continue;
+    SCOPED_TRACE(activation_name(activation));
+    EXPECT_FALSE(PpoGradient::covers(activation));
+    const GradientCase c{.name = activation_name(activation), .activation = activation};
+    const std::unique_ptr<ActorCritic> policy = random_policy(c, 1);
+    try {
+      PpoGradient gradient(*policy, 8);
+      FAIL() << "expected the policy to be refused";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(std::string("not ") + activation_name(activation)),
+                std::string::npos)
+          << error.what();
     }
   }
 
-  const PpoUpdateStatistics statistics = ppo.update();
-  EXPECT_EQ(minibatches, 45);
-  EXPECT_EQ(ppo.optimizer().step_count(), 45);
-  const torch::Tensor step = (reference.policy().flat_parameters() - initial).to(torch::kFloat64);
-  const torch::Tensor difference =
-      (ppo.policy().flat_parameters() - reference.policy().flat_parameters()).to(torch::kFloat64);
-  ASSERT_GT(step.norm().item<double>(), 1e-5);
-  EXPECT_LT(difference.norm().item<double>() / step.norm().item<double>(), 1e-5);
-  EXPECT_NEAR(statistics.loss, last_loss, 1e-4 * std::max(1.0, std::abs(last_loss)));
-  EXPECT_NEAR(statistics.approx_kl, sum_kl / static_cast<double>(minibatches), 1e-6);
+  const GradientCase relu{.name = "relu"};
+  const GradientCase tanh{.name = "tanh", .activation = Activation::kTanh};
+  const std::unique_ptr<ActorCritic> relu_policy = random_policy(relu, 1);
+  const std::unique_ptr<ActorCritic> tanh_policy = random_policy(tanh, 1);
+  const PpoMinibatch relu_batch = random_minibatch(*relu_policy, relu, 2);
+  const PpoConfig config = ppo_config(relu);
+  PpoGradient gradient(*relu_policy, 128);
+  EXPECT_NO_THROW(gradient.compute(view_minibatch(relu_batch), *relu_policy, config));
+  EXPECT_THROW(gradient.compute(view_minibatch(relu_batch), *tanh_policy, config),
+               std::invalid_argument);
+}
+
+// The PPO loss on `batch` with the policy's parameters moved by `step` (then restored).
+double loss_at(ActorCritic& policy, const PpoMinibatch& batch, const PpoConfig& config,
+               const torch::Tensor& step) {
+  torch::NoGradGuard no_grad;
+  policy.flat_parameters().add_(step);
+  const double loss =
+      compute_ppo_loss(policy.evaluate_actions(batch.observations, batch.actions), batch, config)
+          .total.item<double>();
+  policy.flat_parameters().sub_(step);
+  return loss;
+}
+
+// The gradient the trainer uses for every activation (autograd_ppo_gradient, the fallback
+// of ppo.gradient auto) equals the loss's own backward pass and agrees with central
+// differences of the loss along the gradient and along a random direction: the gradient
+// is the derivative of the forward pass whatever the activation (whose values
+// tests/rl/actor_critic_test.cpp compares with policy/activation.cpp's). Ratios inside
+// the clip range and no value clipping keep the loss smooth around the point.
+TEST(PpoGradient, TheAutogradGradientIsTheLossDerivativeForEveryActivation) {
+  for (const Activation activation : all_activations()) {
+    SCOPED_TRACE(activation_name(activation));
+    const GradientCase c{.name = activation_name(activation),
+                         .actor_hidden = {16, 16},
+                         .critic_hidden = {16},
+                         .activation = activation,
+                         .clip_range_vf = 0.0,
+                         .ent_coef = 0.01,
+                         .log_prob_noise = 0.01};
+    const std::unique_ptr<ActorCritic> owner = random_policy(c, 4);
+    ActorCritic& policy = *owner;
+    const PpoMinibatch batch = random_minibatch(policy, c, 6);
+    const PpoConfig config = ppo_config(c);
+
+    const auto [loss, gradient] = reference_gradient(policy, batch, config);
+    EXPECT_EQ(loss.clip_fraction.item<double>(), 0.0);
+
+    const double norm = gradient.to(torch::kFloat64).norm().item<double>();
+    ASSERT_GT(norm, 1e-3);
+    at::Generator generator = at::make_generator<at::CPUGeneratorImpl>(9);
+    const torch::Tensor random = torch::randn(gradient.sizes(), generator);
+    for (const torch::Tensor& direction : {gradient / norm, random / random.norm()}) {
+      constexpr double kStep = 1e-3;
+      const double slope = (loss_at(policy, batch, config, kStep * direction) -
+                            loss_at(policy, batch, config, -kStep * direction)) /
+                           (2.0 * kStep);
+      const double predicted = (gradient * direction).sum().item<double>();
+      EXPECT_NEAR(slope, predicted, 0.02 * norm) << "norm " << norm;
+    }
+  }
 }
 
 TEST(PpoGradient, KernelChoice) {

@@ -53,9 +53,8 @@ double evaluate(const ActorCritic* policy, int episodes, std::uint64_t seed) {
   return total / episodes;
 }
 
-TEST(Ppo, TrainingImprovesTheReturnOverARandomPolicy) {
-  PointMassVectorEnv env(4);
-  Ppo ppo(env, point_mass_config());
+// Trains `ppo` to its total timesteps on the point mass and checks that it learned.
+void expect_training_improves_the_return(Ppo& ppo) {
   ppo.reset_environments(3);
   const double random_return = evaluate(nullptr, 40, 99);
   const double initial_return = evaluate(&ppo.policy(), 40, 99);
@@ -67,6 +66,55 @@ TEST(Ppo, TrainingImprovesTheReturnOverARandomPolicy) {
   EXPECT_GT(trained_return, initial_return + 5.0);
   EXPECT_GT(ppo.episodes().mean_return(), random_return);
   EXPECT_EQ(ppo.num_timesteps(), ppo.iterations() * 512);
+}
+
+TEST(Ppo, TrainingImprovesTheReturnOverARandomPolicy) {
+  PointMassVectorEnv env(4);
+  Ppo ppo(env, point_mass_config());
+  EXPECT_TRUE(ppo.uses_hand_gradient());
+  expect_training_improves_the_return(ppo);
+}
+
+// An ELU network, which the hand-written gradient does not cover: ppo.gradient auto
+// trains it with autograd, and it learns; ppo.gradient hand refuses it.
+TEST(Ppo, AnEluNetworkTrainsThroughAutograd) {
+  TrainingConfig config = point_mass_config();
+  config.policy.activation = Activation::kELU;
+  PointMassVectorEnv env(4);
+  Ppo ppo(env, config);
+  EXPECT_FALSE(ppo.uses_hand_gradient());
+  expect_training_improves_the_return(ppo);
+
+  config.ppo.gradient = GradientMethod::kHand;
+  PointMassVectorEnv other(4);
+  EXPECT_THROW(Ppo(other, config), std::invalid_argument);
+}
+
+// ppo.gradient auto uses the hand-written gradient where it covers the activation and
+// autograd elsewhere: for every other activation, an update with auto is bit for bit the
+// update with ppo.gradient autograd (the autograd gradient itself is checked against the
+// loss's derivative in tests/rl/ppo_gradient_test.cpp).
+TEST(Ppo, AutoFallsBackToAutogradForEveryActivationTheHandGradientDoesNotCover) {
+  for (const Activation activation : all_activations()) {
+    SCOPED_TRACE(activation_name(activation));
+    TrainingConfig config = point_mass_config();
+    config.policy.activation = activation;
+    TrainingConfig autograd_config = config;
+    autograd_config.ppo.gradient = GradientMethod::kAutograd;
+    PointMassVectorEnv env(4), autograd_env(4);
+    Ppo ppo(env, config), reference(autograd_env, autograd_config);
+    const bool covered = activation == Activation::kReLU || activation == Activation::kTanh;
+    EXPECT_EQ(ppo.uses_hand_gradient(), covered);
+    EXPECT_FALSE(reference.uses_hand_gradient());
+    if (covered) continue;  // tests/rl/ppo_gradient_test.cpp compares those with autograd.
+    ppo.reset_environments(2);
+    reference.reset_environments(2);
+    const torch::Tensor initial = ppo.policy().flat_parameters().clone();
+    ppo.iterate();
+    reference.iterate();
+    EXPECT_GT((ppo.policy().flat_parameters() - initial).norm().item<double>(), 1e-4);
+    EXPECT_TRUE(torch::equal(ppo.policy().flat_parameters(), reference.policy().flat_parameters()));
+  }
 }
 
 TEST(Ppo, SameSeedGivesTheSameRun) {

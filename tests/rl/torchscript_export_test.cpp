@@ -21,7 +21,7 @@ struct Exported {
 
 // Exports a small policy with normalisation and bounded actions, and computes the expected
 // actions with our own C++ code (normaliser + differentiable forward + clamp).
-Exported export_policy() {
+Exported export_policy(Activation activation = Activation::kReLU) {
   Exported out;
   out.directory = std::filesystem::temp_directory_path() /
                   ("upkie_rl_torchscript_" + std::to_string(::getpid()));
@@ -30,6 +30,7 @@ Exported export_policy() {
   PolicyConfig config;
   config.actor_hidden_sizes = {16, 16};
   config.critic_hidden_sizes = {16};
+  config.activation = activation;
   ActorCritic policy(3, 2, config, 4);
   {
     torch::NoGradGuard no_grad;
@@ -65,11 +66,14 @@ nlohmann::json to_json(const torch::Tensor& tensor) {
 }
 
 TEST(TorchScriptExport, LoadsBackInCppWithTheSameActions) {
-  const Exported exported = export_policy();
-  torch::jit::Module module = torch::jit::load(exported.model.string());
-  const torch::Tensor actions = module.forward({exported.inputs}).toTensor();
-  EXPECT_TRUE(torch::allclose(actions, exported.expected, 1e-5, 1e-6));
-  std::filesystem::remove_all(exported.directory);
+  for (const Activation activation : all_activations()) {
+    SCOPED_TRACE(activation_name(activation));
+    const Exported exported = export_policy(activation);
+    torch::jit::Module module = torch::jit::load(exported.model.string());
+    const torch::Tensor actions = module.forward({exported.inputs}).toTensor();
+    EXPECT_TRUE(torch::allclose(actions, exported.expected, 1e-5, 1e-6));
+    std::filesystem::remove_all(exported.directory);
+  }
 }
 
 TEST(TorchScriptExport, LoadsInPythonWithTorchJitLoad) {

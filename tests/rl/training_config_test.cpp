@@ -75,6 +75,23 @@ TEST(TrainingConfig, ResolvedYamlReadsBackIdentically) {
   EXPECT_EQ(again.env_options[1].second, "0.8");
 }
 
+TEST(TrainingConfig, GradientMethodFollowsTheActivation) {
+  TrainingConfig config;
+  EXPECT_EQ(config.ppo.gradient, GradientMethod::kAuto);
+  EXPECT_TRUE(uses_hand_gradient(config));  // relu
+  apply_overrides(config, {"policy.activation=elu"});
+  EXPECT_FALSE(uses_hand_gradient(config));
+  apply_overrides(config, {"ppo.gradient=hand"});
+  expect_error_mentions([&] { config.validate(); }, "ppo.gradient");
+  apply_overrides(config, {"policy.activation=tanh"});
+  EXPECT_NO_THROW(config.validate());
+  EXPECT_TRUE(uses_hand_gradient(config));
+  apply_overrides(config, {"ppo.gradient=autograd"});
+  EXPECT_FALSE(uses_hand_gradient(config));
+  EXPECT_EQ(parse_training_config(to_yaml(config)).ppo.gradient, GradientMethod::kAutograd);
+  expect_error_mentions([&] { apply_overrides(config, {"ppo.gradient=fast"}); }, "ppo.gradient");
+}
+
 TEST(TrainingConfig, UnknownKeysAreRefusedByName) {
   expect_error_mentions([] { parse_training_config("ppo:\n  batch_sise: 64\n"); },
                         "ppo.batch_sise");
@@ -89,7 +106,7 @@ TEST(TrainingConfig, MalformedValuesNameTheirKey) {
   expect_error_mentions([] { parse_training_config("ppo:\n  batch_size: many\n"); },
                         "ppo.batch_size");
   expect_error_mentions([] { parse_training_config("ppo:\n  gamma: [1, 2]\n"); }, "ppo.gamma");
-  expect_error_mentions([] { parse_training_config("policy:\n  activation: sigmoid\n"); },
+  expect_error_mentions([] { parse_training_config("policy:\n  activation: swish\n"); },
                         "policy.activation");
   expect_error_mentions([] { parse_training_config("policy:\n  actor_hidden_sizes: [64, -1]\n"); },
                         "policy.actor_hidden_sizes");
