@@ -517,6 +517,141 @@ bool PpoGradient::same_shape(const ActorCritic& policy) const {
   return true;
 }
 
+namespace {
+
+// Advantages into `out`, normalised over the minibatch like compute_ppo_loss (unbiased std)
+// when `normalize` and there is more than one.
+void normalise_advantages(std::span<const float> advantages, bool normalize, float* out) {
+  const auto n = static_cast<std::int64_t>(advantages.size());
+  if (!normalize || n < 2) {
+    std::copy_n(advantages.data(), n, out);
+    return;
+  }
+  double sum = 0.0;
+  for (std::int64_t i = 0; i < n; ++i) sum += advantages[i];
+  const double mean = sum / static_cast<double>(n);
+  double squares = 0.0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const double d = advantages[i] - mean;
+    squares += d * d;
+  }
+  const double scale = 1.0 / (std::sqrt(squares / static_cast<double>(n - 1)) + 1e-8);
+  for (std::int64_t i = 0; i < n; ++i) {
+    out[i] = static_cast<float>((advantages[i] - mean) * scale);
+  }
+}
+
+// The actor's outputs and log σ, read by the policy term.
+struct GaussianPolicy {
+  const float* means;    // n x action_size, row-major.
+  const float* log_std;  // action_size.
+  std::int64_t action_size;
+};
+
+// Sums over the minibatch of the clipped surrogate min(A·ρ, A·clamp(ρ)), of the KL estimate
+// (ρ − 1) − log ρ, and the count of ratios outside 1 ± ε.
+struct SurrogateSums {
+  double surrogate = 0.0;
+  double kl = 0.0;
+  std::int64_t clipped = 0;
+};
+
+// The policy term: its sums, and ∂L/∂log π(a|s) of each sample into `log_prob_gradient`.
+// log π = −½Σ z² − log_normaliser (policy/diagonal_gaussian.hpp) with z = (a − μ)/σ.
+SurrogateSums surrogate_term(const PpoMinibatchView& batch, const GaussianPolicy& policy,
+                             const float* advantages, const PpoConfig& config,
+                             double* log_prob_gradient) {
+  const std::int64_t n = batch.size;
+  const std::int64_t a_size = policy.action_size;
+  const double log_normaliser = gaussian_log_normaliser(
+      std::span<const float>(policy.log_std, static_cast<std::size_t>(a_size)));
+  // Float bounds, as torch compares float tensors with the double scalars cast to float.
+  const float low = static_cast<float>(1.0 - config.clip_range);
+  const float high = static_cast<float>(1.0 + config.clip_range);
+  const float clip_range = static_cast<float>(config.clip_range);
+  const double inverse_n = 1.0 / static_cast<double>(n);
+  SurrogateSums sums;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const float* action = batch.actions.data() + i * a_size;
+    const float* mean = policy.means + i * a_size;
+    double squares = 0.0;
+    for (std::int64_t j = 0; j < a_size; ++j) {
+      const float z = (action[j] - mean[j]) * std::exp(-policy.log_std[j]);
+      squares += static_cast<double>(z) * z;
+    }
+    const double log_ratio = -0.5 * squares - log_normaliser - batch.old_log_prob[i];
+    const double ratio = std::exp(log_ratio);
+    sums.kl += (ratio - 1.0) - log_ratio;
+    const float ratio_f = static_cast<float>(ratio);
+    if (std::abs(ratio_f - 1.0f) > clip_range) ++sums.clipped;
+    // min(A·ρ, A·clamp(ρ)) with torch's gradient rules: the smaller operand takes the
+    // whole gradient, equal operands half each (the usual case: ρ inside the range);
+    // clamp passes the gradient inside [low, high], bounds included.
+    const float advantage = advantages[i];
+    const float surrogate = advantage * ratio_f;
+    const float clipped = advantage * std::clamp(ratio_f, low, high);
+    sums.surrogate += std::min(surrogate, clipped);
+    double surrogate_weight = 0.5, clipped_weight = 0.5;
+    if (surrogate < clipped) {
+      surrogate_weight = 1.0, clipped_weight = 0.0;
+    } else if (surrogate > clipped) {
+      surrogate_weight = 0.0, clipped_weight = 1.0;
+    }
+    const bool inside = ratio_f >= low && ratio_f <= high;
+    const double ratio_gradient =
+        -inverse_n * advantage * (surrogate_weight + (inside ? clipped_weight : 0.0));
+    log_prob_gradient[i] = ratio_gradient * ratio;  // ∂ρ/∂log π = ρ
+  }
+  return sums;
+}
+
+// From ∂L/∂log π: ∂L/∂μ into `mean_gradient` (n x action_size) and ∂L/∂log σ, with the
+// entropy bonus's, into `log_std_gradient`. ∂log π/∂μ = z/σ and ∂log π/∂log σ = z² − 1.
+void gaussian_gradients(const PpoMinibatchView& batch, const GaussianPolicy& policy,
+                        const double* log_prob_gradient, double ent_coef, float* mean_gradient,
+                        float* log_std_gradient) {
+  const std::int64_t a_size = policy.action_size;
+  for (std::int64_t j = 0; j < a_size; ++j) {
+    const float inverse_std = std::exp(-policy.log_std[j]);
+    double sum = ent_coef != 0.0 ? -ent_coef : 0.0;  // ∂(c_ent·(−entropy))
+    for (std::int64_t i = 0; i < batch.size; ++i) {
+      const float z = (batch.actions[i * a_size + j] - policy.means[i * a_size + j]) * inverse_std;
+      const double g = log_prob_gradient[i];
+      sum += g * (static_cast<double>(z) * z - 1.0);
+      mean_gradient[i * a_size + j] = static_cast<float>(g * z * inverse_std);
+    }
+    log_std_gradient[j] = static_cast<float>(sum);
+  }
+}
+
+// The value term: V_pred = V_old + clamp(V − V_old, ±c) (clamp passes the gradient inside
+// the range, bounds included), L_v = mean((R − V_pred)²). Writes ∂(c_v·L_v)/∂V into
+// `value_gradient` and returns Σ (R − V_pred)².
+double value_term(const PpoMinibatchView& batch, const float* values, const PpoConfig& config,
+                  float* value_gradient) {
+  const bool clip_values = config.clip_range_vf > 0.0;
+  const float value_clip = static_cast<float>(config.clip_range_vf);
+  const double inverse_n = 1.0 / static_cast<double>(batch.size);
+  double value_sum = 0.0;
+  for (std::int64_t i = 0; i < batch.size; ++i) {
+    float predicted = values[i];
+    bool inside = true;
+    if (clip_values) {
+      const float old_value = batch.old_values[i];
+      const float change = values[i] - old_value;
+      predicted = old_value + std::clamp(change, -value_clip, value_clip);
+      inside = change >= -value_clip && change <= value_clip;
+    }
+    const double error = static_cast<double>(batch.returns[i]) - predicted;
+    value_sum += error * error;
+    value_gradient[i] =
+        inside ? static_cast<float>(-2.0 * config.vf_coef * inverse_n * error) : 0.0f;
+  }
+  return value_sum;
+}
+
+}  // namespace
+
 PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCritic& policy,
                                        const PpoConfig& config) {
   const std::int64_t n = batch.size;
@@ -536,118 +671,33 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
 
   const float* parameters = policy.flat_parameters().data_ptr<float>();
   float* gradients = policy.flat_gradients().data_ptr<float>();
-  const std::int64_t a_size = action_size_;
-
   forward(actor_, parameters, batch.observations.data(), n);
   forward(critic_, parameters, batch.observations.data(), n);
-  const float* means = actor_.outputs.back().data();
-  const float* values = critic_.outputs.back().data();
+  normalise_advantages(batch.advantages, config.normalize_advantage, advantages_.data());
 
-  // Advantages, normalised over the minibatch like compute_ppo_loss (unbiased std).
-  if (config.normalize_advantage && n > 1) {
-    double sum = 0.0;
-    for (std::int64_t i = 0; i < n; ++i) sum += batch.advantages[i];
-    const double mean = sum / static_cast<double>(n);
-    double squares = 0.0;
-    for (std::int64_t i = 0; i < n; ++i) {
-      const double d = batch.advantages[i] - mean;
-      squares += d * d;
-    }
-    const double scale = 1.0 / (std::sqrt(squares / static_cast<double>(n - 1)) + 1e-8);
-    for (std::int64_t i = 0; i < n; ++i) {
-      advantages_[i] = static_cast<float>((batch.advantages[i] - mean) * scale);
-    }
-  } else {
-    std::copy_n(batch.advantages.data(), n, advantages_.data());
-  }
-
-  // Policy term (policy/diagonal_gaussian.hpp). log π = −½Σ z² − log_normaliser with
-  // z = (a − μ)/σ, so ∂log π/∂μ = z/σ and ∂log π/∂log σ = z² − 1.
-  const float* log_std = parameters + layout_.log_std;
-  const std::span<const float> log_stds(log_std, static_cast<std::size_t>(a_size));
-  const double log_normaliser = gaussian_log_normaliser(log_stds);
-  const double entropy = gaussian_entropy(log_stds);
-  // Float bounds, as torch compares float tensors with the double scalars cast to float.
-  const float low = static_cast<float>(1.0 - config.clip_range);
-  const float high = static_cast<float>(1.0 + config.clip_range);
-  const float clip_range = static_cast<float>(config.clip_range);
-  const double inverse_n = 1.0 / static_cast<double>(n);
-  double surrogate_sum = 0.0, kl_sum = 0.0;
-  std::int64_t clipped_count = 0;
-  for (std::int64_t i = 0; i < n; ++i) {
-    const float* action = batch.actions.data() + i * a_size;
-    const float* mean = means + i * a_size;
-    double squares = 0.0;
-    for (std::int64_t j = 0; j < a_size; ++j) {
-      const float z = (action[j] - mean[j]) * std::exp(-log_std[j]);
-      squares += static_cast<double>(z) * z;
-    }
-    const double log_ratio = -0.5 * squares - log_normaliser - batch.old_log_prob[i];
-    const double ratio = std::exp(log_ratio);
-    kl_sum += (ratio - 1.0) - log_ratio;
-    const float ratio_f = static_cast<float>(ratio);
-    if (std::abs(ratio_f - 1.0f) > clip_range) ++clipped_count;
-    // min(A·ρ, A·clamp(ρ)) with torch's gradient rules: the smaller operand takes the
-    // whole gradient, equal operands half each (the usual case: ρ inside the range);
-    // clamp passes the gradient inside [low, high], bounds included.
-    const float advantage = advantages_[i];
-    const float surrogate = advantage * ratio_f;
-    const float clipped = advantage * std::clamp(ratio_f, low, high);
-    surrogate_sum += std::min(surrogate, clipped);
-    double surrogate_weight = 0.5, clipped_weight = 0.5;
-    if (surrogate < clipped) {
-      surrogate_weight = 1.0, clipped_weight = 0.0;
-    } else if (surrogate > clipped) {
-      surrogate_weight = 0.0, clipped_weight = 1.0;
-    }
-    const bool inside = ratio_f >= low && ratio_f <= high;
-    const double ratio_gradient =
-        -inverse_n * advantage * (surrogate_weight + (inside ? clipped_weight : 0.0));
-    log_prob_gradient_[i] = ratio_gradient * ratio;  // ∂ρ/∂log π = ρ
-  }
-
-  // ∂L/∂μ into the actor's output gradient, ∂L/∂log σ straight into the flat gradient.
-  float* d_log_std = gradients + layout_.log_std;
-  for (std::int64_t j = 0; j < a_size; ++j) {
-    const float inverse_std = std::exp(-log_std[j]);
-    double sum = config.ent_coef != 0.0 ? -config.ent_coef : 0.0;  // ∂(c_ent·(−entropy))
-    for (std::int64_t i = 0; i < n; ++i) {
-      const float z = (batch.actions[i * a_size + j] - means[i * a_size + j]) * inverse_std;
-      const double g = log_prob_gradient_[i];
-      sum += g * (static_cast<double>(z) * z - 1.0);
-      output_gradient_[i * a_size + j] = static_cast<float>(g * z * inverse_std);
-    }
-    d_log_std[j] = static_cast<float>(sum);
-  }
+  // Policy term: ∂L/∂μ into the actor's output gradient, ∂L/∂log σ straight into the flat
+  // gradient, then back through the actor.
+  const GaussianPolicy gaussian{actor_.outputs.back().data(), parameters + layout_.log_std,
+                                action_size_};
+  const SurrogateSums sums =
+      surrogate_term(batch, gaussian, advantages_.data(), config, log_prob_gradient_.data());
+  gaussian_gradients(batch, gaussian, log_prob_gradient_.data(), config.ent_coef,
+                     output_gradient_.data(), gradients + layout_.log_std);
   backward(actor_, parameters, batch.observations.data(), n, gradients);
 
-  // Value term: V_pred = V_old + clamp(V − V_old, ±c) (clamp passes the gradient inside
-  // the range, bounds included), L_v = mean((R − V_pred)²).
-  const bool clip_values = config.clip_range_vf > 0.0;
-  const float value_clip = static_cast<float>(config.clip_range_vf);
-  double value_sum = 0.0;
-  for (std::int64_t i = 0; i < n; ++i) {
-    float predicted = values[i];
-    bool inside = true;
-    if (clip_values) {
-      const float old_value = batch.old_values[i];
-      const float change = values[i] - old_value;
-      predicted = old_value + std::clamp(change, -value_clip, value_clip);
-      inside = change >= -value_clip && change <= value_clip;
-    }
-    const double error = static_cast<double>(batch.returns[i]) - predicted;
-    value_sum += error * error;
-    output_gradient_[i] =
-        inside ? static_cast<float>(-2.0 * config.vf_coef * inverse_n * error) : 0.0f;
-  }
+  // Value term, then back through the critic.
+  const double value_sum =
+      value_term(batch, critic_.outputs.back().data(), config, output_gradient_.data());
   backward(critic_, parameters, batch.observations.data(), n, gradients);
 
+  const double inverse_n = 1.0 / static_cast<double>(n);
   PpoLossStatistics statistics;
-  statistics.policy_gradient_loss = -surrogate_sum * inverse_n;
+  statistics.policy_gradient_loss = -sums.surrogate * inverse_n;
   statistics.value_loss = value_sum * inverse_n;
-  statistics.entropy_loss = -entropy;
-  statistics.approx_kl = kl_sum * inverse_n;
-  statistics.clip_fraction = static_cast<double>(clipped_count) * inverse_n;
+  statistics.entropy_loss = -gaussian_entropy(
+      std::span<const float>(gaussian.log_std, static_cast<std::size_t>(action_size_)));
+  statistics.approx_kl = sums.kl * inverse_n;
+  statistics.clip_fraction = static_cast<double>(sums.clipped) * inverse_n;
   statistics.total = statistics.policy_gradient_loss + config.vf_coef * statistics.value_loss;
   if (config.ent_coef != 0.0) statistics.total += config.ent_coef * statistics.entropy_loss;
   return statistics;
