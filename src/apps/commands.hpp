@@ -15,6 +15,8 @@ void add_spine_command(CLI::App& app);
 void add_envs_command(CLI::App& app);
 /// `upkie-rl rollout`: episodes of an environment with a controller (rollout_command.cpp).
 void add_rollout_command(CLI::App& app);
+/// `upkie-rl drive`: drive a simulated velocity task from the browser.
+void add_drive_command(CLI::App& app);
 
 /// `upkie-rl evaluate`: success rates over a grid of perturbations (apps/evaluate_command.cpp).
 void add_evaluate_command(CLI::App& app);

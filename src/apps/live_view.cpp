@@ -1,11 +1,12 @@
 #include "apps/live_view.hpp"
 
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 #include <thread>
 
-#include "apps/option_checks.hpp"
 #include "apps/interrupt_handlers.hpp"
+#include "apps/option_checks.hpp"
 #include "model/robot_model.hpp"
 #include "view/view_frame.hpp"
 #include "view/view_session.hpp"
@@ -53,23 +54,39 @@ void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pac
   }
 }
 
-LiveView::LiveView(const LiveViewOptions& options, const std::string& title, double timestep,
-                   const std::vector<std::string>& action_names)
-    : options_(options),
-      frames_(std::make_shared<FrameBroadcaster>(view_frame_size(action_names.size()))),
-      frame_(view_frame_size(action_names.size())) {
+namespace {
+
+ViewSession live_session(const std::string& title, double timestep,
+                         const std::vector<std::string>& action_names) {
   ViewSession session;
-  session.mode = ViewSession::Mode::kLive;
   session.title = title;
   session.timestep = timestep;
   session.action_names = action_names;
+  return session;
+}
+
+}  // namespace
+
+LiveView::LiveView(const LiveViewOptions& options, const std::string& title, double timestep,
+                   const std::vector<std::string>& action_names)
+    : LiveView(options, live_session(title, timestep, action_names)) {}
+
+LiveView::LiveView(const LiveViewOptions& options, ViewSession session,
+                   std::shared_ptr<DriveControl> drive)
+    : options_(options),
+      frames_(std::make_shared<FrameBroadcaster>(view_session_frame_size(session))),
+      frame_(view_session_frame_size(session)),
+      num_extra_fields_(session.extra_fields.size()) {
+  session.mode = ViewSession::Mode::kLive;
+  if (drive) session.drive = drive->limits();
   ViewServerConfig config;
   config.host = options.host;
   config.port = options.port;
   config.max_connections = static_cast<std::size_t>(options.max_connections);
   config.idle_timeout = options.idle_timeout;
   server_ = std::make_unique<ViewServer>(
-      config, view_session_json(session, RobotModel::default_urdf_path().string()), frames_);
+      config, view_session_json(session, RobotModel::default_urdf_path().string()), frames_,
+      std::move(drive));
   std::cout << "viewer: " << server_->url() << std::endl;
 }
 
@@ -95,8 +112,15 @@ void LiveView::start_episode(int episode) {
 }
 
 void LiveView::publish(const Observation& observation, int step, double episode_return,
-                       std::span<const float> action) {
-  write_view_frame(observation, {episode_, step, episode_return}, action, frame_);
+                       std::span<const float> action, std::span<const double> extra) {
+  const std::span<double> frame(frame_);
+  write_view_frame(observation, {episode_, step, episode_return}, action,
+                   frame.first(frame.size() - num_extra_fields_));
+  if (extra.size() != num_extra_fields_) {
+    throw std::invalid_argument("LiveView: " + std::to_string(extra.size()) + " extra values for " +
+                                std::to_string(num_extra_fields_) + " extra fields");
+  }
+  std::copy(extra.begin(), extra.end(), frame.end() - static_cast<std::ptrdiff_t>(extra.size()));
   frames_->publish(frame_);
   if (!(options_.speed > 0.0)) return;
   const auto now = std::chrono::steady_clock::now();

@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "sim/observation.hpp"
+#include "view/drive_control.hpp"
 #include "view/frame_broadcaster.hpp"
 #include "view/view_server.hpp"
+#include "view/view_session.hpp"
 
 namespace upkie_rl::apps {
 
@@ -51,6 +53,10 @@ class LiveView {
   /// @throws ViewError when the server cannot listen.
   LiveView(const LiveViewOptions& options, const std::string& title, double timestep,
            const std::vector<std::string>& action_names);
+  /// The same for a session prepared by the caller (its mode is set to live): extra fields
+  /// and charts, and with `drive`, pages that drive (session.drive is then set).
+  LiveView(const LiveViewOptions& options, ViewSession session,
+           std::shared_ptr<DriveControl> drive = nullptr);
   ~LiveView();
 
   /// Waits for options.wait_clients browsers (returns at once without), printing why.
@@ -59,11 +65,15 @@ class LiveView {
   /// Starts pacing a new episode.
   void start_episode(int episode);
 
+  /// Paces from the next frame on, as at an episode's start (after a pause).
+  void restart_pacing() { first_frame_ = true; }
+
   /// Publishes the frame of `observation` after `step` steps of the current episode, then
   /// waits until the wall clock catches up with the simulation (when paced). `action` is the
-  /// one that led here (the neutral action at step 0). Allocates nothing.
+  /// one that led here (the neutral action at step 0); `extra` the session's extra fields.
+  /// Allocates nothing.
   void publish(const Observation& observation, int step, double episode_return,
-               std::span<const float> action);
+               std::span<const float> action, std::span<const double> extra = {});
 
   /// Tells the browsers that the run is over and why.
   void end(const std::string& reason);
@@ -75,6 +85,7 @@ class LiveView {
   std::shared_ptr<FrameBroadcaster> frames_;
   std::unique_ptr<ViewServer> server_;
   std::vector<double> frame_;
+  std::size_t num_extra_fields_ = 0;
   int episode_ = 0;
   std::chrono::steady_clock::time_point episode_start_;
   double episode_start_time_ = 0.0;  ///< Simulated time of the episode's first frame.

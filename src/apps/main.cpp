@@ -21,6 +21,7 @@ int run(int argc, char** argv) {
   app.fallthrough(false);
   upkie_rl::apps::add_envs_command(app);
   upkie_rl::apps::add_rollout_command(app);
+  upkie_rl::apps::add_drive_command(app);
   upkie_rl::apps::add_evaluate_command(app);
   upkie_rl::apps::add_render_command(app);
   upkie_rl::apps::add_view_command(app);

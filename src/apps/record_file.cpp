@@ -55,6 +55,18 @@ RecordFile read_record_file(const std::filesystem::path& path) {
       column_of.count(kMeasuredColumns[0]) && column_of.count(kMeasuredColumns[1]);
   if (has_measured) needed.insert(needed.end(), kMeasuredColumns.begin(), kMeasuredColumns.end());
   RecordFile file;
+  // Velocity tasks: the command (observation columns) and the measured velocity, both or
+  // neither; files of other tasks, or written before the measured columns, have neither.
+  std::size_t velocity_first = needed.size();
+  file.has_velocity = true;
+  for (const auto& columns : {kCommandColumns, kMeasuredVelocityColumns}) {
+    for (const char* column : columns)
+      file.has_velocity = file.has_velocity && column_of.count(column);
+  }
+  if (file.has_velocity) {
+    needed.insert(needed.end(), kCommandColumns.begin(), kCommandColumns.end());
+    needed.insert(needed.end(), kMeasuredVelocityColumns.begin(), kMeasuredVelocityColumns.end());
+  }
   const std::string action_prefix = "action.";
   for (const std::string& column : header) {
     if (column.rfind(action_prefix, 0) == 0) {
@@ -120,6 +132,11 @@ RecordFile read_record_file(const std::filesystem::path& path) {
     } else {
       step.pitch = base_pitch(step.pose.base_orientation.normalized());
       step.ground_position = step.pose.base_position.x();
+    }
+    if (file.has_velocity) {
+      step.command = VelocityCommand{values[velocity_first], values[velocity_first + 1]};
+      step.measured = BaseVelocity{values[velocity_first + 2], values[velocity_first + 3]};
+      next += 4;
     }
     step.action.assign(values.begin() + static_cast<std::ptrdiff_t>(next), values.end());
     file.steps.push_back(std::move(step));

@@ -4,10 +4,12 @@
 /// `upkie-rl render` and `upkie-rl view`.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "envs/episode_recorder.hpp"
+#include "envs/velocity_command.hpp"
 #include "render/robot_renderer.hpp"
 
 namespace upkie_rl::apps {
@@ -24,12 +26,17 @@ struct RecordedStep {
   double pitch = 0.0;
   double ground_position = 0.0;
   std::vector<double> action;  ///< In the order of RecordFile::action_names.
+  /// Velocity tasks: the command the controller saw and the measured base velocity, when the
+  /// file has their columns (kCommandColumns, kMeasuredVelocityColumns).
+  std::optional<VelocityCommand> command;
+  std::optional<BaseVelocity> measured;
 };
 
 /// The rows of a record file, and the names of its action columns (without "action.").
 struct RecordFile {
   std::vector<std::string> action_names;
   std::vector<RecordedStep> steps;
+  bool has_velocity = false;  ///< Whether every step has its command and measured velocity.
 };
 
 /// Reads a record file written by EpisodeRecorder (any environment).

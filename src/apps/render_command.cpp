@@ -36,7 +36,8 @@ void render_one(const std::string& record_path, const VideoOptions& options) {
       video.start_episode(episode);
     }
     // A row holds the state at t and the reward of the step taken from it.
-    video.add(step.pose, step.time, episode_return, base_pitch(step.pose.base_orientation));
+    video.add(step.pose, step.time, episode_return, base_pitch(step.pose.base_orientation),
+              step.command ? &*step.command : nullptr, step.measured ? &*step.measured : nullptr);
     episode_return += step.reward;
   }
   video.close();

@@ -2,6 +2,7 @@
 /// `upkie-rl rollout`: runs episodes of an environment with a controller and reports their
 /// returns (the seed's rollout_policy.py).
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -11,15 +12,15 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/controller_choice.hpp"
 #include "apps/controller_option.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/live_view.hpp"
 #include "apps/option_checks.hpp"
-#include "apps/policy_controller.hpp"
 #include "apps/record_file.hpp"
 #include "apps/tracking_report.hpp"
+#include "apps/velocity_view.hpp"
 #include "apps/video_recorder.hpp"
-#include "envs/builtin_controllers.hpp"
 #include "envs/episode_runner.hpp"
 #include "envs/evaluation_start.hpp"
 #include "envs/registry.hpp"
@@ -65,15 +66,6 @@ void add_video_frame(VideoRecorder& video, const Env& env, double episode_return
   video.add(robot_pose(*full), full->time, episode_return, full->base_orientation.pitch);
 }
 
-std::unique_ptr<Controller> make_rollout_controller(const RolloutOptions& options,
-                                                    const EnvOptions& env_options, const Env& env) {
-  if (!options.model.empty()) return make_policy_controller(options.model, env);
-  const std::string spec =
-      resolve_controller_spec(options.controller, design_env_factory(options.env_id, env_options));
-  if (spec != options.controller) std::cout << options.controller << ": " << spec << std::endl;
-  return make_builtin_controller(spec, env);
-}
-
 /// Commanded and measured velocities of one episode, for --plot.
 struct VelocityTrace {
   std::vector<double> time;
@@ -108,13 +100,8 @@ struct VelocityTrace {
 };
 
 void run_rollout(const RolloutOptions& options) {
-  EnvOptions env_options = parse_env_options(options.env_options);
-  if (!options.model.empty()) {
-    env_options = options_for_model(options.model, options.env_id, env_options);
-    if (!env_options.empty()) {
-      std::cout << "environment options: " << format_env_options(env_options) << std::endl;
-    }
-  }
+  EnvOptions env_options =
+      run_env_options(options.env_id, options.model, parse_env_options(options.env_options));
   if (!options.exact_start) {
     const EnvOptions start = evaluation_start_options(options.env_id, env_options);
     if (!start.empty()) {
@@ -124,7 +111,8 @@ void run_rollout(const RolloutOptions& options) {
     env_options.insert(env_options.end(), start.begin(), start.end());
   }
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
-  std::unique_ptr<Controller> controller = make_rollout_controller(options, env_options, *env);
+  std::unique_ptr<Controller> controller =
+      make_run_controller(options.env_id, options.controller, options.model, env_options, *env);
   VelocityEnv* velocity = find_velocity_env(*env);
   if (velocity == nullptr && (!options.commands_path.empty() || !options.plot_prefix.empty())) {
     throw std::invalid_argument(
@@ -141,10 +129,13 @@ void run_rollout(const RolloutOptions& options) {
     if (env->full_observation() == nullptr) {
       throw std::runtime_error("--view needs an environment with full observations");
     }
-    view.emplace(
-        options.view,
-        options.env_id + ": " + (options.model.empty() ? options.controller : options.model),
-        env->timestep(), env->action_space().names);
+    ViewSession session;
+    session.title =
+        options.env_id + ": " + (options.model.empty() ? options.controller : options.model);
+    session.timestep = env->timestep();
+    session.action_names = env->action_space().names;
+    if (velocity != nullptr) add_velocity_charts(session);
+    view.emplace(options.view, std::move(session));
   }
   // Outputs last, once everything else is known to work: a failure above (a busy port, a
   // bad controller) leaves an existing record file as it was. Bad paths are still refused
@@ -158,6 +149,9 @@ void run_rollout(const RolloutOptions& options) {
 
   std::vector<float> observation(env->observation_space().size());
   std::vector<float> action(env->action_space().size());
+  std::array<double, kVelocityViewFields> velocity_fields{};
+  const std::span<const double> view_extra =
+      velocity != nullptr ? std::span<const double>(velocity_fields) : std::span<const double>();
   std::vector<double> returns;
   std::vector<int> lengths;
   std::vector<EpisodeOutcome> outcomes;
@@ -176,7 +170,13 @@ void run_rollout(const RolloutOptions& options) {
     if (view) view->start_episode(episode);
     while (length < options.max_steps) {
       controller->act(observation, action);
-      if (view) view->publish(*env->full_observation(), length, total, action);
+      if (view) {
+        if (velocity != nullptr) {
+          write_velocity_fields(velocity->command(), velocity->measured_velocity(),
+                                velocity_fields);
+        }
+        view->publish(*env->full_observation(), length, total, action, view_extra);
+      }
       if (recorder) recorder->before_step(*env, observation);
       // The observation this step returns shows the command of the next one.
       if (schedule) velocity->set_command_override(schedule->at((length + 1) * env->timestep()));

@@ -7,14 +7,16 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/record_file.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/live_view.hpp"
+#include "apps/record_file.hpp"
+#include "apps/velocity_view.hpp"
 #include "envs/registry.hpp"
 #include "model/robot_model.hpp"
 #include "view/view_frame.hpp"
@@ -40,7 +42,9 @@ ViewSession replay_session(const RecordFile& record, const std::string& title) {
   session.mode = ViewSession::Mode::kReplay;
   session.title = title;
   session.action_names = record.action_names;
-  const std::size_t frame_size = view_frame_size(record.action_names.size());
+  if (record.has_velocity) add_velocity_charts(session);
+  const std::size_t frame_size = view_session_frame_size(session);
+  const std::size_t num_extra = session.extra_fields.size();
   std::vector<double> frame(frame_size);
   std::vector<float> action;
   double episode_return = 0.0;
@@ -62,7 +66,12 @@ ViewSession replay_session(const RecordFile& record, const std::string& title) {
       observation.servo[servo].position = step.pose.joint_angles[servo];
     }
     action.assign(step.action.begin(), step.action.end());
-    write_view_frame(observation, {step.episode, step.step, episode_return}, action, frame);
+    const std::span<double> frame_row(frame);
+    write_view_frame(observation, {step.episode, step.step, episode_return}, action,
+                     frame_row.first(frame_size - num_extra));
+    if (record.has_velocity) {
+      write_velocity_fields(*step.command, *step.measured, frame_row.last(num_extra));
+    }
     std::vector<double>& frames = session.episodes.back().frames;
     frames.insert(frames.end(), frame.begin(), frame.end());
     episode_return += step.reward;

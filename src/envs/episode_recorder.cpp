@@ -3,6 +3,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "envs/velocity_env.hpp"
+
 namespace upkie_rl {
 
 EpisodeRecorder::EpisodeRecorder(const std::filesystem::path& path)
@@ -19,6 +21,10 @@ void EpisodeRecorder::write_header(const Env& env, std::span<const std::string> 
   for (const char* column : kGroundTruthColumns) out_ << ',' << column;
   for (const auto& joint : kServoNames) out_ << ',' << joint;
   for (const char* column : kMeasuredColumns) out_ << ',' << column;
+  velocity_task_ = find_velocity_env(env) != nullptr;
+  if (velocity_task_) {
+    for (const char* column : kMeasuredVelocityColumns) out_ << ',' << column;
+  }
   for (const std::string& column : extra_columns) out_ << ',' << column;
   out_ << '\n';
   num_extra_columns_ = extra_columns.size();
@@ -43,6 +49,11 @@ void EpisodeRecorder::before_step(const Env& env, std::span<const float> observa
     ground_truth_[7 + kNumServos] = full->base_orientation.pitch;
     ground_truth_[8 + kNumServos] = full->wheel_odometry.position;
   }
+  const VelocityEnv* velocity = velocity_task_ ? find_velocity_env(env) : nullptr;
+  if (velocity != nullptr) {
+    const BaseVelocity measured = velocity->measured_velocity();
+    measured_velocity_ = {measured.forward_velocity, measured.yaw_rate};
+  }
 }
 
 void EpisodeRecorder::after_step(int episode, int step, std::span<const float> action,
@@ -57,6 +68,9 @@ void EpisodeRecorder::after_step(int episode, int step, std::span<const float> a
   for (float value : action) out_ << ',' << value;
   out_ << ',' << result.reward << ',' << int(result.terminated) << ',' << int(result.truncated);
   for (double value : ground_truth_) out_ << ',' << value;
+  if (velocity_task_) {
+    for (double value : measured_velocity_) out_ << ',' << value;
+  }
   for (double value : extra) out_ << ',' << value;
   out_ << '\n';
 }

@@ -25,7 +25,9 @@ inline constexpr std::array<const char*, 2> kMeasuredColumns = {"pitch", "ground
 /// component by name ("action.<name>"), reward, terminated, truncated, then the simulator's
 /// ground truth base_x, base_y, base_z, base_qw, base_qx, base_qy, base_qz and the six joint
 /// angles by joint name (NaN when the backend has no ground truth), then the base pitch and
-/// the wheel odometry's ground position, then the caller's extra columns if any. A row holds the
+/// the wheel odometry's ground position, then for a velocity task the measured base
+/// velocity (kMeasuredVelocityColumns; the command is in the observation's columns), then
+/// the caller's extra columns if any. A row holds the
 /// observation the controller saw at time t, the ground truth at that time, the action it chose,
 /// and the reward and flags of the step that action made.
 class EpisodeRecorder {
@@ -55,6 +57,8 @@ class EpisodeRecorder {
   std::vector<float> observation_;
   double time_ = 0.0;
   std::array<double, 7 + 6 + 2> ground_truth_{};
+  bool velocity_task_ = false;  ///< Whether the header has the measured velocity columns.
+  std::array<double, 2> measured_velocity_{};
   std::size_t num_extra_columns_ = 0;
 };
 

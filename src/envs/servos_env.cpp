@@ -74,6 +74,7 @@ ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
 }
 
 const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
+  hand_push_end_ = 0.0;  // the reset clears the simulation's base force
   if (seed) {
     generator_.seed(*seed);
     perturbation_generator_.seed(derive_seed(*seed, kPerturbationStream));
@@ -112,13 +113,31 @@ void ServosEnv::clamp_servo_action(const ServoAction& action, ServoAction& clamp
   }
 }
 
+bool ServosEnv::push_base(const Eigen::Vector3d& force_in_world, double duration) {
+  if (!force_in_world.allFinite())
+    throw std::invalid_argument("push_base: the force is not finite");
+  if (!(duration > 0.0 && duration <= 10.0)) {
+    throw std::invalid_argument("push_base: the duration must be in (0, 10] s");
+  }
+  if (physics_ == nullptr) return false;
+  hand_push_force_ = force_in_world;
+  hand_push_end_ = simulation_->observation().time + duration;
+  return true;
+}
+
 const Observation& ServosEnv::step_servos(const ServoAction& action) {
   clamp_servo_action(action, clamped_buffer_);
-  if (perturbations_.push.enabled()) {
-    const Observation& last = simulation_->observation();
+  const Observation& last = simulation_->observation();
+  const bool hand_push = hand_push_end_ > 0.0;
+  if (perturbations_.push.enabled() || hand_push) {
     const Eigen::Matrix3d& rotation = last.base_orientation.rotation_base_to_world;
     const double yaw = std::atan2(rotation(1, 0), rotation(0, 0));
-    physics_->set_base_force(pushes_.force(last.time, yaw));
+    Eigen::Vector3d force =
+        perturbations_.push.enabled() ? pushes_.force(last.time, yaw) : Eigen::Vector3d::Zero();
+    if (hand_push && last.time < hand_push_end_) force += hand_push_force_;
+    // The step after the hand push clears its force; later steps skip this block.
+    if (hand_push && last.time >= hand_push_end_) hand_push_end_ = 0.0;
+    physics_->set_base_force(force);
   }
   return simulation_->step(clamped_buffer_);
 }

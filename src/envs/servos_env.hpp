@@ -64,6 +64,12 @@ class ServosEnv final : public Env {
   /// @throws InvalidCommandError on a NaN velocity, torque or gain, or an infinite position.
   const Observation& step_servos(const ServoAction& action);
 
+  /// Pushes the base by hand (a browser's push in `upkie-rl drive`): `force_in_world` [N]
+  /// on the base's centre of mass during the next `duration` seconds, added to the
+  /// scheduled pushes. Returns false (nothing happens) on a backend without physics.
+  /// @throws std::invalid_argument on a non-finite force or a duration not in (0, 10] s.
+  bool push_base(const Eigen::Vector3d& force_in_world, double duration);
+
   /// The clamped version of `action` (what step_servos sends).
   void clamp_servo_action(const ServoAction& action, ServoAction& clamped) const;
 
@@ -102,6 +108,8 @@ class ServosEnv final : public Env {
   std::mt19937_64 generator_{0};
   std::mt19937_64 perturbation_generator_{0};
   PushSchedule pushes_;
+  Eigen::Vector3d hand_push_force_ = Eigen::Vector3d::Zero();  ///< Of push_base [N].
+  double hand_push_end_ = 0.0;  ///< Simulated time the hand push ends [s].
   DictSpace action_dict_space_;
   DictSpace observation_dict_space_;
   BoxSpace action_space_;

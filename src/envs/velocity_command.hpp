@@ -3,7 +3,18 @@
 /// VelocityCommand: what the velocity-tracking task asks the robot to do, and the base
 /// velocity it is compared with.
 
+#include <array>
+
 namespace upkie_rl {
+
+/// Names of the command's components, as columns of observations, record files and viewer
+/// frames: forward velocity, then yaw rate.
+inline constexpr std::array<const char*, 2> kCommandColumns = {"command.forward_velocity",
+                                                               "command.yaw_rate"};
+
+/// Names of the measured base velocity's components (record files, viewer frames).
+inline constexpr std::array<const char*, 2> kMeasuredVelocityColumns = {"measured.forward_velocity",
+                                                                        "measured.yaw_rate"};
 
 /// A command of the velocity task: drive forward at `forward_velocity` while turning at
 /// `yaw_rate`. Set by the random resampler during training, by a script (`rollout

@@ -45,6 +45,9 @@ class VelocityEnv final : public ServosWrapperEnv {
   /// The base velocity measured after the last reset or step.
   BaseVelocity measured_velocity() const;
 
+  /// Ranges of the random commands (the limits of a browser's commands too).
+  const VelocityCommandRanges& command_ranges() const { return sampler_.ranges(); }
+
   VelocityTermination termination_reason() const { return task_.termination_reason(); }
   const VelocityTask& task() const { return task_; }
 

@@ -31,8 +31,7 @@ BoxSpace VelocityTask::make_observation_space() {
   for (const std::string_view joint : kServoNames) {
     space.add("last_action." + std::string(joint), -1.0f, 1.0f);
   }
-  space.add("command.forward_velocity", -kInf, kInf);
-  space.add("command.yaw_rate", -kInf, kInf);
+  for (const char* column : kCommandColumns) space.add(column, -kInf, kInf);
   return space;
 }
 

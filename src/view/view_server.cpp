@@ -7,6 +7,7 @@
 #include <boost/beast/websocket.hpp>
 #include <cmath>
 #include <condition_variable>
+#include <deque>
 #include <iostream>
 #include <list>
 #include <mutex>
@@ -14,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "view/drive_control.hpp"
 #include "view/view_error.hpp"
 #include "view/view_session.hpp"
 #include "view/viewer_page.hpp"
@@ -48,12 +50,15 @@ void ViewServerConfig::validate() const {
 
 namespace {
 
-/// Largest HTTP request or WebSocket message taken from a browser: the page sends nothing
-/// but its requests.
+/// Largest HTTP request or WebSocket message taken from a browser: the page sends its
+/// requests and, when it drives, small JSON messages.
 constexpr std::size_t kMaxRequestBytes = std::size_t{16} * 1024;
 /// Wait before accepting again after accept failed (out of file descriptors): the pending
 /// connection stays queued, so an immediate retry would fail at once, again and again.
 constexpr auto kAcceptRetryDelay = std::chrono::milliseconds(200);
+/// Text messages waiting for one browser beyond this are dropped (a page that floods the
+/// server with refused messages must not grow its queue without bound).
+constexpr std::size_t kMaxQueuedTexts = 64;
 
 }  // namespace
 
@@ -64,10 +69,12 @@ struct ViewClient : std::enable_shared_from_this<ViewClient> {
 
   websocket::stream<beast::tcp_stream> stream;
   beast::flat_buffer incoming;
-  std::vector<double> outgoing;  ///< Frames of the message being written (reused).
-  std::string text;              ///< The end message being written.
-  std::uint64_t last_frame = 0;  ///< Number of the last frame sent.
-  bool open = false;             ///< Handshake done, not yet closed.
+  std::vector<double> outgoing;   ///< Frames of the message being written (reused).
+  std::string text;               ///< The text message being written.
+  std::deque<std::string> texts;  ///< Text messages waiting (driving replies), oldest first.
+  std::uint64_t id = 0;           ///< Numbers the browsers for the DriveControl.
+  std::uint64_t last_frame = 0;   ///< Number of the last frame sent.
+  bool open = false;              ///< Handshake done, not yet closed.
   bool writing = false;
   bool end_sent = false;
   bool awaits_end = false;  ///< Connected when end() was called, and not yet closed.
@@ -76,11 +83,12 @@ struct ViewClient : std::enable_shared_from_this<ViewClient> {
 
 struct ViewServer::Impl {
   Impl(ViewServerConfig config_in, std::string session_json_in,
-       std::shared_ptr<const FrameBroadcaster> frames_in)
+       std::shared_ptr<const FrameBroadcaster> frames_in, std::shared_ptr<DriveControl> drive_in)
       : config(std::move(config_in)),
         session_json(std::move(session_json_in)),
         page(served_viewer_page()),
         frames(std::move(frames_in)),
+        drive(std::move(drive_in)),
         acceptor(io),
         timer(io),
         accept_retry(io) {}
@@ -89,6 +97,7 @@ struct ViewServer::Impl {
   std::string session_json;
   std::string page;
   std::shared_ptr<const FrameBroadcaster> frames;
+  std::shared_ptr<DriveControl> drive;  ///< Null unless pages may drive.
   // Open HTTP connections (their streams' deleter counts them out); before `io`, whose
   // destruction runs those deleters.
   std::size_t http_connections = 0;
@@ -104,6 +113,7 @@ struct ViewServer::Impl {
 
   // Owned by the io thread.
   std::list<std::shared_ptr<ViewClient>> clients;
+  std::uint64_t next_client_id = 1;
   std::string end_reason;
   bool ended = false;
 
@@ -135,6 +145,12 @@ struct ViewServer::Impl {
   void upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
                const http::request<http::string_body>& request);
   void read_messages(const std::shared_ptr<ViewClient>& client);
+  /// Queues a text message for `client` and sends it as soon as its writes allow.
+  void queue_text(const std::shared_ptr<ViewClient>& client, std::string text);
+  /// Queues every browser's drive status (its role changed, or the pause).
+  void send_drive_statuses();
+  /// Sends the driver the acknowledgement DriveControl queued.
+  void send_acknowledgement();
   void drop(const std::shared_ptr<ViewClient>& client);
   void tick();
   void send(const std::shared_ptr<ViewClient>& client);
@@ -282,6 +298,10 @@ void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
   }
   stream->expires_never();  // the websocket stream keeps its own timeouts
   auto client = std::make_shared<ViewClient>(stream->release_socket());
+  // Small messages (a driving acknowledgement) go out at once: with Nagle's algorithm one
+  // written right after another waits for the browser's delayed ACK (40 ms on Linux).
+  beast::error_code ignored;
+  beast::get_lowest_layer(client->stream).socket().set_option(tcp::no_delay(true), ignored);
   client->stream.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
   client->stream.read_message_max(kMaxRequestBytes);
   client->stream.binary(true);
@@ -293,7 +313,9 @@ void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
   client->stream.async_accept(*held, [this, client, held](beast::error_code error) {
     if (error) return;
     client->open = true;
+    client->id = next_client_id++;
     clients.push_back(client);
+    if (drive) queue_text(client, drive->status_message(client->id));
     ++clients_connected;
     num_clients.store(clients.size());
     notify();
@@ -309,9 +331,41 @@ void ViewServer::Impl::read_messages(const std::shared_ptr<ViewClient>& client) 
       drop(client);
       return;
     }
-    client->incoming.clear();  // the page sends nothing the server needs
+    if (drive && !client->stream.got_binary()) {
+      const auto data = client->incoming.cdata();
+      const DriveControl::Reply reply = drive->receive(
+          client->id, std::string_view(static_cast<const char*>(data.data()), data.size()),
+          SteadyClock::now());
+      if (!reply.to_sender.empty()) queue_text(client, reply.to_sender);
+      if (reply.status_changed) send_drive_statuses();
+    }
+    client->incoming.clear();  // a page that does not drive sends nothing the server needs
     read_messages(client);
   });
+}
+
+void ViewServer::Impl::queue_text(const std::shared_ptr<ViewClient>& client, std::string text) {
+  if (!client->open || client->texts.size() >= kMaxQueuedTexts) return;
+  client->texts.push_back(std::move(text));
+  send(client);
+}
+
+void ViewServer::Impl::send_drive_statuses() {
+  const std::vector<std::shared_ptr<ViewClient>> current(clients.begin(), clients.end());
+  for (const std::shared_ptr<ViewClient>& client : current) {
+    queue_text(client, drive->status_message(client->id));
+  }
+}
+
+void ViewServer::Impl::send_acknowledgement() {
+  auto acknowledgement = drive->take_acknowledgement();
+  if (!acknowledgement) return;
+  for (const std::shared_ptr<ViewClient>& client : clients) {
+    if (client->id == acknowledgement->first) {
+      queue_text(client, std::move(acknowledgement->second));
+      return;
+    }
+  }
 }
 
 void ViewServer::Impl::drop(const std::shared_ptr<ViewClient>& client) {
@@ -321,6 +375,7 @@ void ViewServer::Impl::drop(const std::shared_ptr<ViewClient>& client) {
   beast::get_lowest_layer(client->stream).socket().close(ignored);
   clients.remove(client);
   num_clients.store(clients.size());
+  if (drive && drive->disconnect(client->id)) send_drive_statuses();
   if (client->awaits_end) end_delivered(*client);
   notify();
 }
@@ -357,6 +412,24 @@ void ViewServer::Impl::start_ticking() {
 
 void ViewServer::Impl::send(const std::shared_ptr<ViewClient>& client) {
   if (!client->open || client->writing) return;
+  const auto on_text_written = [this, client](beast::error_code error, std::size_t) {
+    client->writing = false;
+    if (error) {
+      drop(client);
+      return;
+    }
+    send(client);  // the next text, or frames
+  };
+  if (!client->texts.empty() && !client->end_sent) {
+    client->text = std::move(client->texts.front());
+    client->texts.pop_front();
+    client->stream.binary(false);
+    client->writing = true;
+    client->write_started = SteadyClock::now();
+    client->stream.async_write(net::buffer(client->text), on_text_written);
+    return;
+  }
+  if (!frames) return;
   client->outgoing.clear();
   const FrameBroadcaster::Collected collected =
       frames->collect(client->last_frame, config.max_frames_per_message, client->outgoing);
@@ -409,9 +482,17 @@ void ViewServer::Impl::notify() {
 }
 
 ViewServer::ViewServer(const ViewServerConfig& config, std::string session_json,
-                       std::shared_ptr<const FrameBroadcaster> frames)
-    : impl_(std::make_unique<Impl>(config, std::move(session_json), std::move(frames))) {
+                       std::shared_ptr<const FrameBroadcaster> frames,
+                       std::shared_ptr<DriveControl> drive)
+    : impl_(std::make_unique<Impl>(config, std::move(session_json), std::move(frames),
+                                   std::move(drive))) {
   config.validate();
+  if (impl_->drive && !impl_->frames) throw ViewError("a driven view needs a frame stream");
+  if (impl_->drive) {
+    // Called on the simulation's thread: the acknowledgement goes out on the server's.
+    impl_->drive->set_applied_listener(
+        [impl = impl_.get()] { net::post(impl->io, [impl] { impl->send_acknowledgement(); }); });
+  }
   impl_->listen();
   impl_->accept();
   impl_->thread = std::thread([impl = impl_.get()] {
@@ -427,6 +508,7 @@ ViewServer::ViewServer(const ViewServerConfig& config, std::string session_json,
 }
 
 ViewServer::~ViewServer() {
+  if (impl_->drive) impl_->drive->set_applied_listener(nullptr);
   impl_->io.stop();
   if (impl_->thread.joinable()) impl_->thread.join();
 }

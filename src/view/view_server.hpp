@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "view/drive_control.hpp"
 #include "view/frame_broadcaster.hpp"
 
 namespace upkie_rl {
@@ -52,10 +53,13 @@ class ViewServer {
   /// Listens, then serves on its own thread until destroyed.
   /// @param session_json The session document (view_session_json).
   /// @param frames Frames to stream, or null (a replay: the page has every frame).
+  /// @param drive When set, pages may drive: their text messages go to it, and each page is
+  ///        told its role (DriveControl); needs `frames`.
   /// @throws ViewError naming the address and the cause when it cannot listen (a busy
   ///         port, a bad address, no permission).
   ViewServer(const ViewServerConfig& config, std::string session_json,
-             std::shared_ptr<const FrameBroadcaster> frames);
+             std::shared_ptr<const FrameBroadcaster> frames,
+             std::shared_ptr<DriveControl> drive = nullptr);
   /// Closes every connection and joins the thread.
   ~ViewServer();
   ViewServer(const ViewServer&) = delete;

@@ -1,5 +1,6 @@
 #include "view/view_session.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -21,8 +22,26 @@ std::string read_text(const std::string& path) {
 
 }  // namespace
 
+std::size_t view_session_frame_size(const ViewSession& session) {
+  return view_frame_size(session.action_names.size()) + session.extra_fields.size();
+}
+
 std::string view_session_json(const ViewSession& session, const std::string& urdf_path) {
-  const std::vector<std::string> fields = view_frame_fields(session.action_names);
+  std::vector<std::string> fields = view_frame_fields(session.action_names);
+  fields.insert(fields.end(), session.extra_fields.begin(), session.extra_fields.end());
+  nlohmann::json charts = nlohmann::json::array();
+  for (const ViewSession::Chart& chart : session.charts) {
+    nlohmann::json series = nlohmann::json::array();
+    for (const ViewSession::Chart::Series& curve : chart.series) {
+      if (std::find(session.extra_fields.begin(), session.extra_fields.end(), curve.field) ==
+          session.extra_fields.end()) {
+        throw ViewError("chart \"" + chart.title + "\" plots \"" + curve.field +
+                        "\", which is not an extra field of the frames");
+      }
+      series.push_back({{"label", curve.label}, {"field", curve.field}});
+    }
+    charts.push_back({{"title", chart.title}, {"series", std::move(series)}});
+  }
   nlohmann::json document = {
       {"version", 1},
       {"mode", session.mode == ViewSession::Mode::kLive ? "live" : "replay"},
@@ -30,10 +49,12 @@ std::string view_session_json(const ViewSession& session, const std::string& urd
       {"timestep", session.timestep},
       {"frame_fields", fields},
       {"action_names", session.action_names},
+      {"charts", std::move(charts)},
       {"urdf", read_text(urdf_path)},
   };
   if (session.mode == ViewSession::Mode::kLive) {
     document["websocket"] = kViewFramesPath;
+    if (session.drive) document["drive"] = drive_protocol_json(*session.drive);
   } else {
     nlohmann::json episodes = nlohmann::json::array();
     for (const ViewSession::Episode& episode : session.episodes) {

@@ -16,18 +16,32 @@ function element(tag, className, text = '') {
   return node;
 }
 
-export function createHud(root) {
+/**
+ * One row per chart of the session (e.g. "Forward velocity": "command 0.40 · measured 0.38"),
+ * its values looked up by field name.
+ */
+function chartRows(charts) {
+  return charts.map(({ title, series }) => [
+    title.replace(/ \[.*\]$/, ''),
+    (f) => series.map(({ label, field }) => `${label} ${f[field].toFixed(2)}`).join(' · '),
+  ]);
+}
+
+export function createHud(root, charts = []) {
+  const rows = [...ROWS, ...chartRows(charts)];
   const title = element('div', 'hud-title', 'Upkie viewer');
   const table = element('dl', 'hud-values');
-  const cells = ROWS.map(([label]) => {
+  const cells = rows.map(([label]) => {
     const value = element('dd', '', '–');
     table.append(element('dt', '', label), value);
     return value;
   });
   const status = element('div', 'hud-status', 'loading…');
+  const drive = element('div', 'hud-drive');
+  drive.hidden = true;
   const error = element('div', 'hud-error');
   error.hidden = true;
-  root.append(title, table, status, error);
+  root.append(title, table, status, drive, error);
 
   return {
     setTitle(text) {
@@ -35,7 +49,13 @@ export function createHud(root) {
     },
     /** Shows a frame given as {name: value}. */
     show(frame) {
-      ROWS.forEach(([, format], i) => { cells[i].textContent = format(frame); });
+      rows.forEach(([, format], i) => { cells[i].textContent = format(frame); });
+    },
+    /** The driving line: role, pause, latency, the last refusal; `kind` as setStatus. */
+    setDrive(text, kind) {
+      drive.hidden = false;
+      drive.textContent = text;
+      drive.dataset.kind = kind;
     },
     /** `kind` colours the status dot: 'ok', 'idle' or 'bad'. */
     setStatus(text, kind) {

@@ -1,11 +1,12 @@
 // Live frames from the server's WebSocket: binary messages of whole little-endian float64
-// frame rows (oldest first), text messages of JSON events. Reconnects every 2 s when closed
-// before the run said it ended.
+// frame rows (oldest first), text messages of JSON events (the end of the run here; the
+// others go to onMessage). Reconnects every 2 s when closed before the run said it ended.
+// state.send(text) sends a text message while connected.
 import { guard, reportError } from './errors.js';
 
 const RETRY_MS = 2000;
 
-export function createLiveSource(session, layout, { onFrames, onStatusChange }) {
+export function createLiveSource(session, layout, { onFrames, onStatusChange, onMessage = () => {} }) {
   const url = (window.location.protocol === 'https:' ? 'wss://' : 'ws://')
     + window.location.host + session.websocket;
   const state = {
@@ -14,6 +15,7 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange }) 
     framesPerSecond: 0,
     endReason: null,
     latest: null,  // {data, offset} of the newest frame row
+    send: () => false,  // replaced while connected
   };
   let countAtLastTick = 0;
 
@@ -42,6 +44,8 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange }) 
     if (message.type === 'end') {
       state.endReason = String(message.reason ?? 'run ended');
       onStatusChange(status(), state);
+    } else {
+      onMessage(message);
     }
   }
 
@@ -50,6 +54,11 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange }) 
     socket.binaryType = 'arraybuffer';
     socket.onopen = guard('websocket open', () => {
       state.connected = true;
+      state.send = (text) => {
+        if (socket.readyState !== WebSocket.OPEN) return false;
+        socket.send(text);
+        return true;
+      };
       state.endReason = null;  // a new connection streams a new run
       onStatusChange(status(), state);
     });
@@ -59,6 +68,7 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange }) 
     });
     socket.onclose = guard('websocket close', () => {
       state.connected = false;
+      state.send = () => false;
       onStatusChange(status(), state);
       // After an end message the process is gone: retrying would only log failures.
       if (state.endReason === null) setTimeout(guard('websocket reconnect', connect), RETRY_MS);

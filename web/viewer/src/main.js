@@ -13,6 +13,7 @@ import { createPlots } from './plots.js';
 import { createLiveSource } from './live_source.js';
 import { createReplaySource } from './replay_source.js';
 import { createReplayBar } from './replay_bar.js';
+import { createDrive } from './drive.js';
 
 const style = document.createElement('style');
 style.textContent = `${uplotCss}\n${viewerCss}`;
@@ -29,14 +30,26 @@ const viewer = {
   errors,
   robotScreenBox: () => null,
   cameraHeight: () => null,
+  drive: null,  // the driving state (upkie-rl drive): role, refusals, latencies, testGamepad
 };
 window.upkieViewer = viewer;
 
-const hud = createHud(document.getElementById('hud'));
+let hud = createHud(document.getElementById('hud'));
 onError((message) => hud.showError(message));
+
+/** Yaw of the base [rad] in the frame row at `offset` of `data`. */
+function baseYaw(layout, data, offset) {
+  const [w, x, y, z] = ['base_qw', 'base_qx', 'base_qy', 'base_qz'].map((name) => layout.get(data, offset, name));
+  return Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
+}
 
 function start(session) {
   const layout = new FrameLayout(session);
+  if (layout.charts.length > 0) {
+    // Rebuilt with a row per chart (command against measured velocity).
+    document.getElementById('hud').replaceChildren();
+    hud = createHud(document.getElementById('hud'), layout.charts);
+  }
   viewer.mode = session.mode;
   hud.setTitle(session.title ?? 'Upkie');
   document.title = `${session.title ?? 'Upkie'} · Upkie viewer`;
@@ -58,8 +71,11 @@ function start(session) {
 
   // Each source yields the frame row to draw at this animation frame.
   let nextFrame;
+  let drawn = null;
   if (session.mode === 'live') {
+    let drive = null;
     const live = createLiveSource(session, layout, {
+      onMessage: (message) => drive?.onMessage(message),
       onFrames: (data, count, state) => {
         for (let row = 0; row < count; row++) plots.append(data, row * layout.size);
         viewer.framesReceived = state.framesReceived;
@@ -73,6 +89,26 @@ function start(session) {
       plots.flush();
       return live.latest;
     };
+    if (session.drive) {
+      drive = createDrive(session, {
+        send: (text) => live.send(text),
+        hud,
+        canvas: scene.canvas,
+        robotYaw: () => (drawn ? baseYaw(layout, drawn.data, drawn.offset) : 0),
+        // Away from the camera, when the click is on the robot.
+        pushDirection: (event) => {
+          const box = scene.screenBox(robot);
+          const bounds = scene.canvas.getBoundingClientRect();
+          const x = event.clientX - bounds.left;
+          const y = event.clientY - bounds.top;
+          if (!drawn || !box || x < box.x || y < box.y || x > box.x + box.width || y > box.y + box.height) return null;
+          const eye = scene.cameraPosition();
+          return Math.atan2(layout.get(drawn.data, drawn.offset, 'base_y') - eye.y,
+            layout.get(drawn.data, drawn.offset, 'base_x') - eye.x);
+        },
+      });
+      viewer.drive = drive.state;
+    }
   } else {
     const replay = createReplaySource(session, layout, options);
     const bar = createReplayBar(document.getElementById('replay-bar'), replay);
@@ -97,7 +133,6 @@ function start(session) {
     };
   }
 
-  let drawn = null;
   let viewPlaced = false;
   // Turning follow back on brings the robot back into view at once, even when paused.
   followBox.addEventListener('change', guard('follow', () => {

@@ -13,6 +13,16 @@ function chartSpecs(layout) {
       series: [{ label: 'position', index: layout.index.ground_position, stroke: '#0ca678' }],
     },
   ];
+  // Charts the session asks for, e.g. command against measured velocity.
+  const colors = ['#e03131', '#1c7ed6'];
+  for (const chart of layout.charts) {
+    specs.push({
+      title: chart.title,
+      series: chart.series.map(({ label, field }, i) => ({
+        label, index: layout.index[field], stroke: colors[i % colors.length],
+      })),
+    });
+  }
   if (layout.actions.length > 0) {
     specs.push({
       title: 'Actions',

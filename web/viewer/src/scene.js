@@ -198,8 +198,14 @@ export function createScene(container) {
     return { x, y, width: Math.ceil(right) - x, height: Math.ceil(bottom) - y };
   }
 
+  /** The camera's position in the Z-up world, as {x, y, z}. */
+  function cameraPosition() {
+    return { x: camera.position.x, y: -camera.position.z, z: camera.position.y };
+  }
+
   return {
-    world, resetView, follow, centerOn, render, screenBox, invalidate: () => { dirty = true; },
+    world, resetView, follow, centerOn, render, screenBox, cameraPosition,
+    canvas: renderer.domElement, invalidate: () => { dirty = true; },
     cameraHeight: () => camera.position.y,
   };
 }

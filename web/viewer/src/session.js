@@ -32,6 +32,10 @@ function checkSession(session) {
     if (!fields.includes(name)) throw new Error(`frame_fields lacks "${name}"`);
   }
   if (typeof session.urdf !== 'string') throw new Error('session has no urdf');
+  if (session.drive !== undefined && (typeof session.drive.keys !== 'object'
+    || typeof session.drive.limits !== 'object')) {
+    throw new Error('session has a drive section without keys or limits');
+  }
   if (session.mode === 'replay') {
     if (!Array.isArray(session.episodes)) throw new Error('replay session has no episodes');
     for (const { episode, frames } of session.episodes) {
@@ -58,6 +62,9 @@ export class FrameLayout {
     const actionNames = session.action_names ?? [];
     this.actions = actionNames.filter((name) => `action.${name}` in this.index)
       .map((name) => [name, this.index[`action.${name}`]]);
+    // Charts whose fields are all in the frames.
+    this.charts = (session.charts ?? []).filter(({ series }) => Array.isArray(series)
+      && series.every(({ field }) => field in this.index));
   }
 
   /** The value of field `name` in the row of `data` starting at `offset`. */

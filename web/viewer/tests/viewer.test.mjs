@@ -3,16 +3,14 @@
 // Screenshots go to UPKIE_RL_SCREENSHOTS (default: a temporary folder).
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import { mkdtempSync, mkdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { run, serve } from './cli.mjs';
 import { launchBrowser, openViewer, regionDifference, robotBox, screenshotPng } from './browser.mjs';
 import { PNG } from 'pngjs';
 
-const CLI = process.env.UPKIE_RL_CLI;
-if (!CLI) throw new Error('set UPKIE_RL_CLI to the upkie-rl binary');
 const work = mkdtempSync(join(tmpdir(), 'upkie-viewer-test-'));
 const screenshots = process.env.UPKIE_RL_SCREENSHOTS ?? join(work, 'screenshots');
 mkdirSync(screenshots, { recursive: true });
@@ -20,35 +18,6 @@ mkdirSync(screenshots, { recursive: true });
 // A pendulum that starts tilted and rolls to catch itself: the base moves.
 const ROLLOUT = ['rollout', '--env', 'Upkie-Bullet-Pendulum', '--controller', 'linear:10,1,0,0.1',
   '--env-option', 'init_rand_pitch=0.15', '--seed', '3'];
-
-/** Runs upkie-rl to completion; rejects with its output on failure. */
-function run(args) {
-  return new Promise((resolve, reject) => {
-    const child = spawn(CLI, args);
-    let output = '';
-    child.stdout.on('data', (data) => { output += data; });
-    child.stderr.on('data', (data) => { output += data; });
-    child.on('close', (code) => (code === 0 ? resolve(output)
-      : reject(new Error(`upkie-rl ${args.join(' ')}: exit ${code}\n${output}`))));
-  });
-}
-
-/** Starts upkie-rl and resolves once it prints its viewer URL. */
-function serve(args) {
-  return new Promise((resolve, reject) => {
-    const child = spawn(CLI, args);
-    let output = '';
-    const exited = new Promise((done) => child.on('close', (code, signal) => done({ code, signal, output })));
-    const onData = (data) => {
-      output += data;
-      const match = output.match(/viewer: (http:\/\/\S+\/)/);
-      if (match) resolve({ child, url: match[1], exited });
-    };
-    child.stdout.on('data', onData);
-    child.stderr.on('data', onData);
-    child.on('close', (code) => reject(new Error(`upkie-rl exited (${code}) before serving:\n${output}`)));
-  });
-}
 
 async function save(page, name) {
   const png = await screenshotPng(page);

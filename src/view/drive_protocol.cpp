@@ -1,0 +1,37 @@
+#include "view/drive_protocol.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace upkie_rl {
+
+nlohmann::json drive_protocol_json(const DriveLimits& limits) {
+  namespace k = drive_keys;
+  // The page names each key by its C++ name without the k (kForwardVelocity: forward_velocity
+  // here is the JSON name of the constant, the value the wire key).
+  const nlohmann::json keys = {
+      {"type", k::kType},
+      {"reason", k::kReason},
+      {"command", k::kCommand},
+      {"seq", k::kSequence},
+      {"forward_velocity", k::kForwardVelocity},
+      {"yaw_rate", k::kYawRate},
+      {"reset", k::kReset},
+      {"pause", k::kPause},
+      {"push", k::kPush},
+      {"heading", k::kHeading},
+      {"status", k::kStatus},
+      {"role", k::kRole},
+      {"paused", k::kPaused},
+      {"refused", k::kRefused},
+      {"applied", k::kApplied},
+      {"driver", k::kDriver},
+      {"watcher", k::kWatcher},
+      {"free", k::kFree},
+  };
+  return {{"keys", keys},
+          {"limits",
+           {{"max_forward_velocity", limits.max_forward_velocity},
+            {"max_yaw_rate", limits.max_yaw_rate}}}};
+}
+
+}  // namespace upkie_rl

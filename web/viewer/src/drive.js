@@ -1,0 +1,189 @@
+// Driving from the page (`upkie-rl drive`): the keyboard (arrows or WASD) and a gamepad (the
+// browser's Gamepad API) give a velocity command, sent over the WebSocket when it changes;
+// the server says which page drives. Every wire key comes from session.drive.keys.
+//
+// Keys: up/W forward, down/S backward, left/A turn left, right/D turn right (half the range;
+// with Shift the full range), R reset, P pause, B push the robot forward (Shift+B backward);
+// a click on the robot pushes it away from the camera.
+// Gamepad (standard mapping): left stick up/down forward velocity, right stick left/right
+// yaw rate, Back/Select (button 8) reset, Start (button 9) pause, A/cross (button 0) push.
+import { guard } from './errors.js';
+
+const KEY_FRACTION = 0.5;  // of the range, without Shift
+const TICK_MS = 20;  // gamepad polling and command sending: the agent's 50 Hz
+const DEADZONE = 0.1;  // of a stick's travel
+const CLICK_SLOP = 5;  // pixels a click may move and still be a click, not an orbit
+const BUTTON_RESET = 8;
+const BUTTON_PAUSE = 9;
+const BUTTON_PUSH = 0;
+const AXIS_FORWARD = 1;  // left stick, up is -1
+const AXIS_YAW = 2;  // right stick, right is +1
+
+const FORWARD_KEYS = { ArrowUp: 1, KeyW: 1, ArrowDown: -1, KeyS: -1 };
+const YAW_KEYS = { ArrowLeft: 1, KeyA: 1, ArrowRight: -1, KeyD: -1 };
+
+function deadzone(value) {
+  return Math.abs(value) < DEADZONE ? 0 : value;
+}
+
+/** The command of the held keys as fractions of the range, or null when none is held. */
+function keyboardFraction(held, shift) {
+  let forward = 0;
+  let yaw = 0;
+  let any = false;
+  for (const code of held) {
+    if (code in FORWARD_KEYS) { forward += FORWARD_KEYS[code]; any = true; }
+    if (code in YAW_KEYS) { yaw += YAW_KEYS[code]; any = true; }
+  }
+  if (!any) return null;
+  const scale = shift ? 1 : KEY_FRACTION;
+  return { forward: Math.sign(forward) * scale, yaw: Math.sign(yaw) * scale };
+}
+
+/**
+ * `send(text)` sends a text message (false when disconnected); `hud` shows the role;
+ * `robotYaw()` and `pushTarget(event)` locate the robot for pushes.
+ */
+export function createDrive(session, { send, hud, robotYaw, pushDirection, canvas }) {
+  const K = session.drive.keys;
+  const limits = session.drive.limits;
+  const state = {
+    role: null, paused: false, reason: '', refusals: [], sent: 0,
+    command: { forward: 0, yaw: 0 },  // fractions of the range, last sent
+    latencies: [],  // key press (or stick move) to the server's "applied" [ms]
+    testGamepad: null,  // a gamepad-like {axes, buttons} that replaces the real ones (tests)
+  };
+  const held = new Set();
+  let shift = false;
+  let sequence = 0;
+  const pressedAt = new Map();  // sequence -> time of the input that caused it
+  let lastButtons = [];
+
+  function message(type, fields = {}) {
+    const sentOk = send(JSON.stringify({ [K.type]: type, ...fields }));
+    if (sentOk) state.sent += 1;
+    return sentOk;
+  }
+
+  function sendCommand(fraction, inputTime) {
+    if (fraction.forward === state.command.forward && fraction.yaw === state.command.yaw) return;
+    sequence += 1;
+    const ok = message(K.command, {
+      [K.seq]: sequence,
+      [K.forward_velocity]: fraction.forward * limits.max_forward_velocity,
+      [K.yaw_rate]: fraction.yaw * limits.max_yaw_rate,
+    });
+    if (!ok) return;
+    state.command = fraction;
+    pressedAt.set(sequence, inputTime);
+  }
+
+  function gamepad() {
+    if (state.testGamepad) return state.testGamepad;
+    const pads = navigator.getGamepads ? navigator.getGamepads() : [];
+    return Array.from(pads).find((pad) => pad && pad.connected) ?? null;
+  }
+
+  function pressedEdge(pad, index) {
+    const pressed = Boolean(pad.buttons[index]?.pressed);
+    return pressed && !lastButtons[index];
+  }
+
+  /** The command to send now: held keys first, else the gamepad's sticks. */
+  function currentFraction(pad) {
+    const keys = keyboardFraction(held, shift);
+    if (keys) return keys;
+    if (!pad) return { forward: 0, yaw: 0 };
+    return {
+      forward: Math.max(-1, Math.min(1, -deadzone(pad.axes[AXIS_FORWARD] ?? 0))),
+      yaw: Math.max(-1, Math.min(1, -deadzone(pad.axes[AXIS_YAW] ?? 0))),
+    };
+  }
+
+  function tick() {
+    const pad = gamepad();
+    if (pad) {
+      if (pressedEdge(pad, BUTTON_RESET)) message(K.reset);
+      if (pressedEdge(pad, BUTTON_PAUSE)) message(K.pause);
+      if (pressedEdge(pad, BUTTON_PUSH)) message(K.push, { [K.heading]: 0 });
+      lastButtons = pad.buttons.map((button) => Boolean(button?.pressed));
+    }
+    sendCommand(currentFraction(pad), performance.now());
+  }
+  setInterval(guard('drive tick', tick), TICK_MS);
+
+  window.addEventListener('keydown', guard('drive key', (event) => {
+    shift = event.shiftKey;
+    if (event.code in FORWARD_KEYS || event.code in YAW_KEYS) {
+      event.preventDefault();  // arrows would scroll
+      held.add(event.code);
+      sendCommand(currentFraction(gamepad()), event.timeStamp);
+    } else if (event.repeat) {
+      // held R, P or B: once
+    } else if (event.code === 'KeyR') {
+      message(K.reset);
+    } else if (event.code === 'KeyP') {
+      message(K.pause);
+    } else if (event.code === 'KeyB') {
+      message(K.push, { [K.heading]: event.shiftKey ? Math.PI : 0 });
+    }
+  }));
+  window.addEventListener('keyup', guard('drive key', (event) => {
+    shift = event.shiftKey;
+    held.delete(event.code);
+    sendCommand(currentFraction(gamepad()), event.timeStamp);
+  }));
+  // A page that loses focus no longer sees its keys come up: it stops.
+  window.addEventListener('blur', guard('drive blur', () => {
+    held.clear();
+    sendCommand(currentFraction(gamepad()), performance.now());
+  }));
+
+  // A click (not an orbit drag) on the robot pushes it away from the camera.
+  let down = null;
+  canvas.addEventListener('pointerdown', (event) => { down = { x: event.clientX, y: event.clientY }; });
+  canvas.addEventListener('pointerup', guard('drive push', (event) => {
+    if (!down || Math.hypot(event.clientX - down.x, event.clientY - down.y) > CLICK_SLOP) return;
+    const direction = pushDirection(event);
+    if (direction === null) return;
+    let heading = direction - robotYaw();
+    heading = Math.atan2(Math.sin(heading), Math.cos(heading));
+    message(K.push, { [K.heading]: heading });
+  }));
+
+  function show() {
+    const roleText = {
+      [K.driver]: 'you drive', [K.watcher]: 'watching: another page drives', [K.free]: 'nobody drives: press a key',
+    }[state.role] ?? 'connecting…';
+    const latency = state.latencies.length > 0 ? ` · key→sim ${state.latencies[state.latencies.length - 1].toFixed(0)} ms` : '';
+    const last = state.refusals[state.refusals.length - 1];
+    const refusal = last && performance.now() - last.at < 3000 ? ` · refused: ${last.reason}` : '';
+    hud.setDrive(`${roleText}${state.paused ? ' · paused' : ''}${latency}${refusal}`,
+      state.role === K.driver ? 'ok' : 'idle');
+  }
+
+  /** A text message of the server that is not the end of the run. */
+  function onMessage(received) {
+    const type = received[K.type];
+    if (type === K.status) {
+      state.role = received[K.role];
+      state.paused = Boolean(received[K.paused]);
+      state.reason = String(received[K.reason] ?? '');
+      // Control was lost (the page was refused, or reconnected): resend from scratch.
+      if (state.role !== K.driver) state.command = { forward: 0, yaw: 0 };
+    } else if (type === K.refused) {
+      state.refusals.push({ reason: String(received[K.reason] ?? ''), at: performance.now() });
+      if (state.role !== K.driver) state.command = { forward: 0, yaw: 0 };
+    } else if (type === K.applied) {
+      const seq = received[K.seq];
+      if (pressedAt.has(seq)) {
+        state.latencies.push(performance.now() - pressedAt.get(seq));
+        for (const key of pressedAt.keys()) if (key <= seq) pressedAt.delete(key);
+      }
+    }
+    show();
+  }
+
+  show();
+  return { state, onMessage };
+}
