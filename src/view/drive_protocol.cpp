@@ -6,8 +6,8 @@ namespace upkie_rl {
 
 nlohmann::json drive_protocol_json(const DriveLimits& limits) {
   namespace k = drive_keys;
-  // The page names each key by its C++ name without the k (kForwardVelocity: forward_velocity
-  // here is the JSON name of the constant, the value the wire key).
+  // The page names each key by its constant's name in snake case without the k (the JSON
+  // name), and sends or reads the value (the wire key).
   const nlohmann::json keys = {
       {"type", k::kType},
       {"reason", k::kReason},

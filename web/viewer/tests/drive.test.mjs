@@ -10,7 +10,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import WebSocket from 'ws';
 import { serve } from './cli.mjs';
-import { launchBrowser, openViewer } from './browser.mjs';
+import { launchBrowser, openViewer, robotBox } from './browser.mjs';
 
 const work = mkdtempSync(join(tmpdir(), 'upkie-drive-test-'));
 let runs = 0;
@@ -77,7 +77,7 @@ before(async () => { browser = await launchBrowser(); });
 after(async () => { await browser?.close(); });
 
 describe('drive', () => {
-  test('keys drive forward and turn, and each press reaches the simulation within two steps', async () => {
+  test('keys drive forward and turn, B and a click push, and the page measures its latency', async () => {
     const drive = await startDrive();
     const { page, errors } = await openViewer(browser, `${drive.url}?plots=0`, SMALL);
     await waitForRole(page, 'free');
@@ -86,11 +86,18 @@ describe('drive', () => {
     await page.waitForTimeout(300);
     await hold(page, 'ArrowUp', 600);
     await page.waitForTimeout(600);
+    // Pushes: B, then a click on the robot (away from the camera).
+    await page.keyboard.press('KeyB');
+    const robot = await robotBox(page);
+    assert.ok(robot, 'the robot is on screen');
+    await page.mouse.click(robot.x + robot.width / 2, robot.y + robot.height / 2);
+    await page.waitForTimeout(300);
     const state = await driveState(page);
     assert.equal(state.role, 'driver');
     assert.deepEqual(errors, []);
     await page.context().close();
-    const { rows } = await stopDrive(drive);
+    const { rows, output } = await stopDrive(drive);
+    assert.equal(output.match(/push: 30 N for 0.2 s/g)?.length, 2, output);
     const forward = phase(rows, (row) => row['command.forward_velocity'] === 0.5);
     const turn = phase(rows, (row) => row['command.yaw_rate'] === 0.75);
     // The classical baseline of main goes backward first on a forward command (docs), so
