@@ -36,6 +36,29 @@ std::int64_t checked_size(std::size_t size, const char* what) {
   return static_cast<std::int64_t>(size);
 }
 
+// A fresh permutation of [0, size) by Fisher-Yates on our own generator (for
+// reproducibility and checkpointing), written into `permutation`.
+void shuffle(std::vector<std::int64_t>& permutation, std::mt19937_64& rng) {
+  const auto size = static_cast<std::int64_t>(permutation.size());
+  for (std::int64_t i = 0; i < size; ++i) permutation[i] = i;
+  for (std::int64_t i = size - 1; i > 0; --i) {
+    std::uniform_int_distribution<std::int64_t> pick(0, i);
+    std::swap(permutation[i], permutation[pick(rng)]);
+  }
+}
+
+// The whole rollout in the order of `permutation`, so that minibatches are slices.
+PpoMinibatch shuffled_rollout(const RolloutBuffer& buffer, std::vector<std::int64_t>& permutation) {
+  const torch::Tensor index = torch::from_blob(
+      permutation.data(), {static_cast<std::int64_t>(permutation.size())}, torch::kInt64);
+  return {buffer.flat_observations().index_select(0, index),
+          buffer.flat_actions().index_select(0, index),
+          buffer.flat_log_probs().index_select(0, index),
+          buffer.flat_values().index_select(0, index),
+          buffer.flat_advantages().index_select(0, index),
+          buffer.flat_returns().index_select(0, index)};
+}
+
 }  // namespace
 
 Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
@@ -238,30 +261,12 @@ PpoUpdateStatistics Ppo::update() {
   optimizer_.set_learning_rate(statistics.learning_rate);
   statistics.clip_range = ppo.clip_range;
 
-  const torch::Tensor observations = buffer_.flat_observations();
-  const torch::Tensor actions = buffer_.flat_actions();
-  const torch::Tensor old_log_probs = buffer_.flat_log_probs();
-  const torch::Tensor old_values = buffer_.flat_values();
-  const torch::Tensor advantages = buffer_.flat_advantages();
-  const torch::Tensor returns = buffer_.flat_returns();
   const std::int64_t size = buffer_.size();
   double sum_pg = 0.0, sum_value = 0.0, sum_entropy = 0.0, sum_kl = 0.0, sum_clip = 0.0;
-  // Scratch for the forward and backward passes, sized once per update for the largest
-  // minibatch (ppo.hpp could keep it as a member instead).
   std::int64_t minibatches = 0;
   for (std::int64_t epoch = 0; epoch < ppo.n_epochs; ++epoch) {
-    // A fresh permutation each epoch (Fisher-Yates on our own generator, for
-    // reproducibility and checkpointing), applied once so minibatches are slices.
-    for (std::int64_t i = 0; i < size; ++i) permutation_[i] = i;
-    for (std::int64_t i = size - 1; i > 0; --i) {
-      std::uniform_int_distribution<std::int64_t> pick(0, i);
-      std::swap(permutation_[i], permutation_[pick(rng_)]);
-    }
-    const torch::Tensor index = torch::from_blob(permutation_.data(), {size}, torch::kInt64);
-    const PpoMinibatch shuffled{
-        observations.index_select(0, index),  actions.index_select(0, index),
-        old_log_probs.index_select(0, index), old_values.index_select(0, index),
-        advantages.index_select(0, index),    returns.index_select(0, index)};
+    shuffle(permutation_, rng_);
+    const PpoMinibatch shuffled = shuffled_rollout(buffer_, permutation_);
     const PpoMinibatchView shuffled_view = view_minibatch(shuffled);
     for (std::int64_t begin = 0; begin < size; begin += ppo.batch_size) {
       const std::int64_t length = std::min(ppo.batch_size, size - begin);
@@ -299,7 +304,7 @@ PpoUpdateStatistics Ppo::update() {
   statistics.entropy_loss = sum_entropy / count;
   statistics.approx_kl = sum_kl / count;
   statistics.clip_fraction = sum_clip / count;
-  statistics.explained_variance = explained_variance(old_values, returns);
+  statistics.explained_variance = explained_variance(buffer_.flat_values(), buffer_.flat_returns());
   {
     torch::NoGradGuard no_grad;
     statistics.std = torch::exp(policy_->log_std()).mean().item<double>();
