@@ -313,6 +313,51 @@ std::int64_t widest_layer(const ActorCriticLayout& layout) {
   return width;
 }
 
+// One dense layer's backward pass on the AVX2 kernel: ∂b, ∂W, and when `gate` (the layer
+// below's output, our input) is not null, ∂z of the layer below through its activation
+// (relu or tanh). `scratch` holds in x out floats.
+void backward_layer_avx2(const DenseLayerLayout& layer, const float* in_data, const float* weight,
+                         const float* d_output, const float* gate, bool relu, float* scratch,
+                         float* d_weight, float* d_bias, float* d_input, std::int64_t rows) {
+  // ∂b = 1ᵀ·∂y: A is a row of ones (one value, strides 0).
+  static constexpr float kOne = 1.0f;
+  GemmArguments bias_sum;
+  bias_sum.m = 1, bias_sum.n = layer.out, bias_sum.k = rows;
+  bias_sum.a = &kOne;
+  bias_sum.b = d_output, bias_sum.ldb = layer.out;
+  bias_sum.c = d_bias, bias_sum.ldc = layer.out;
+  gemm_avx2(bias_sum);
+  if (layer.in < 16 && layer.in < layer.out) {
+    // Few inputs (the observation): ∂Wᵀ = xᵀ·∂y has the longer rows, then transpose.
+    GemmArguments d_weight_t;
+    d_weight_t.m = layer.in, d_weight_t.n = layer.out, d_weight_t.k = rows;
+    d_weight_t.a = in_data, d_weight_t.a_row_stride = 1, d_weight_t.a_depth_stride = layer.in;
+    d_weight_t.b = d_output, d_weight_t.ldb = layer.out;
+    d_weight_t.c = scratch, d_weight_t.ldc = layer.out;
+    gemm_avx2(d_weight_t);
+    transpose_avx2(scratch, layer.in, layer.out, d_weight);
+  } else {
+    // ∂W = ∂yᵀ·x: A is ∂y read transposed.
+    GemmArguments product;
+    product.m = layer.out, product.n = layer.in, product.k = rows;
+    product.a = d_output, product.a_row_stride = 1, product.a_depth_stride = layer.out;
+    product.b = in_data, product.ldb = layer.in;
+    product.c = d_weight, product.ldc = layer.in;
+    gemm_avx2(product);
+  }
+  if (gate != nullptr) {
+    // ∂z of the layer below = (∂y·W) through its activation, whose output is our input.
+    GemmArguments product;
+    product.m = rows, product.n = layer.in, product.k = layer.out;
+    product.a = d_output, product.a_row_stride = layer.out, product.a_depth_stride = 1;
+    product.b = weight, product.ldb = layer.in;
+    product.c = d_input, product.ldc = layer.in;
+    product.epilogue = relu ? Epilogue::kReluGate : Epilogue::kTanhGate;
+    product.gate = gate;
+    gemm_avx2(product);
+  }
+}
+
 }  // namespace
 
 PpoMinibatchView PpoMinibatchView::rows(std::int64_t begin, std::int64_t length) const {
@@ -457,43 +502,9 @@ void PpoGradient::backward(const Network& network, const float* parameters, cons
         }
       }
     } else {
-      // ∂b = 1ᵀ·∂y: A is a row of ones (one value, strides 0).
-      static constexpr float kOne = 1.0f;
-      GemmArguments bias_sum;
-      bias_sum.m = 1, bias_sum.n = layer.out, bias_sum.k = rows;
-      bias_sum.a = &kOne;
-      bias_sum.b = d_output.data(), bias_sum.ldb = layer.out;
-      bias_sum.c = d_bias.data(), bias_sum.ldc = layer.out;
-      gemm_avx2(bias_sum);
-      if (layer.in < 16 && layer.in < layer.out) {
-        // Few inputs (the observation): ∂Wᵀ = xᵀ·∂y has the longer rows, then transpose.
-        GemmArguments d_weight_t;
-        d_weight_t.m = layer.in, d_weight_t.n = layer.out, d_weight_t.k = rows;
-        d_weight_t.a = in_data, d_weight_t.a_row_stride = 1, d_weight_t.a_depth_stride = layer.in;
-        d_weight_t.b = d_output.data(), d_weight_t.ldb = layer.out;
-        d_weight_t.c = transposed_weight_.data(), d_weight_t.ldc = layer.out;
-        gemm_avx2(d_weight_t);
-        transpose_avx2(transposed_weight_.data(), layer.in, layer.out, d_weight.data());
-      } else {
-        // ∂W = ∂yᵀ·x: A is ∂y read transposed.
-        GemmArguments product;
-        product.m = layer.out, product.n = layer.in, product.k = rows;
-        product.a = d_output.data(), product.a_row_stride = 1, product.a_depth_stride = layer.out;
-        product.b = in_data, product.ldb = layer.in;
-        product.c = d_weight.data(), product.ldc = layer.in;
-        gemm_avx2(product);
-      }
-      if (k > 0) {
-        // ∂z of the layer below = (∂y·W) through its activation, whose output is our input.
-        GemmArguments product;
-        product.m = rows, product.n = layer.in, product.k = layer.out;
-        product.a = d_output.data(), product.a_row_stride = layer.out, product.a_depth_stride = 1;
-        product.b = weight.data(), product.ldb = layer.in;
-        product.c = d_input.data(), product.ldc = layer.in;
-        product.epilogue = relu ? Epilogue::kReluGate : Epilogue::kTanhGate;
-        product.gate = in_data;
-        gemm_avx2(product);
-      }
+      backward_layer_avx2(layer, in_data, weight.data(), d_output.data(), k > 0 ? in_data : nullptr,
+                          relu, transposed_weight_.data(), d_weight.data(), d_bias.data(),
+                          d_input.data(), rows);
     }
     if (k > 0) std::swap(output_gradient_, input_gradient_);  // Swaps pointers, no copy.
   }
