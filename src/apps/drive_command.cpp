@@ -67,7 +67,8 @@ void run_drive(const DriveOptions& options) {
   }
   if (env->full_observation() == nullptr || !env->full_observation()->has_sim) {
     throw std::invalid_argument(
-        "drive needs a simulated environment (MuJoCo, Bullet or Mock), not " + options.env_id);
+        "drive needs a simulator's ground truth to draw the robot (MuJoCo or Bullet), not " +
+        options.env_id);
   }
   std::unique_ptr<Controller> controller =
       make_run_controller(options.env_id, options.controller, options.model, env_options, *env);
