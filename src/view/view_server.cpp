@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "view/drive_control.hpp"
+#include "view/origin_check.hpp"
 #include "view/view_error.hpp"
 #include "view/view_session.hpp"
 #include "view/viewer_page.hpp"
@@ -144,6 +145,10 @@ struct ViewServer::Impl {
               const http::request<http::string_body>& request);
   void upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
                const http::request<http::string_body>& request);
+  /// Answers a WebSocket handshake with a plain HTTP `status` and `reason`, then closes.
+  void refuse_upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
+                      const http::request<http::string_body>& request, http::status status,
+                      const char* reason);
   void read_messages(const std::shared_ptr<ViewClient>& client);
   /// Queues a text message for `client` and sends it as soon as its writes allow.
   void queue_text(const std::shared_ptr<ViewClient>& client, std::string text);
@@ -278,22 +283,39 @@ void ViewServer::Impl::answer(const std::shared_ptr<beast::tcp_stream>& stream,
                     });
 }
 
+void ViewServer::Impl::refuse_upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
+                                      const http::request<http::string_body>& request,
+                                      http::status status, const char* reason) {
+  auto response = std::make_shared<http::response<http::string_body>>(status, request.version());
+  response->set(http::field::content_type, "text/plain");
+  response->body() = reason;
+  response->prepare_payload();
+  http::async_write(*stream, *response, [stream, response](beast::error_code, std::size_t) {
+    beast::error_code ignored;
+    stream->socket().shutdown(tcp::socket::shutdown_send, ignored);
+  });
+}
+
 void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
                                const http::request<http::string_body>& request) {
   const std::string_view target(request.target().data(), request.target().size());
   const bool frames_path = target.substr(0, target.find('?')) == kViewFramesPath;
+  const auto header = [&request](http::field field) {
+    const auto found = request.find(field);
+    return found == request.end() ? std::string_view()
+                                  : std::string_view(found->value().data(), found->value().size());
+  };
+  if (!is_same_origin(header(http::field::origin), header(http::field::host))) {
+    refuse_upgrade(stream, request, http::status::forbidden,
+                   "a page of another site may not open the viewer's WebSocket\n");
+    return;
+  }
   if (!frames || !frames_path || clients.size() >= config.max_clients) {
     // Not a frame stream here, or too many browsers: a plain HTTP refusal.
-    auto response = std::make_shared<http::response<http::string_body>>(
-        frames && frames_path ? http::status::service_unavailable : http::status::not_found,
-        request.version());
-    response->set(http::field::content_type, "text/plain");
-    response->body() = frames && frames_path ? "too many viewers\n" : "no frame stream here\n";
-    response->prepare_payload();
-    http::async_write(*stream, *response, [stream, response](beast::error_code, std::size_t) {
-      beast::error_code ignored;
-      stream->socket().shutdown(tcp::socket::shutdown_send, ignored);
-    });
+    const bool busy = frames && frames_path;
+    refuse_upgrade(stream, request,
+                   busy ? http::status::service_unavailable : http::status::not_found,
+                   busy ? "too many viewers\n" : "no frame stream here\n");
     return;
   }
   stream->expires_never();  // the websocket stream keeps its own timeouts

@@ -21,14 +21,22 @@ using tcp = net::ip::tcp;
 /// A WebSocket client of /frames with reads that give up after a timeout.
 class FrameClient {
  public:
-  explicit FrameClient(int port, int receive_buffer = 0) : ws_(io_) {
+  /// Connects to 127.0.0.1:`port`; `origin`, when given, is sent as a browser would.
+  explicit FrameClient(int port, int receive_buffer = 0, const std::string& origin = {})
+      : ws_(io_) {
     tcp::socket& socket = beast::get_lowest_layer(ws_).socket();
     socket.open(tcp::v4());
     if (receive_buffer > 0)
       socket.set_option(net::socket_base::receive_buffer_size(receive_buffer));
     socket.connect(
         tcp::endpoint(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)));
-    ws_.handshake("127.0.0.1", "/frames");
+    if (!origin.empty()) {
+      ws_.set_option(websocket::stream_base::decorator([origin](websocket::request_type& request) {
+        request.set(beast::http::field::origin, origin);
+      }));
+    }
+    // The Host header a browser sends: address and port.
+    ws_.handshake("127.0.0.1:" + std::to_string(port), "/frames");
   }
 
   /// The next message, or nothing after `timeout`.

@@ -88,6 +88,20 @@ TEST(ViewServer, ServesThePageItsScriptAndTheSession) {
       << server.statistics().http_requests;
 }
 
+TEST(ViewServer, RefusesWebSocketsOpenedByPagesOfOtherSites) {
+  auto frames = std::make_shared<FrameBroadcaster>(kFrameSize);
+  const ViewServer server(any_port(), kSession, frames);
+  const std::string own_origin = "http://127.0.0.1:" + std::to_string(server.port());
+  EXPECT_ANY_THROW(testing::FrameClient(server.port(), 0, "http://evil.example"));
+  EXPECT_ANY_THROW(testing::FrameClient(server.port(), 0, "null"));
+  testing::FrameClient own_page(server.port(), 0, own_origin);
+  ASSERT_TRUE(server.wait_for_clients(1, 5000ms));
+  frames->publish(frame_of(7));
+  const std::vector<double> received = own_page.read_frames(kFrameSize, 1);
+  ASSERT_EQ(received.size(), kFrameSize);
+  EXPECT_EQ(received[0], 7.0);
+}
+
 TEST(ViewServer, StreamsPublishedFramesInOrder) {
   auto frames = std::make_shared<FrameBroadcaster>(kFrameSize);
   const ViewServer server(any_port(), kSession, frames);

@@ -1,0 +1,21 @@
+#pragma once
+/// @file
+/// Which browser pages may open the viewer's WebSocket: only the viewer's own.
+///
+/// A browser sends an `Origin` header with every WebSocket handshake, and lets any page it
+/// shows open a WebSocket to any address, 127.0.0.1 included. Since pages can drive the
+/// robot (`upkie-rl drive`), a page of another site open in the same browser must not reach
+/// the frame stream: its Origin names its own site, not the server the viewer's page came
+/// from. Clients that are not browsers (tests, scripts) send no Origin and are accepted, as
+/// they could forge one anyway; the check protects browsers' users from other sites.
+
+#include <string_view>
+
+namespace upkie_rl {
+
+/// True when a WebSocket handshake with these headers comes from a page of this server:
+/// `origin` empty (not a browser), or its host and port (after "http://" or "https://")
+/// equal `host`, the Host header the browser sent, compared without regard to case.
+bool is_same_origin(std::string_view origin, std::string_view host);
+
+}  // namespace upkie_rl
