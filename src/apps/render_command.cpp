@@ -71,6 +71,9 @@ std::vector<PaneFrame> pane_frames(const std::vector<RecordedStep>& steps, const
                                   base_pitch(step.pose.base_orientation));
         caption.titles = "record\n" + caption.titles;
         caption.values = label + "\n" + caption.values;
+        if (step.command && step.measured) {
+          append_velocity_caption(caption, *step.command, *step.measured);
+        }
       }
       frames.push_back({step.pose, std::move(caption)});
     }
@@ -81,7 +84,8 @@ std::vector<PaneFrame> pane_frames(const std::vector<RecordedStep>& steps, const
 
 /// The record files' episodes side by side, each pane width / n pixels wide; a record that
 /// ends first holds its last frame.
-void render_side_by_side(const std::vector<std::string>& record_paths, const VideoOptions& options) {
+void render_side_by_side(const std::vector<std::string>& record_paths,
+                         const VideoOptions& options) {
   constexpr int kMaxPanes = 4;  // one OpenGL context each
   const int panes = static_cast<int>(record_paths.size());
   if (panes > kMaxPanes) {
