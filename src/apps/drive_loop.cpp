@@ -61,12 +61,10 @@ DriveSummary DriveLoop::run(const std::atomic<bool>& stop) {
     if (inputs.new_command) {
       velocity_.set_command_override(VelocityCommand{inputs.forward_velocity, inputs.yaw_rate});
     }
-    if (inputs.reset) {
-      start_episode();
-    } else {
-      if (inputs.push_heading) push(*inputs.push_heading);
-      step();
-    }
+    // A push taken with a reset acts on the new episode rather than being lost.
+    if (inputs.reset) start_episode();
+    if (inputs.push_heading) push(*inputs.push_heading);
+    if (!inputs.reset) step();
     // The controller acts on the observation that holds the command now.
     drive_.applied(inputs, std::chrono::steady_clock::now());
   }

@@ -83,7 +83,12 @@ DriveControl::Reply DriveControl::handle(ClientId client, std::string_view text,
       reply.status_changed = true;
       break;
     case DriveMessage::Kind::kPush:
-      pending_.push_heading = message.heading;
+      if (waiting_push_count_ == kMaxWaitingPushes) {
+        ++statistics_.refused;
+        return {refusal("pushes come faster than the robot takes them; this one is dropped"),
+                reply.status_changed};
+      }
+      waiting_pushes_[waiting_push_count_++] = message.heading;
       break;
   }
   return reply;
@@ -125,7 +130,12 @@ DriveInputs DriveControl::take() {
   DriveInputs inputs = pending_;
   pending_.new_command = false;
   pending_.reset = false;
-  pending_.push_heading.reset();
+  if (waiting_push_count_ > 0) {
+    inputs.push_heading = waiting_pushes_[0];
+    std::copy(waiting_pushes_.begin() + 1, waiting_pushes_.begin() + waiting_push_count_,
+              waiting_pushes_.begin());
+    --waiting_push_count_;
+  }
   return inputs;
 }
 

@@ -5,7 +5,9 @@
 /// page; it checks the message (drive_message.hpp), the page's rate (RateLimiter) and its
 /// right to drive (DriverArbiter), and keeps the latest command for the loop to take.
 
+#include <array>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -36,6 +38,10 @@ struct DriveInputs {
   bool paused = false;       ///< The driver paused the run.
   std::optional<double> push_heading;  ///< The driver pushed: direction in the robot's frame [rad].
 };
+
+/// Pushes a page may have waiting for the loop: each push sent is applied, one per step, so
+/// two quick ones (B, then a click) both happen; more than this is a flood and is refused.
+inline constexpr std::size_t kMaxWaitingPushes = 4;
 
 /// Counters of a DriveControl.
 struct DriveStatistics {
@@ -73,8 +79,8 @@ class DriveControl {
   /// The drive_status message for page `client` (its role, whether paused).
   std::string status_message(ClientId client) const;
 
-  /// Simulation loop: the latest command and the requests since the last take (reset and
-  /// push are taken once).
+  /// Simulation loop: the latest command and the requests since the last take (a reset is
+  /// taken once; pushes one per take, oldest first).
   DriveInputs take();
 
   /// Simulation loop: the command of `inputs` is in the simulation now. Counts its latency
@@ -99,6 +105,8 @@ class DriveControl {
   std::map<ClientId, RateLimiter> rates_;
   std::map<ClientId, bool> rate_warned_;  ///< A page told it is over its rate, until it is not.
   DriveInputs pending_;
+  std::array<double, kMaxWaitingPushes> waiting_pushes_{};  ///< Headings, oldest first.
+  std::size_t waiting_push_count_ = 0;
   Clock::time_point received_at_{};  ///< When the pending command arrived.
   std::optional<std::pair<ClientId, std::uint64_t>> acknowledgement_;
   std::function<void()> listener_;

@@ -187,6 +187,24 @@ TEST(DriveControl, ResetAndPushAreTakenOnce) {
   EXPECT_FALSE(second.new_command);
 }
 
+TEST(DriveControl, QuickPushesAreEachTakenInOrderAndAFloodIsRefused) {
+  DriveControl control(kLimits);
+  const auto now = Clock::now();
+  for (std::size_t i = 0; i < kMaxWaitingPushes; ++i) {
+    const std::string push = R"({"type":"push","heading":)" + std::to_string(i) + "}";
+    EXPECT_TRUE(control.receive(1, push, now).to_sender.empty()) << i;
+  }
+  const std::string refusal = control.receive(1, R"({"type":"push","heading":0.5})", now).to_sender;
+  EXPECT_NE(refusal.find("pushes come faster"), std::string::npos) << refusal;
+  for (std::size_t i = 0; i < kMaxWaitingPushes; ++i) {
+    const DriveInputs inputs = control.take();
+    ASSERT_TRUE(inputs.push_heading.has_value()) << i;
+    EXPECT_EQ(*inputs.push_heading, static_cast<double>(i));
+  }
+  EXPECT_FALSE(control.take().push_heading.has_value());
+  EXPECT_EQ(control.statistics().refused, 1U);
+}
+
 TEST(DriveControl, FloodsAreCutByTheRateLimitAndToldOnce) {
   DriveControl control(kLimits, DriveRateSettings{10.0, 5.0});
   const auto now = Clock::now();
