@@ -18,4 +18,12 @@ namespace upkie_rl {
 /// equal `host`, the Host header the browser sent, compared without regard to case.
 bool is_same_origin(std::string_view origin, std::string_view host);
 
+/// True when a request's Host header may reach a server listening on a loopback address:
+/// empty (not a browser), or naming `localhost`, an address in 127.0.0.0/8 or `[::1]`, with
+/// any port. A page of another site can make its own name resolve to 127.0.0.1 (DNS
+/// rebinding); its requests then pass the Origin check but still carry that name here.
+/// A server listening on another address (`--host`) has been opened to the network on
+/// purpose, and takes any Host.
+bool is_allowed_host(std::string_view host, bool listening_on_loopback);
+
 }  // namespace upkie_rl

@@ -108,6 +108,7 @@ struct ViewServer::Impl {
   net::steady_timer accept_retry;
   bool ticking = false;  // the frame timer runs only while browsers are connected
   bool accept_failing = false;
+  bool loopback = true;  ///< Listening on a loopback address (is_allowed_host).
   std::thread thread;
   std::string url;
   int port = 0;
@@ -184,6 +185,7 @@ void ViewServer::Impl::listen() {
   if (!error) acceptor.listen(net::socket_base::max_listen_connections, error);
   if (error) throw ViewError("the viewer cannot listen on " + where + ": " + error.message());
   port = acceptor.local_endpoint().port();
+  loopback = address.is_loopback();
   const std::string host = address.is_v6() ? "[" + config.host + "]" : config.host;
   url = "http://" + host + ":" + std::to_string(port) + "/";
 }
@@ -228,17 +230,25 @@ void ViewServer::Impl::read_request(const std::shared_ptr<beast::tcp_stream>& st
   parser->header_limit(kMaxRequestBytes);
   parser->body_limit(kMaxRequestBytes);
   stream->expires_after(idle_timeout());
-  http::async_read(*stream, *buffer, *parser,
-                   [this, stream, buffer, parser](beast::error_code error, std::size_t) {
-                     if (error) return;  // closed, timed out or malformed: drop the connection
-                     ++http_requests;
-                     http::request<http::string_body> request = parser->release();
-                     if (websocket::is_upgrade(request)) {
-                       upgrade(stream, request);
-                     } else {
-                       answer(stream, buffer, request);
-                     }
-                   });
+  http::async_read(
+      *stream, *buffer, *parser,
+      [this, stream, buffer, parser](beast::error_code error, std::size_t) {
+        if (error) return;  // closed, timed out or malformed: drop the connection
+        ++http_requests;
+        http::request<http::string_body> request = parser->release();
+        const auto host = request.find(http::field::host);
+        if (host != request.end() &&
+            !is_allowed_host(std::string_view(host->value().data(), host->value().size()),
+                             loopback)) {
+          refuse_upgrade(stream, request, http::status::forbidden,
+                         "the Host header names another site; this viewer "
+                         "listens on a loopback address (127.0.0.1, localhost)\n");
+        } else if (websocket::is_upgrade(request)) {
+          upgrade(stream, request);
+        } else {
+          answer(stream, buffer, request);
+        }
+      });
 }
 
 void ViewServer::Impl::answer(const std::shared_ptr<beast::tcp_stream>& stream,

@@ -23,5 +23,23 @@ TEST(OriginCheck, PagesOfOtherSitesAreRefused) {
   EXPECT_FALSE(is_same_origin("http://127.0.0.1:7000", ""));  // no Host to compare with
 }
 
+TEST(HostCheck, LoopbackNamesReachALoopbackServer) {
+  EXPECT_TRUE(is_allowed_host("127.0.0.1:7000", true));
+  EXPECT_TRUE(is_allowed_host("127.0.0.2", true));
+  EXPECT_TRUE(is_allowed_host("LocalHost:7000", true));
+  EXPECT_TRUE(is_allowed_host("[::1]:7000", true));
+  EXPECT_TRUE(is_allowed_host("", true));  // no Host: not a browser
+}
+
+TEST(HostCheck, OtherNamesAreRefusedOnLoopbackOnly) {
+  // A page whose own name was made to resolve to 127.0.0.1 (DNS rebinding).
+  EXPECT_FALSE(is_allowed_host("evil.example:7000", true));
+  EXPECT_FALSE(is_allowed_host("localhost.evil.example:7000", true));
+  EXPECT_FALSE(is_allowed_host("192.168.1.5:7000", true));
+  EXPECT_FALSE(is_allowed_host("[::1", true));
+  EXPECT_FALSE(is_allowed_host("[fe80::1]:7000", true));
+  EXPECT_TRUE(is_allowed_host("robot.lan:7000", false));  // --host 0.0.0.0: open on purpose
+}
+
 }  // namespace
 }  // namespace upkie_rl

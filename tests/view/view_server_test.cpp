@@ -44,13 +44,14 @@ std::vector<double> frame_of(double value) { return {value, value + 0.25, -value
 
 /// GET (or another method) on the server; returns the status and body.
 std::pair<int, std::string> request(int port, const std::string& target,
-                                    http::verb method = http::verb::get) {
+                                    http::verb method = http::verb::get,
+                                    const std::string& host = "127.0.0.1") {
   net::io_context io;
   beast::tcp_stream stream(io);
   stream.connect(
       tcp::endpoint(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)));
   http::request<http::string_body> req(method, target, 11);
-  req.set(http::field::host, "127.0.0.1");
+  req.set(http::field::host, host);
   http::write(stream, req);
   beast::flat_buffer buffer;
   http::response_parser<http::string_body> parser;
@@ -100,6 +101,18 @@ TEST(ViewServer, RefusesWebSocketsOpenedByPagesOfOtherSites) {
   const std::vector<double> received = own_page.read_frames(kFrameSize, 1);
   ASSERT_EQ(received.size(), kFrameSize);
   EXPECT_EQ(received[0], 7.0);
+}
+
+TEST(ViewServer, RefusesRequestsForAnotherSitesNameOnLoopback) {
+  const ViewServer server(any_port(), kSession, nullptr);
+  const std::string port = ":" + std::to_string(server.port());
+  // A page of evil.example whose name was made to resolve to 127.0.0.1 (DNS rebinding).
+  const auto [status, body] =
+      request(server.port(), "/session.json", http::verb::get, "evil.example" + port);
+  EXPECT_EQ(status, 403);
+  EXPECT_NE(body.find("Host header"), std::string::npos) << body;
+  EXPECT_EQ(request(server.port(), "/session.json", http::verb::get, "localhost" + port).first,
+            200);
 }
 
 TEST(ViewServer, StreamsPublishedFramesInOrder) {
