@@ -127,6 +127,20 @@ TEST(VelocityCommand, ShortTrainingImprovesTheReturnAndLogsEachTerm) {
   const double last = mean_of(table.rows.size() - 3);
   EXPECT_GT(last, first + 8.0) << "first " << first << ", last " << last;
   EXPECT_TRUE(std::isfinite(table.rows.back()[tracking]));
+
+  // The trained velocity policy drives: `drive --model` (no page: a zero command) applies
+  // the task options it was trained with (its base controller) and keeps the robot up.
+  std::filesystem::path model;
+  for (const auto& entry : std::filesystem::directory_iterator(run_dir)) {
+    if (entry.path().extension() == ".ckpt") model = entry.path();
+  }
+  ASSERT_FALSE(model.empty()) << "no final model in " << run_dir;
+  const auto drive = run_cli("drive --env Upkie-MuJoCo-Velocity --model " + model.string() +
+                             " --port 0 --speed 10 --duration 2");
+  ASSERT_EQ(drive.exit_code, 0) << drive.output;
+  EXPECT_NE(drive.output.find("drive: 100 steps (2 s simulated), 1 episode(s), 0 fall(s)"),
+            std::string::npos)
+      << drive.output;
   std::filesystem::remove_all(run_dir);
 }
 
