@@ -106,12 +106,12 @@ bench: build
 	  --cli $(BUILD_DIR)/upkie-rl
 
 sanitize: deps
-	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE=ON -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF
+	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE=ON -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(SANITIZE_DIR) -j $(JOBS)
 	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS)
 
 sanitize-thread: deps
-	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE_THREAD=ON -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF
+	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE_THREAD=ON -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(TSAN_DIR) -j $(JOBS)
 	# Without the Gloo collectives (Communicator, DistributedTrain): libtorch and libgloo are
 	# not built with TSan, which then reports their own threads' handovers (a work's condition
@@ -120,23 +120,27 @@ sanitize-thread: deps
 	cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS) \
 	  -E '^(Communicator|DistributedTrain)\.'
 
-# libFuzzer + ASan on the spine's message decoding and server cycle, the training
-# configuration and its --set overrides, and the checkpoint gate past the CRC: FUZZ_RUNS
-# inputs each, or FUZZ_SECONDS each when set (`make fuzz-long`: an hour each). The corpora
-# also run as ctests of every ordinary build (FuzzRegression.*).
+# libFuzzer + ASan on the spine's message decoding, server cycle and shared-memory segment,
+# the training configuration and its --set overrides, the checkpoint gate past the CRC,
+# record files, the viewer's messages and environment options: FUZZ_RUNS inputs each, or
+# FUZZ_SECONDS each when set (`make fuzz-long`: an hour each); FUZZ_TARGETS picks some. The
+# corpora also run as ctests of every ordinary build (FuzzRegression.*).
 FUZZ_DIR ?= build-fuzz
 FUZZ_RUNS ?= 1000000
 FUZZ_SECONDS ?=
 FUZZ_LIMIT = $(if $(FUZZ_SECONDS),-max_total_time=$(FUZZ_SECONDS),-runs=$(FUZZ_RUNS))
-FUZZ_TARGETS = spine_message_fuzzer:corpus:65536 spine_server_fuzzer:server_corpus:8192 \
-  training_config_fuzzer:config_corpus:16384 checkpoint_fuzzer:checkpoint_corpus:262144
+FUZZ_TARGETS ?= spine_message_fuzzer:corpus:65536 spine_server_fuzzer:server_corpus:8192 \
+  training_config_fuzzer:config_corpus:16384 checkpoint_fuzzer:checkpoint_corpus:262144 \
+  record_file_fuzzer:record_corpus:65536 view_message_fuzzer:view_corpus:16384 \
+  env_options_fuzzer:env_options_corpus:4096 spine_segment_fuzzer:segment_corpus:65541
 # A fuzzer's stdout (the spine's error log, one line per refused message) is dropped;
 # libFuzzer reports on stderr.
 fuzz:
 	UPKIE_RL_FUZZ=1 bash scripts/install-deps.sh
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DUPKIE_RL_BUILD_FUZZ=ON \
-	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF
+	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF \
+	  -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(foreach t,$(FUZZ_TARGETS),$(word 1,$(subst :, ,$(t))))
 	set -e; for entry in $(FUZZ_TARGETS); do \
 	  name=$${entry%%:*}; rest=$${entry#*:}; corpus=$${rest%%:*}; max_len=$${rest#*:}; \

@@ -1,6 +1,7 @@
 #include "apps/record_file.hpp"
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -21,7 +22,7 @@ std::vector<std::string> split_fields(const std::string& line) {
   return fields;
 }
 
-double parse_number(const std::string& text, const std::filesystem::path& path, long line,
+double parse_number(const std::string& text, const std::string& path, long line,
                     const std::string& column) {
   std::size_t used = 0;
   double value = 0.0;
@@ -31,8 +32,8 @@ double parse_number(const std::string& text, const std::filesystem::path& path, 
     used = 0;
   }
   if (used == 0 || used != text.size()) {
-    throw std::runtime_error(path.string() + ":" + std::to_string(line) + ": column " + column +
-                             " is not a number: \"" + text + "\"");
+    throw RecordFileError(path + ":" + std::to_string(line) + ": column " + column +
+                          " is not a number: \"" + text + "\"");
   }
   return value;
 }
@@ -41,9 +42,13 @@ double parse_number(const std::string& text, const std::filesystem::path& path, 
 
 RecordFile read_record_file(const std::filesystem::path& path) {
   std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read the record file " + path.string());
+  if (!in) throw RecordFileError("cannot read the record file " + path.string());
+  return read_record_file(in, path.string());
+}
+
+RecordFile read_record_file(std::istream& in, const std::string& path) {
   std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(path.string() + " is empty");
+  if (!std::getline(in, line)) throw RecordFileError(path + " is empty");
   const std::vector<std::string> header = split_fields(line);
   std::unordered_map<std::string, std::size_t> column_of;
   for (std::size_t i = 0; i < header.size(); ++i) column_of[header[i]] = i;
@@ -78,8 +83,8 @@ RecordFile read_record_file(const std::filesystem::path& path) {
   for (const std::string& name : needed) {
     const auto found = column_of.find(name);
     if (found == column_of.end()) {
-      throw std::runtime_error(path.string() + ": no column \"" + name +
-                               "\" in its header; is it a file of `upkie-rl rollout --record`?");
+      throw RecordFileError(path + ": no column \"" + name +
+                            "\" in its header; is it a file of `upkie-rl rollout --record`?");
     }
     index.push_back(found->second);
   }
@@ -89,22 +94,22 @@ RecordFile read_record_file(const std::filesystem::path& path) {
   while (std::getline(in, line)) {
     ++line_number;
     if (line.empty()) continue;
-    const std::string at = path.string() + ":" + std::to_string(line_number) + ": ";
+    const std::string at = path + ":" + std::to_string(line_number) + ": ";
     const std::vector<std::string> fields = split_fields(line);
     if (fields.size() != header.size()) {
-      throw std::runtime_error(at + std::to_string(fields.size()) + " fields, the header has " +
-                               std::to_string(header.size()) + " (truncated file?)");
+      throw RecordFileError(at + std::to_string(fields.size()) + " fields, the header has " +
+                            std::to_string(header.size()) + " (truncated file?)");
     }
     for (std::size_t i = 0; i < needed.size(); ++i) {
       values[i] = parse_number(fields[index[i]], path, line_number, needed[i]);
     }
     if (std::isnan(values[4])) {
-      throw std::runtime_error(at + "no ground truth (a spine run has no simulator pose to draw)");
+      throw RecordFileError(at + "no ground truth (a spine run has no simulator pose to draw)");
     }
     RecordedStep step;
     if (!(values[0] >= 0.0 && values[0] < 1e9 && values[1] >= 0.0 && values[1] < 1e9) ||
         values[0] != std::floor(values[0]) || values[1] != std::floor(values[1])) {
-      throw std::runtime_error(at + "episode and step must be whole numbers >= 0");
+      throw RecordFileError(at + "episode and step must be whole numbers >= 0");
     }
     step.episode = static_cast<int>(values[0]);
     step.step = static_cast<int>(values[1]);
@@ -118,12 +123,11 @@ RecordFile read_record_file(const std::filesystem::path& path) {
     if (!std::isfinite(step.time) || !step.pose.base_position.allFinite() ||
         !step.pose.base_orientation.coeffs().allFinite() ||
         step.pose.base_orientation.norm() < 1e-9) {
-      throw std::runtime_error(at + "the time or the base pose is not finite");
+      throw RecordFileError(at + "the time or the base pose is not finite");
     }
     if (!file.steps.empty() && file.steps.back().episode == step.episode &&
         step.time < file.steps.back().time) {
-      throw std::runtime_error(at + "time goes back within episode " +
-                               std::to_string(step.episode));
+      throw RecordFileError(at + "time goes back within episode " + std::to_string(step.episode));
     }
     std::size_t next = num_required;
     if (has_measured) {
@@ -141,7 +145,7 @@ RecordFile read_record_file(const std::filesystem::path& path) {
     step.action.assign(values.begin() + static_cast<std::ptrdiff_t>(next), values.end());
     file.steps.push_back(std::move(step));
   }
-  if (file.steps.empty()) throw std::runtime_error(path.string() + " has a header but no rows");
+  if (file.steps.empty()) throw RecordFileError(path + " has a header but no rows");
   return file;
 }
 

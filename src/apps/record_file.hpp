@@ -4,10 +4,12 @@
 /// `upkie-rl render` and `upkie-rl view`.
 
 #include <filesystem>
+#include <istream>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "apps/record_file_error.hpp"
 #include "envs/episode_recorder.hpp"
 #include "envs/velocity_command.hpp"
 #include "render/robot_renderer.hpp"
@@ -40,9 +42,14 @@ struct RecordFile {
 };
 
 /// Reads a record file written by EpisodeRecorder (any environment).
-/// @throws std::runtime_error naming the file, and the line and column at fault: a missing
+/// @throws RecordFileError naming the file, and the line and column at fault: a missing
 ///         column, a value that is not a number, a row of the wrong length, no ground truth
 ///         (a spine run), or no rows at all.
 RecordFile read_record_file(const std::filesystem::path& path);
+
+/// The same, from a stream already open; `name` stands for the file in messages (the
+/// fuzz target reads its inputs from memory through it).
+/// @throws RecordFileError as above.
+RecordFile read_record_file(std::istream& in, const std::string& name);
 
 }  // namespace upkie_rl::apps

@@ -51,9 +51,6 @@ void ViewServerConfig::validate() const {
 
 namespace {
 
-/// Largest HTTP request or WebSocket message taken from a browser: the page sends its
-/// requests and, when it drives, small JSON messages.
-constexpr std::size_t kMaxRequestBytes = std::size_t{16} * 1024;
 /// Wait before accepting again after accept failed (out of file descriptors): the pending
 /// connection stays queued, so an immediate retry would fail at once, again and again.
 constexpr auto kAcceptRetryDelay = std::chrono::milliseconds(200);
@@ -227,8 +224,8 @@ void ViewServer::Impl::accept() {
 void ViewServer::Impl::read_request(const std::shared_ptr<beast::tcp_stream>& stream,
                                     const std::shared_ptr<beast::flat_buffer>& buffer) {
   auto parser = std::make_shared<http::request_parser<http::string_body>>();
-  parser->header_limit(kMaxRequestBytes);
-  parser->body_limit(kMaxRequestBytes);
+  parser->header_limit(kViewMaxRequestBytes);
+  parser->body_limit(kViewMaxRequestBytes);
   stream->expires_after(idle_timeout());
   http::async_read(
       *stream, *buffer, *parser,
@@ -335,7 +332,7 @@ void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
   beast::error_code ignored;
   beast::get_lowest_layer(client->stream).socket().set_option(tcp::no_delay(true), ignored);
   client->stream.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
-  client->stream.read_message_max(kMaxRequestBytes);
+  client->stream.read_message_max(kViewMaxRequestBytes);
   client->stream.binary(true);
   // Start with what the ring still holds, so that the plots fill at once.
   const std::uint64_t newest = frames->newest();

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -15,6 +16,10 @@
 #include "view/frame_broadcaster.hpp"
 
 namespace upkie_rl {
+
+/// Largest HTTP request or WebSocket message taken from a browser: the page sends its
+/// requests and, when it drives, small JSON messages.
+inline constexpr std::size_t kViewMaxRequestBytes = std::size_t{16} * 1024;
 
 /// Settings of a ViewServer.
 struct ViewServerConfig {
