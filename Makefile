@@ -131,7 +131,7 @@ FUZZ_SECONDS ?=
 FUZZ_LIMIT = $(if $(FUZZ_SECONDS),-max_total_time=$(FUZZ_SECONDS),-runs=$(FUZZ_RUNS))
 FUZZ_TARGETS ?= spine_message_fuzzer:corpus:65536 spine_server_fuzzer:server_corpus:8192 \
   training_config_fuzzer:config_corpus:16384 checkpoint_fuzzer:checkpoint_corpus:262144 \
-  record_file_fuzzer:record_corpus:65536 view_message_fuzzer:view_corpus:16384 \
+  record_file_fuzzer:record_corpus:65536 view_message_fuzzer:view_corpus:4096 \
   env_options_fuzzer:env_options_corpus:4096 spine_segment_fuzzer:segment_corpus:65541
 # A fuzzer's stdout (the spine's error log, one line per refused message) is dropped;
 # libFuzzer reports on stderr.
