@@ -25,19 +25,23 @@ void set_physics(const EnvSettings& settings, PhysicsConfig& config) {
   config.inertia_source = settings.inertia_source;
 }
 
-MujocoConfig mujoco_config(const EnvSettings& settings) {
+MujocoConfig mujoco_config(const EnvId& id, const EnvSettings& settings) {
   MujocoConfig config;
   set_physics(settings, config);
+  // The velocity task drives on its wheels' speed loop, which chatters when its damping is
+  // explicit (MujocoConfig::implicit_wheel_damping); the other tasks keep the physics
+  // their checkpoints were trained with.
+  config.implicit_wheel_damping = id.kind == EnvKind::kVelocity;
   return config;
 }
 
 /// `mujoco_model`: MuJoCo's compiled model, built once per factory and shared by its
 /// environments (null for the other backends).
-std::unique_ptr<Simulation> make_simulation(EnvBackend backend, const EnvSettings& settings,
+std::unique_ptr<Simulation> make_simulation(const EnvId& id, const EnvSettings& settings,
                                             const std::shared_ptr<const MujocoModel>& mujoco_model,
                                             int& physics_steps_per_step) {
   const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
-  switch (backend) {
+  switch (id.backend) {
     case EnvBackend::kBullet: {
       BulletConfig config;
       set_physics(settings, config);
@@ -45,7 +49,7 @@ std::unique_ptr<Simulation> make_simulation(EnvBackend backend, const EnvSetting
       return std::make_unique<BulletSimulation>(model, config);
     }
     case EnvBackend::kMujoco: {
-      const MujocoConfig config = mujoco_config(settings);
+      const MujocoConfig config = mujoco_config(id, settings);
       physics_steps_per_step = config.nb_substeps;
       return std::make_unique<MujocoSimulation>(model, config, mujoco_model);
     }
@@ -68,14 +72,14 @@ EnvFactory make_env_factory(const std::string& id, const EnvOptions& options) {
   const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
   std::shared_ptr<const MujocoModel> mujoco_model;
   if (parsed.backend == EnvBackend::kMujoco) {
-    const MujocoConfig config = mujoco_config(settings);
+    const MujocoConfig config = mujoco_config(parsed, settings);
     config.validate();
     mujoco_model = build_mujoco_model(*model, config);
   }
   return [parsed, settings, mujoco_model]() {
     int physics_steps_per_step = 0;
     std::unique_ptr<Simulation> simulation =
-        make_simulation(parsed.backend, settings, mujoco_model, physics_steps_per_step);
+        make_simulation(parsed, settings, mujoco_model, physics_steps_per_step);
     return assemble_env(parsed, settings, std::move(simulation), physics_steps_per_step);
   };
 }

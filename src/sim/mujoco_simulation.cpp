@@ -37,16 +37,22 @@ MujocoSimulation::~MujocoSimulation() = default;
 
 void MujocoSimulation::apply_model_variation() {
   const PhysicsVariation& variation = this->variation();
-  if (!variation.changes_model()) {
-    episode_model_ = compiled_->model.get();
+  const mjModel* nominal = compiled_->model.get();
+  if (!variation.changes_model() && !config_.implicit_wheel_damping) {
+    episode_model_ = nominal;
     return;
   }
-  const mjModel* nominal = compiled_->model.get();
   if (!varied_model_) {
     varied_model_.reset(mj_copyModel(nullptr, nominal));
     if (!varied_model_) throw std::runtime_error("MuJoCo could not copy the model");
   }
   mjModel* varied = varied_model_.get();
+  episode_model_ = varied;
+  if (!variation.changes_model()) {
+    // Undo an earlier episode's variation: same sizes, so the copy allocates nothing.
+    mj_copyModel(varied, nominal);
+    return;
+  }
   const MujocoRobotIndex& index = compiled_->index;
   const auto parent_of = [nominal, &index](int body) {
     return body == index.root_body ? -1 : nominal->body_parentid[body];
@@ -64,7 +70,6 @@ void MujocoSimulation::apply_model_variation() {
         variation.floor_friction_scale * nominal->geom_friction[3 * tire];
   }
   mj_setConst(varied, data_.get());  // masses enter derived constants (subtree masses...)
-  episode_model_ = varied;
 }
 
 const Observation& MujocoSimulation::reset(const ResetState& state) {
@@ -94,14 +99,32 @@ const Observation& MujocoSimulation::reset(const ResetState& state) {
   return observe_reset();
 }
 
-void MujocoSimulation::step_physics(const ServoAction& action, bool braked) {
+void MujocoSimulation::apply_servo_torques(const ServoAction& action, bool braked) {
   mjData* d = data_.get();
   const MujocoRobotIndex& index = compiled_->index;
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-    d->qfrc_applied[index.servo_dof[servo]] =
-        joint_torque(servo, action[servo], braked, d->qpos[index.servo_qpos[servo]],
-                     d->qvel[index.servo_dof[servo]]);
+    const int dof = index.servo_dof[servo];
+    const double velocity = d->qvel[dof];
+    const double torque =
+        joint_torque(servo, action[servo], braked, d->qpos[index.servo_qpos[servo]], velocity);
+    d->qfrc_applied[dof] = torque;
+    if (!config_.implicit_wheel_damping || !is_wheel(servo)) continue;
+    // MuJoCo applies -damping·v with v taken at the end of the step (Euler's implicit
+    // damping); adding damping·v now leaves the servo's torque, its damping implicit. Not
+    // while the torque is at its limit, where the law does not depend on v.
+    const ServoCommand& command = action[servo];
+    const double limit = std::min(command.maximum_torque, model().servo_limits(servo).effort);
+    const bool linear = !braked && std::abs(applied_torques_[servo]) < limit;
+    const double damping = linear ? servo_gains().kd * command.kd_scale : 0.0;
+    varied_model_->dof_damping[dof] = damping;
+    d->qfrc_applied[dof] += damping * velocity;
   }
+}
+
+void MujocoSimulation::step_physics(const ServoAction& action, bool braked) {
+  mjData* d = data_.get();
+  const MujocoRobotIndex& index = compiled_->index;
+  apply_servo_torques(action, braked);
   // xfrc_applied acts at the body's centre of mass, as Bullet's base force.
   for (int i = 0; i < 3; ++i) d->xfrc_applied[6 * index.root_body + i] = base_force()[i];
   mj_step(episode_model_, d);

@@ -40,8 +40,12 @@ class MujocoSimulation final : public PhysicsSimulation {
 
  private:
   /// Points episode_model_ at the shared model, or at the simulation's own copy given the
-  /// masses and floor friction of variation().
+  /// masses and floor friction of variation() (always the copy with implicit wheel
+  /// damping, whose damping changes with the servo commands).
   void apply_model_variation();
+  /// The torque of each servo for `action` into qfrc_applied; with implicit wheel damping,
+  /// the wheels' damping term moved into the own model's dof_damping.
+  void apply_servo_torques(const ServoAction& action, bool braked);
 
   void step_physics(const ServoAction& action, bool braked) override;
   void measure(MeasuredJoints& joints, MeasuredBase& base) const override;
@@ -51,7 +55,9 @@ class MujocoSimulation final : public PhysicsSimulation {
   std::shared_ptr<const RobotModel> model_;
   MujocoConfig config_;
   std::shared_ptr<const MujocoModel> compiled_;
-  MujocoModelPtr varied_model_;  ///< Made at the first reset with a model variation.
+  /// Made at the first reset with a model variation, or at construction with implicit
+  /// wheel damping.
+  MujocoModelPtr varied_model_;
   const mjModel_* episode_model_ = nullptr;
   MujocoDataPtr data_;
 };
