@@ -8,8 +8,8 @@ namespace upkie_rl {
 
 /// Base of the domain errors (ModelError, SimulationDivergedError, InvalidCommandError,
 /// RenderError, ViewError, SpineError, CheckpointError, OnnxError, DistributedError,
-/// AgentError): catch it to handle any of them at once. The Python module maps the same
-/// hierarchy onto `upkie_rl.Error`. Option and configuration mistakes stay
+/// AgentError, RecordFileError): catch it to handle any of them at once. The Python module maps the
+/// same hierarchy onto `upkie_rl.Error`. Option and configuration mistakes stay
 /// `std::invalid_argument` (Python's ValueError).
 class Error : public std::runtime_error {
  public:

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "agent/agent_error.hpp"
+#include "apps/record_file_error.hpp"
 #include "model/error.hpp"
 #include "model/robot_model.hpp"
 #include "onnx/onnx_error.hpp"
@@ -33,7 +34,7 @@ TEST(ErrorHierarchy, EveryDomainErrorHasTheOneRoot) {
   static_assert(all_derive_from_error<ModelError, CheckpointError, SimulationDivergedError,
                                       InvalidCommandError, RenderError, DistributedError, ViewError,
                                       SpineError, SpineTimeoutError, OnnxError, AgentError,
-                                      SupervisorTrip>());
+                                      SupervisorTrip, apps::RecordFileError>());
   // Not an option mistake: those stay std::invalid_argument.
   static_assert(!std::is_base_of_v<std::invalid_argument, InvalidCommandError>);
 }
