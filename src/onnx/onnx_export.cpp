@@ -14,7 +14,7 @@
 #include "policy/build_info.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/checkpoint_gate.hpp"
-#include "policy/parameter_layout.hpp"
+#include "policy/mlp.hpp"
 #include "policy/provenance.hpp"
 #include "policy/space_json.hpp"
 
@@ -138,17 +138,13 @@ std::string add_activation(GraphBuilder& graph, Activation activation, const std
                   " has no ONNX operators");
 }
 
-// The actor's dense layers (Gemm: x·Wᵀ + b) with the activation between them.
+// The actor's dense layers (Gemm: x·Wᵀ + b) with the activation where the Mlp puts it.
 std::string add_actor(GraphBuilder& graph, const DeployedPolicy& policy, const std::string& input) {
-  const PolicyShape& shape = policy.shape();
-  const std::vector<DenseLayerLayout> layers =
-      actor_critic_layout(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
-                          shape.critic_hidden_sizes)
-          .actor;
+  const Mlp& actor = policy.actor();
   const std::vector<float>& parameters = policy.parameters();
   std::string x = input;
-  for (std::size_t l = 0; l < layers.size(); ++l) {
-    const DenseLayerLayout& layer = layers[l];
+  for (std::size_t l = 0; l < actor.layers().size(); ++l) {
+    const DenseLayerLayout& layer = actor.layers()[l];
     const std::string prefix = "actor_" + std::to_string(l);
     const auto* weights = parameters.data() + layer.weight;
     const auto* biases = parameters.data() + layer.bias;
@@ -162,8 +158,8 @@ std::string add_actor(GraphBuilder& graph, const DeployedPolicy& policy, const s
     transpose.set_type(onnx::AttributeProto::INT);
     transpose.set_i(1);
     x = prefix + "_affine";
-    if (l + 1 < layers.size()) {
-      x = add_activation(graph, shape.activation, x, prefix + "_activation");
+    if (actor.activated(l)) {
+      x = add_activation(graph, actor.activation(), x, prefix + "_activation");
     }
   }
   return x;

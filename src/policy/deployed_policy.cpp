@@ -44,11 +44,11 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
         shape.action_size != static_cast<std::int64_t>(policy.action_space_.size())) {
       throw CheckpointError("policy sizes do not match the stored spaces");
     }
-    const ActorCriticLayout layout =
-        actor_critic_layout(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
-                            shape.critic_hidden_sizes);
-    policy.parameters_ = file.tensor("policy.parameters", layout.size).values;
-    policy.actor_ = layout.actor;
+    const ActorCriticNetworks networks =
+        actor_critic_networks(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
+                              shape.critic_hidden_sizes, shape.activation);
+    policy.parameters_ = file.tensor("policy.parameters", networks.size).values;
+    policy.actor_ = networks.actor;
     policy.normalizer_ = ObservationNormalizer::from_state(
         header.value("normalization", nlohmann::json()), policy.observation_space_.size());
   } catch (const CheckpointError& error) {
@@ -58,10 +58,8 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
   } catch (const nlohmann::json::exception& error) {
     throw CheckpointError(where + ": malformed header: " + error.what());
   }
-  std::int64_t widest = 0;
-  for (const DenseLayerLayout& layer : policy.actor_) widest = std::max(widest, layer.out);
   policy.input_.resize(policy.observation_space_.size());
-  policy.buffer_.resize(2 * static_cast<std::size_t>(widest));
+  policy.scratch_.resize(policy.actor_.scratch_size());
   return policy;
 }
 
@@ -75,24 +73,7 @@ void DeployedPolicy::act(std::span<const float> observation, std::span<float> ac
   check_size(observation.size(), observation_space_.size(), "observation");
   check_size(action.size(), action_space_.size(), "action");
   normalizer_.normalize(observation, input_);
-  const std::size_t half = buffer_.size() / 2;
-  const float* x = input_.data();
-  for (std::size_t l = 0; l < actor_.size(); ++l) {
-    const DenseLayerLayout& layer = actor_[l];
-    const bool last = l + 1 == actor_.size();
-    float* y = last ? action.data() : buffer_.data() + (l % 2) * half;
-    const float* weights = parameters_.data() + layer.weight;
-    const float* biases = parameters_.data() + layer.bias;
-    for (std::int64_t i = 0; i < layer.out; ++i) {
-      // Accumulate in double: the result does not depend on the summation order's rounding
-      // as much as a float sum would, so it agrees with torch's matmul to about 1e-6.
-      double sum = biases[i];
-      const float* w = weights + i * layer.in;
-      for (std::int64_t j = 0; j < layer.in; ++j) sum += static_cast<double>(w[j]) * x[j];
-      y[i] = static_cast<float>(last ? sum : apply_activation(shape_.activation, sum));
-    }
-    x = y;
-  }
+  actor_.forward(parameters_, input_, scratch_, action);
   for (std::size_t j = 0; j < action.size(); ++j) {
     action[j] = std::clamp(action[j], action_space_.low[j], action_space_.high[j]);
   }

@@ -12,9 +12,9 @@
 
 #include "envs/box_space.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/mlp.hpp"
 #include "policy/model_header.hpp"
 #include "policy/observation_normalizer.hpp"
-#include "policy/parameter_layout.hpp"
 
 namespace upkie_rl {
 
@@ -40,6 +40,8 @@ class DeployedPolicy {
   const ObservationNormalizer& normalizer() const { return normalizer_; }
   /// Every parameter (policy/parameter_layout.hpp), actor first.
   const std::vector<float>& parameters() const { return parameters_; }
+  /// The actor network in parameters(): what act() runs and the exporters write.
+  const Mlp& actor() const { return actor_; }
 
   /// Throws CheckpointError saying how the environment's spaces differ from the model's.
   void check_spaces(const BoxSpace& observation_space, const BoxSpace& action_space) const;
@@ -63,9 +65,9 @@ class DeployedPolicy {
   PolicyShape shape_;
   ObservationNormalizer normalizer_;
   std::vector<float> parameters_;
-  std::vector<DenseLayerLayout> actor_;  // In parameters_.
-  std::vector<float> input_;             // Normalised observation.
-  std::vector<float> buffer_;            // Two activation buffers, the widest layer each.
+  Mlp actor_;                   // In parameters_.
+  std::vector<float> input_;    // Normalised observation.
+  std::vector<float> scratch_;  // Hidden layers' outputs (Mlp::scratch_size()).
 };
 
 }  // namespace upkie_rl

@@ -24,6 +24,11 @@ inline double gaussian_log_normaliser(std::span<const float> log_std) {
   return sum;
 }
 
+/// log π(a|s) = −½ Σⱼ zⱼ² − log_normaliser from Σⱼ zⱼ² and gaussian_log_normaliser.
+inline double gaussian_log_probability(double squared_z_sum, double log_normaliser) {
+  return -0.5 * squared_z_sum - log_normaliser;
+}
+
 /// Σⱼ (log σⱼ + ½ + ½·log 2π), in double.
 inline double gaussian_entropy(std::span<const float> log_std) {
   double entropy = 0.0;

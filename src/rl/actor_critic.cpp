@@ -35,13 +35,16 @@ ActorCritic::ActorCritic(std::int64_t observation_size, std::int64_t action_size
   if (observation_size < 1 || action_size < 1) {
     throw std::invalid_argument("ActorCritic: observation and action sizes must be positive");
   }
-  const ActorCriticLayout layout = actor_critic_layout(
-      observation_size, action_size, config.actor_hidden_sizes, config.critic_hidden_sizes);
-  flat_parameters_ = torch::zeros({layout.size}, torch::kFloat32);
-  flat_gradients_ = torch::zeros({layout.size}, torch::kFloat32);
-  actor_ = make_mlp("actor", layout.actor);
-  critic_ = make_mlp("critic", layout.critic);
-  log_std_ = make_parameter("log_std", {action_size}, layout.log_std);
+  const ActorCriticNetworks networks =
+      actor_critic_networks(observation_size, action_size, config.actor_hidden_sizes,
+                            config.critic_hidden_sizes, config.activation);
+  actor_network_ = networks.actor;
+  critic_network_ = networks.critic;
+  flat_parameters_ = torch::zeros({networks.size}, torch::kFloat32);
+  flat_gradients_ = torch::zeros({networks.size}, torch::kFloat32);
+  actor_ = make_layers("actor", actor_network_);
+  critic_ = make_layers("critic", critic_network_);
+  log_std_ = make_parameter("log_std", {action_size}, networks.log_std);
 
   torch::NoGradGuard no_grad;
   at::Generator generator = at::make_generator<at::CPUGeneratorImpl>(seed);
@@ -68,32 +71,33 @@ torch::Tensor ActorCritic::make_parameter(const std::string& name,
   return parameter;
 }
 
-std::vector<DenseLayer> ActorCritic::make_mlp(const std::string& name,
-                                              const std::vector<DenseLayerLayout>& layout) {
+std::vector<DenseLayer> ActorCritic::make_layers(const std::string& name, const Mlp& network) {
   std::vector<DenseLayer> layers;
-  for (std::size_t i = 0; i < layout.size(); ++i) {
+  for (std::size_t i = 0; i < network.layers().size(); ++i) {
     const std::string prefix = name + "_" + std::to_string(i) + "_";
-    const DenseLayerLayout& layer = layout[i];
+    const DenseLayerLayout& layer = network.layers()[i];
     layers.push_back({make_parameter(prefix + "weight", {layer.out, layer.in}, layer.weight),
                       make_parameter(prefix + "bias", {layer.out}, layer.bias)});
   }
   return layers;
 }
 
-torch::Tensor ActorCritic::run_mlp(const std::vector<DenseLayer>& layers, torch::Tensor x) const {
+// Mlp::forward's arithmetic on tensors, differentiable.
+torch::Tensor ActorCritic::run_mlp(const Mlp& network, const std::vector<DenseLayer>& layers,
+                                   torch::Tensor x) {
   for (std::size_t i = 0; i < layers.size(); ++i) {
     x = torch::addmm(layers[i].bias, x, layers[i].weight.t());
-    if (i + 1 < layers.size()) x = activate(config_.activation, x);
+    if (network.activated(i)) x = activate(network.activation(), x);
   }
   return x;
 }
 
 torch::Tensor ActorCritic::action_mean(const torch::Tensor& observations) const {
-  return run_mlp(actor_, observations);
+  return run_mlp(actor_network_, actor_, observations);
 }
 
 torch::Tensor ActorCritic::value(const torch::Tensor& observations) const {
-  return run_mlp(critic_, observations).view({-1});
+  return run_mlp(critic_network_, critic_, observations).view({-1});
 }
 
 ActionEvaluation ActorCritic::evaluate_actions(const torch::Tensor& observations,
@@ -123,15 +127,14 @@ PolicyInference::PolicyInference(const ActorCritic& policy, std::int64_t batch_s
   }
 }
 
-void PolicyInference::forward(const std::vector<DenseLayer>& layers,
+void PolicyInference::forward(const Mlp& network, const std::vector<DenseLayer>& layers,
                               const std::vector<torch::Tensor>& weights_t,
                               std::vector<torch::Tensor>& outputs) {
-  const Activation activation = policy_.config().activation;
   const torch::Tensor* x = &input_;
   for (std::size_t i = 0; i < layers.size(); ++i) {
     at::mm_out(outputs[i], *x, weights_t[i]);
     outputs[i].add_(layers[i].bias);
-    if (i + 1 < layers.size()) activate_in_place(activation, outputs[i]);
+    if (network.activated(i)) activate_in_place(network.activation(), outputs[i]);
     x = &outputs[i];
   }
 }
@@ -143,7 +146,7 @@ void PolicyInference::run_actor(std::span<const float> observations) {
                                 " observation values, got " + std::to_string(observations.size()));
   }
   std::memcpy(input_.data_ptr<float>(), observations.data(), observations.size_bytes());
-  forward(policy_.actor_layers(), actor_weights_t_, actor_outputs_);
+  forward(policy_.actor_network(), policy_.actor_layers(), actor_weights_t_, actor_outputs_);
 }
 
 void PolicyInference::run_critic(std::span<const float> observations) {
@@ -153,13 +156,13 @@ void PolicyInference::run_critic(std::span<const float> observations) {
                                 " observation values, got " + std::to_string(observations.size()));
   }
   std::memcpy(input_.data_ptr<float>(), observations.data(), observations.size_bytes());
-  forward(policy_.critic_layers(), critic_weights_t_, critic_outputs_);
+  forward(policy_.critic_network(), policy_.critic_layers(), critic_weights_t_, critic_outputs_);
 }
 
 void PolicyInference::run(std::span<const float> observations) {
   run_actor(observations);
   torch::NoGradGuard no_grad;
-  forward(policy_.critic_layers(), critic_weights_t_, critic_outputs_);
+  forward(policy_.critic_network(), policy_.critic_layers(), critic_weights_t_, critic_outputs_);
 }
 
 std::span<const float> PolicyInference::means() const {

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "policy/parameter_layout.hpp"
+#include "policy/mlp.hpp"
 #include "rl/training_config.hpp"
 
 namespace upkie_rl {
@@ -41,6 +41,11 @@ class ActorCritic final : public torch::nn::Module {
   std::int64_t action_size() const { return action_size_; }
   const PolicyConfig& config() const { return config_; }
 
+  /// The actor's description (layers in flat_parameters(), where the activation goes),
+  /// shared with deployment and export: actor_layers() are its layers as tensors.
+  const Mlp& actor_network() const { return actor_network_; }
+  /// The critic's description, as actor_network().
+  const Mlp& critic_network() const { return critic_network_; }
   /// Hidden layers then the action head (last).
   const std::vector<DenseLayer>& actor_layers() const { return actor_; }
   /// Hidden layers then the value head (last, one output).
@@ -70,13 +75,15 @@ class ActorCritic final : public torch::nn::Module {
  private:
   torch::Tensor make_parameter(const std::string& name, const std::vector<std::int64_t>& shape,
                                std::int64_t offset);
-  std::vector<DenseLayer> make_mlp(const std::string& name,
-                                   const std::vector<DenseLayerLayout>& layout);
-  torch::Tensor run_mlp(const std::vector<DenseLayer>& layers, torch::Tensor x) const;
+  std::vector<DenseLayer> make_layers(const std::string& name, const Mlp& network);
+  static torch::Tensor run_mlp(const Mlp& network, const std::vector<DenseLayer>& layers,
+                               torch::Tensor x);
 
   std::int64_t observation_size_;
   std::int64_t action_size_;
   PolicyConfig config_;
+  Mlp actor_network_;
+  Mlp critic_network_;
   torch::Tensor flat_parameters_;
   torch::Tensor flat_gradients_;
   std::vector<DenseLayer> actor_;
@@ -94,7 +101,10 @@ void orthogonal_init(const torch::Tensor& tensor, double gain, at::Generator& ge
 
 /// Runs the actor and critic on a fixed batch of observations without autograd and
 /// without allocating: every intermediate tensor is made once, in the constructor. This is
-/// the rollout hot path.
+/// the rollout hot path. It follows the networks' Mlp description but multiplies with
+/// torch's batched float32 matmul rather than Mlp::forward's per-input double sums: the
+/// rollout's actions, hence the trained weights, are those of torch's arithmetic, and a
+/// batch of environments runs as one matrix product.
 class PolicyInference {
  public:
   /// `batch_size` rows of observations per call. Keeps a reference to `policy`, whose
@@ -114,8 +124,8 @@ class PolicyInference {
   std::span<const float> values() const;
 
  private:
-  void forward(const std::vector<DenseLayer>& layers, const std::vector<torch::Tensor>& weights_t,
-               std::vector<torch::Tensor>& outputs);
+  void forward(const Mlp& network, const std::vector<DenseLayer>& layers,
+               const std::vector<torch::Tensor>& weights_t, std::vector<torch::Tensor>& outputs);
 
   const ActorCritic& policy_;
   std::int64_t batch_size_;

@@ -413,8 +413,9 @@ PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
                                 " (train with ppo.gradient: " + "autograd)");
   }
   const auto rows = static_cast<std::size_t>(max_batch_size);
-  const auto allocate = [rows](Network& network, const std::vector<DenseLayerLayout>& layout) {
-    network.layout = layout;
+  const auto allocate = [rows, this](Network& network,
+                                     const std::vector<DenseLayerLayout>& layout) {
+    network.mlp = Mlp(layout, activation_);
     for (const DenseLayerLayout& layer : layout) {
       network.outputs.emplace_back(rows * static_cast<std::size_t>(layer.out));
     }
@@ -439,9 +440,9 @@ void PpoGradient::forward(Network& network, const float* parameters, const float
                           std::int64_t rows) {
   const bool relu = activation_ == Activation::kReLU;  // else tanh: covers() allows no other
   const float* x = input;
-  for (std::size_t i = 0; i < network.layout.size(); ++i) {
-    const DenseLayerLayout& layer = network.layout[i];
-    const bool hidden = i + 1 < network.layout.size();
+  for (std::size_t i = 0; i < network.mlp.layers().size(); ++i) {
+    const DenseLayerLayout& layer = network.mlp.layers()[i];
+    const bool hidden = network.mlp.activated(i);
     const ConstMatrixMap in(x, rows, layer.in);
     const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
     float* y_data = network.outputs[i].data();
@@ -480,8 +481,9 @@ void PpoGradient::backward(const Network& network, const float* parameters, cons
   // activation) of the layer below at the end of each iteration. Through the activation,
   // from its output y: relu passes the gradient where y > 0 (none at 0, like torch's
   // threshold_backward); tanh' = 1 − y².
-  for (std::size_t k = network.layout.size(); k-- > 0;) {
-    const DenseLayerLayout& layer = network.layout[k];
+  // Every layer below the output layer is activated (Mlp::activated).
+  for (std::size_t k = network.mlp.layers().size(); k-- > 0;) {
+    const DenseLayerLayout& layer = network.mlp.layers()[k];
     const float* in_data = k == 0 ? input : network.outputs[k - 1].data();
     const ConstMatrixMap in(in_data, rows, layer.in);
     const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
@@ -590,7 +592,8 @@ SurrogateSums surrogate_term(const PpoMinibatchView& batch, const GaussianPolicy
       const float z = (action[j] - mean[j]) * std::exp(-policy.log_std[j]);
       squares += static_cast<double>(z) * z;
     }
-    const double log_ratio = -0.5 * squares - log_normaliser - batch.old_log_prob[i];
+    const double log_ratio =
+        gaussian_log_probability(squares, log_normaliser) - batch.old_log_prob[i];
     const double ratio = std::exp(log_ratio);
     sums.kl += (ratio - 1.0) - log_ratio;
     const float ratio_f = static_cast<float>(ratio);

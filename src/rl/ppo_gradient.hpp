@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "policy/mlp.hpp"
 #include "policy/parameter_layout.hpp"
 #include "rl/actor_critic.hpp"
 #include "rl/ppo_loss.hpp"
@@ -96,9 +97,9 @@ class PpoGradient {
 
  private:
   /// Activations of one MLP: outputs[i] holds layer i's output (after the activation for
-  /// hidden layers), max_batch_size x layout[i].out, row-major.
+  /// hidden layers), max_batch_size x mlp.layers()[i].out, row-major.
   struct Network {
-    std::vector<DenseLayerLayout> layout;
+    Mlp mlp;
     std::vector<std::vector<float>> outputs;
   };
 

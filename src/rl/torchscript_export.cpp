@@ -24,9 +24,10 @@ torch::Tensor to_tensor(const std::vector<double>& values) {
   return torch::tensor(floats, torch::kFloat32);
 }
 
-// Builds the module's parameters and the TorchScript source of its forward().
-std::string add_layers(torch::jit::Module& module, const std::vector<DenseLayer>& layers,
-                       const std::string& name, Activation activation) {
+// Builds the module's parameters and the TorchScript source of its forward(): the layers
+// of `network`, the activation where it puts it.
+std::string add_layers(torch::jit::Module& module, const Mlp& network,
+                       const std::vector<DenseLayer>& layers, const std::string& name) {
   std::string source;
   for (std::size_t i = 0; i < layers.size(); ++i) {
     const std::string weight = name + "_" + std::to_string(i) + "_weight";
@@ -34,9 +35,7 @@ std::string add_layers(torch::jit::Module& module, const std::vector<DenseLayer>
     module.register_parameter(weight, layers[i].weight.detach().clone(), false);
     module.register_parameter(bias, layers[i].bias.detach().clone(), false);
     std::string affine = "torch.matmul(x, self." + weight + ".t()) + self." + bias;
-    if (i + 1 < layers.size()) {
-      affine = activation_torchscript(activation, affine);
-    }
+    if (network.activated(i)) affine = activation_torchscript(network.activation(), affine);
     source += "    x = " + affine + "\n";
   }
   return source;
@@ -60,7 +59,7 @@ void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& 
         literal(normalizer.epsilon()) + "), " + literal(-normalizer.clip()) + ", " +
         literal(normalizer.clip()) + ")\n";
   }
-  source += add_layers(module, policy.actor_layers(), "actor", policy.config().activation);
+  source += add_layers(module, policy.actor_network(), policy.actor_layers(), "actor");
   module.register_buffer("action_low", torch::tensor(action_space.low, torch::kFloat32));
   module.register_buffer("action_high", torch::tensor(action_space.high, torch::kFloat32));
   source += "    return torch.max(torch.min(x, self.action_high), self.action_low)\n";
