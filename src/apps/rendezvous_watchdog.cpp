@@ -1,8 +1,8 @@
 #include "apps/rendezvous_watchdog.hpp"
 
-#include <cstdio>
-#include <cstdlib>
 #include <utility>
+
+#include "apps/stuck_process_exit.hpp"
 
 namespace upkie_rl::apps {
 
@@ -10,9 +10,7 @@ RendezvousWatchdog::RendezvousWatchdog(std::chrono::milliseconds timeout, std::s
     : thread_([this, timeout, message = std::move(message)] {
         std::unique_lock lock(mutex_);
         if (cancelled_changed_.wait_for(lock, timeout, [this] { return cancelled_; })) return;
-        std::fprintf(stderr, "upkie-rl: error: %s\n", message.c_str());
-        std::fflush(stderr);
-        std::_Exit(1);
+        exit_stuck_process(message);
       }) {}
 
 RendezvousWatchdog::~RendezvousWatchdog() {

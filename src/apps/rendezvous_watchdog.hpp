@@ -14,8 +14,8 @@ namespace upkie_rl::apps {
 
 class RendezvousWatchdog {
  public:
-  /// Unless cancel() comes within `timeout`, prints "upkie-rl: error: <message>" and exits
-  /// with status 1 (std::_Exit: the stuck threads cannot be unwound).
+  /// Unless cancel() comes within `timeout`, ends the process with `message`
+  /// (exit_stuck_process: the stuck threads cannot be unwound).
   RendezvousWatchdog(std::chrono::milliseconds timeout, std::string message);
   ~RendezvousWatchdog();
   RendezvousWatchdog(const RendezvousWatchdog&) = delete;

@@ -10,10 +10,11 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/option_checks.hpp"
 #include "apps/live_view.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/progress_bar.hpp"
 #include "apps/rendezvous_watchdog.hpp"
+#include "apps/stuck_process_exit.hpp"
 #include "envs/registry.hpp"
 #include "policy/crc32c.hpp"
 #include "rl/communicator.hpp"
@@ -49,6 +50,9 @@ std::shared_ptr<Communicator> join_world(const TrainOptions& options, Distribute
   CommunicatorOptions communicator_options;
   communicator_options.timeout =
       std::chrono::milliseconds(static_cast<std::int64_t>(1000.0 * options.distributed_timeout));
+  // An abandoned rank (another aborted the run, or the store is gone) while this one's
+  // main thread is stuck outside the collectives: no rank is left running.
+  communicator_options.on_abandoned = [](const std::string& reason) { exit_stuck_process(reason); };
   const std::string where = launch.master_addr + ":" + std::to_string(launch.master_port);
   RendezvousWatchdog watchdog(
       communicator_options.timeout + std::chrono::seconds(2),
@@ -108,8 +112,8 @@ std::unique_ptr<LiveView> view_training(const TrainOptions& options, TrainingRun
                                    step, episode_return);
                     } catch (const std::exception& error) {
                       failed = true;
-                      std::cerr << "viewer: " << error.what()
-                                << "; the training goes on without it" << std::endl;
+                      std::cerr << "viewer: " << error.what() << "; the training goes on without it"
+                                << std::endl;
                     }
                   });
   viewer->wait_for_browsers();
@@ -121,10 +125,9 @@ std::filesystem::path default_run_dir(const std::string& config_path) {
          (std::filesystem::path(config_path).stem().string() + "-" + local_timestamp());
 }
 
-void run_train(const TrainOptions& options) {
-  DistributedLaunch launch;
-  const std::shared_ptr<Communicator> communicator = join_world(options, launch);
-  std::unique_ptr<TrainingRun> run;
+/// The run: resumed from --resume's checkpoint, or new from --config, --set and --seed.
+std::unique_ptr<TrainingRun> open_run(const TrainOptions& options,
+                                      const std::shared_ptr<Communicator>& communicator) {
   if (!options.resume.empty()) {
     if (!options.config_path.empty() || !options.overrides.empty() ||
         options.seed_option->count() > 0) {
@@ -134,24 +137,28 @@ void run_train(const TrainOptions& options) {
     }
     std::optional<std::filesystem::path> run_dir;
     if (!options.run_dir.empty()) run_dir = options.run_dir;
-    run = TrainingRun::resume(options.resume, run_dir, communicator, options.force_run_dir);
+    std::unique_ptr<TrainingRun> run =
+        TrainingRun::resume(options.resume, run_dir, communicator, options.force_run_dir);
     std::cerr << "resuming " << options.resume << " at " << run->ppo().num_timesteps() << " steps"
               << std::endl;
-  } else {
-    if (options.config_path.empty()) {
-      throw std::invalid_argument("train needs --config FILE (or --resume CHECKPOINT)");
-    }
-    TrainingConfig config = load_training_config(options.config_path);
-    apply_overrides(config, options.overrides);
-    if (options.seed_option->count() > 0) config.seed = options.seed;
-    config.validate();
-    const std::filesystem::path run_dir = options.run_dir.empty()
-                                              ? default_run_dir(options.config_path)
-                                              : std::filesystem::path(options.run_dir);
-    run = std::make_unique<TrainingRun>(config, run_dir, communicator);
+    return run;
   }
-  const TrainingConfig& config = run->config();
-  const bool writer = run->writes_outputs();
+  if (options.config_path.empty()) {
+    throw std::invalid_argument("train needs --config FILE (or --resume CHECKPOINT)");
+  }
+  TrainingConfig config = load_training_config(options.config_path);
+  apply_overrides(config, options.overrides);
+  if (options.seed_option->count() > 0) config.seed = options.seed;
+  config.validate();
+  const std::filesystem::path run_dir = options.run_dir.empty()
+                                            ? default_run_dir(options.config_path)
+                                            : std::filesystem::path(options.run_dir);
+  return std::make_unique<TrainingRun>(config, run_dir, communicator);
+}
+
+/// The line on stderr that says what is trained, on how many ranks.
+void announce_training(const DistributedLaunch& launch, const TrainingRun& run) {
+  const TrainingConfig& config = run.config();
   if (launch.distributed()) {
     // ppo.n_steps and batch_size are per rank: each rank collects n_steps and each
     // optimiser step averages the gradients of world_size minibatches.
@@ -160,12 +167,41 @@ void run_train(const TrainOptions& options) {
               << " envs, global n_steps " << launch.world_size * config.ppo.n_steps
               << ", global minibatch " << launch.world_size * config.ppo.batch_size << ", "
               << with_thousands(config.ppo.total_timesteps) << " steps in all"
-              << (writer ? ", run directory " + run->run_dir().string() : "") << std::endl;
+              << (run.writes_outputs() ? ", run directory " + run.run_dir().string() : "")
+              << std::endl;
   } else {
     std::cerr << "training " << config.env_id << " with PPO: " << config.num_envs << " envs, "
               << with_thousands(config.ppo.total_timesteps) << " steps, run directory "
-              << run->run_dir().string() << std::endl;
+              << run.run_dir().string() << std::endl;
   }
+}
+
+/// The summary of the run on stdout: speed, where the time went, the files written.
+void report_training(const TrainingRun& run, const TrainingProgress& last,
+                     const std::filesystem::path& model) {
+  const PpoTimings& timings = run.ppo().timings();
+  const double accounted = timings.env_seconds + timings.inference_seconds + timings.update_seconds;
+  std::cout << "trained " << with_thousands(last.timesteps) << " steps in "
+            << format_duration(last.elapsed_seconds) << " ("
+            << with_thousands(static_cast<std::int64_t>(last.steps_per_second))
+            << " steps/s); mean return of the last 100 episodes " << last.mean_return
+            << ", mean length " << last.mean_length << std::endl;
+  std::cout << "time: environments " << timings.env_seconds << " s, policy inference "
+            << timings.inference_seconds << " s, updates " << timings.update_seconds
+            << " s (of which all-reduces " << timings.communication_seconds << " s), other "
+            << std::max(0.0, last.elapsed_seconds - accounted) << " s" << std::endl;
+  std::cout << "run directory: " << run.run_dir().string() << std::endl;
+  std::cout << "final model: " << model.string() << std::endl;
+  std::cout << "TorchScript policy: " << run.torchscript_path().string() << std::endl;
+}
+
+void run_train(const TrainOptions& options) {
+  DistributedLaunch launch;
+  const std::shared_ptr<Communicator> communicator = join_world(options, launch);
+  const std::unique_ptr<TrainingRun> run = open_run(options, communicator);
+  const TrainingConfig& config = run->config();
+  const bool writer = run->writes_outputs();
+  announce_training(launch, *run);
 
   std::unique_ptr<LiveView> view;
   if (options.view.enabled && writer) view = view_training(options, *run);
@@ -183,21 +219,7 @@ void run_train(const TrainOptions& options) {
     std::cout << "rank " << launch.rank << ": weights checksum " << weights_checksum(*run)
               << std::endl;
   }
-  if (!writer) return;
-  const PpoTimings& timings = run->ppo().timings();
-  const double accounted = timings.env_seconds + timings.inference_seconds + timings.update_seconds;
-  std::cout << "trained " << with_thousands(last.timesteps) << " steps in "
-            << format_duration(last.elapsed_seconds) << " ("
-            << with_thousands(static_cast<std::int64_t>(last.steps_per_second))
-            << " steps/s); mean return of the last 100 episodes " << last.mean_return
-            << ", mean length " << last.mean_length << std::endl;
-  std::cout << "time: environments " << timings.env_seconds << " s, policy inference "
-            << timings.inference_seconds << " s, updates " << timings.update_seconds
-            << " s (of which all-reduces " << timings.communication_seconds << " s), other "
-            << std::max(0.0, last.elapsed_seconds - accounted) << " s" << std::endl;
-  std::cout << "run directory: " << run->run_dir().string() << std::endl;
-  std::cout << "final model: " << model.string() << std::endl;
-  std::cout << "TorchScript policy: " << run->torchscript_path().string() << std::endl;
+  if (writer) report_training(*run, last, model);
 }
 
 }  // namespace

@@ -5,26 +5,51 @@
 #include <torch/csrc/distributed/c10d/TCPStore.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <condition_variable>
 #include <csignal>
-#include <cstdio>
-#include <cstdlib>
-#include <mutex>
 #include <optional>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "rl/rank_watchdog.hpp"
+
 namespace upkie_rl {
+
+void Communicator::average(torch::Tensor values) {
+  sum(values);
+  values.div_(static_cast<double>(world_size()));
+}
+
+void Communicator::average(std::span<double> values) {
+  average(
+      torch::from_blob(values.data(), {static_cast<std::int64_t>(values.size())}, torch::kFloat64));
+}
+
+void Communicator::gather(std::span<const double> local,
+                          const std::function<void(std::span<const double>)>& visit) {
+  // Each rank fills its own slot of a zeroed buffer, and a sum gives everyone every slot:
+  // first the number of values per rank, then the values.
+  const int world = world_size();
+  torch::Tensor counts = torch::zeros({world}, torch::kFloat64);
+  counts.data_ptr<double>()[rank()] = static_cast<double>(local.size());
+  sum(counts);
+  const auto* count_of = counts.data_ptr<double>();
+  std::int64_t widest = 0;
+  for (int r = 0; r < world; ++r) widest = std::max(widest, static_cast<std::int64_t>(count_of[r]));
+  if (widest == 0) return;
+  torch::Tensor values = torch::zeros({world, widest}, torch::kFloat64);
+  std::copy(local.begin(), local.end(), values[rank()].data_ptr<double>());
+  sum(values);
+  for (int r = 0; r < world; ++r) {
+    visit({values[r].data_ptr<double>(), static_cast<std::size_t>(count_of[r])});
+  }
+}
 
 namespace {
 
 class GlooCommunicator final : public Communicator {
  public:
   GlooCommunicator(const DistributedLaunch& launch, const CommunicatorOptions& options)
-      : launch_(launch), options_(options) {
+      : launch_(launch) {
     const std::chrono::milliseconds timeout = options.timeout;
     c10d::TCPStoreOptions store_options;
     store_options.port = static_cast<std::uint16_t>(launch.master_port);
@@ -64,25 +89,21 @@ class GlooCommunicator final : public Communicator {
       health_options.isServer = false;
       health_options.waitWorkers = false;
       health_options.timeout = std::min(timeout, std::chrono::milliseconds(5000));
-      health_ = c10::make_intrusive<c10d::PrefixStore>(
-          "upkie_rl/health",
-          c10::make_intrusive<c10d::TCPStore>(launch.master_addr, health_options));
-      publish_heartbeat(0);
+      watchdog_.emplace(
+          launch,
+          c10::make_intrusive<c10d::PrefixStore>(
+              "upkie_rl/health",
+              c10::make_intrusive<c10d::TCPStore>(launch.master_addr, health_options)),
+          RankWatchdogOptions{options.heartbeat_period, options.abort_grace, options.on_abandoned});
+    } catch (const std::invalid_argument&) {
+      throw;
     } catch (const std::exception& error) {
       throw DistributedError(who() + ": cannot write heartbeats to the store at " + where + ": " +
                              first_line(error));
     }
-    heartbeat_ = std::thread([this] { beat(); });
   }
 
-  ~GlooCommunicator() override {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      stopping_ = true;
-    }
-    wake_.notify_all();
-    heartbeat_.join();
-  }
+  ~GlooCommunicator() override = default;
   GlooCommunicator(const GlooCommunicator&) = delete;
   GlooCommunicator& operator=(const GlooCommunicator&) = delete;
 
@@ -113,147 +134,22 @@ class GlooCommunicator final : public Communicator {
 
   template <typename Start>
   void run(const char* operation, const Start& start) {
-    const std::int64_t entered = ++operations_;
+    const std::int64_t entered = watchdog_->enter_operation();
     try {
       start()->wait();
     } catch (const std::exception& error) {
-      const std::string message = who() + ": " + operation + " failed: " + diagnose(entered) +
-                                  " (" + first_line(error) + ")";
-      try {
-        health_->set(kAbortKey, bytes(message));  // for ranks stuck outside the collectives
-      } catch (const std::exception&) {
-        // The store is gone too: the others will see that instead.
-      }
+      const std::string message = who() + ": " + operation +
+                                  " failed: " + watchdog_->diagnose(entered) + " (" +
+                                  first_line(error) + ")";
+      watchdog_->announce_abort(message);
       throw DistributedError(message);
     }
   }
 
-  static constexpr const char* kAbortKey = "abort";
-
-  static std::string heartbeat_key(int rank) { return "beat/" + std::to_string(rank); }
-
-  static std::vector<std::uint8_t> bytes(const std::string& text) {
-    return {text.begin(), text.end()};
-  }
-
-  /// A heartbeat: "<count> <operations entered>".
-  void publish_heartbeat(std::int64_t count) {
-    health_->set(heartbeat_key(launch_.rank),
-                 bytes(std::to_string(count) + " " + std::to_string(operations_.load())));
-  }
-
-  struct Heartbeat {
-    std::int64_t count = -1;  ///< -1: none read.
-    std::int64_t operations = 0;
-  };
-
-  std::vector<Heartbeat> read_heartbeats() {
-    std::vector<Heartbeat> beats(static_cast<std::size_t>(launch_.world_size));
-    for (int rank = 0; rank < launch_.world_size; ++rank) {
-      if (!health_->check({heartbeat_key(rank)})) continue;
-      const std::vector<std::uint8_t> value = health_->get(heartbeat_key(rank));
-      std::istringstream text(std::string(value.begin(), value.end()));
-      text >> beats[static_cast<std::size_t>(rank)].count >>
-          beats[static_cast<std::size_t>(rank)].operations;
-    }
-    return beats;
-  }
-
-  /// Names the ranks at fault after an operation failed: two readings of every heartbeat,
-  /// 2.5 periods apart.
-  std::string diagnose(std::int64_t entered) {
-    const auto window = options_.heartbeat_period * 5 / 2;
-    std::vector<Heartbeat> before, after;
-    try {
-      before = read_heartbeats();
-      std::this_thread::sleep_for(window);
-      after = read_heartbeats();
-    } catch (const std::exception&) {
-      return launch_.launcher_store
-                 ? std::string("the launcher's rendezvous store is unreachable")
-                 : "rank 0 stopped (the rendezvous store it served at " + launch_.master_addr +
-                       ":" + std::to_string(launch_.master_port) + " is gone)";
-    }
-    std::string faults;
-    const std::string seconds = std::to_string(std::chrono::duration<double>(window).count());
-    for (int rank = 0; rank < launch_.world_size; ++rank) {
-      if (rank == launch_.rank) continue;
-      const Heartbeat& first = before[static_cast<std::size_t>(rank)];
-      const Heartbeat& second = after[static_cast<std::size_t>(rank)];
-      std::string fault;
-      if (second.count < 0 || second.count == first.count) {
-        fault = "rank " + std::to_string(rank) + " stopped answering (no heartbeat for " +
-                seconds.substr(0, seconds.find('.') + 2) +
-                " s: it died, was stopped, or its host is unreachable)";
-      } else if (second.operations < entered) {
-        fault = "rank " + std::to_string(rank) + " is alive but did not reach this operation (" +
-                std::to_string(entered - second.operations) + " behind: hung or far slower)";
-      }
-      if (!fault.empty()) faults += (faults.empty() ? "" : "; ") + fault;
-    }
-    return faults.empty() ? "every other rank is alive and reached it (a network failure?)"
-                          : faults;
-  }
-
-  /// The heartbeat thread: beats, and gives the process up when the run was aborted while
-  /// it is stuck, or when the store is gone.
-  void beat() {
-    using Clock = std::chrono::steady_clock;
-    std::optional<Clock::time_point> abort_seen, store_lost;
-    std::string abort_reason;
-    std::int64_t count = 0;
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (!stopping_) {
-      lock.unlock();
-      try {
-        publish_heartbeat(++count);
-        store_lost.reset();
-        if (!abort_seen && health_->check({kAbortKey})) {
-          const std::vector<std::uint8_t> reason = health_->get(kAbortKey);
-          abort_reason.assign(reason.begin(), reason.end());
-          abort_seen = Clock::now();
-        }
-      } catch (const std::exception&) {
-        if (!store_lost) store_lost = Clock::now();
-      }
-      std::string reason;
-      if (abort_seen && Clock::now() - *abort_seen > options_.abort_grace) {
-        reason = "the run was aborted (" + abort_reason + ")";
-      } else if (store_lost && Clock::now() - *store_lost > options_.abort_grace) {
-        reason = launch_.launcher_store
-                     ? std::string("the launcher's rendezvous store stopped answering")
-                     : std::string("rank 0 stopped (the rendezvous store it served is gone)");
-      }
-      lock.lock();
-      if (!reason.empty() && !stopping_) {
-        lock.unlock();
-        abandon(who() + ": " + reason + "; this rank stops");
-        return;
-      }
-      wake_.wait_for(lock, options_.heartbeat_period, [this] { return stopping_; });
-    }
-  }
-
-  void abandon(const std::string& reason) {
-    if (options_.on_abandoned) {
-      options_.on_abandoned(reason);
-      return;
-    }
-    std::fprintf(stderr, "upkie-rl: error: %s\n", reason.c_str());
-    std::fflush(stderr);
-    std::_Exit(1);
-  }
-
   DistributedLaunch launch_;
-  CommunicatorOptions options_;
   c10::intrusive_ptr<c10d::Store> store_;
-  c10::intrusive_ptr<c10d::Store> health_;
   c10::intrusive_ptr<c10d::ProcessGroupGloo> group_;
-  std::atomic<std::int64_t> operations_{0};
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stopping_ = false;
-  std::thread heartbeat_;
+  std::optional<RankWatchdog> watchdog_;  // Last: stopped first, while the group lives.
 };
 
 }  // namespace
@@ -261,6 +157,11 @@ class GlooCommunicator final : public Communicator {
 std::unique_ptr<Communicator> connect_communicator(const DistributedLaunch& launch,
                                                    const CommunicatorOptions& options) {
   if (!launch.distributed()) return std::make_unique<SoloCommunicator>();
+  if (!options.on_abandoned) {
+    throw std::invalid_argument(
+        "connect_communicator: CommunicatorOptions::on_abandoned is "
+        "required (the application decides what an abandoned rank does)");
+  }
   // Gloo's transport writes to its sockets without MSG_NOSIGNAL: a write to a rank that has
   // gone away (rank 0 stopped while this one was frozen) raised SIGPIPE and killed this
   // rank silently (exit 141, about one run in ten of the hung-rank test) before it could say

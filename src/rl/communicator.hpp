@@ -1,13 +1,16 @@
 #pragma once
 /// @file
 /// The collective operations of data-parallel training (DD-PPO), over the processes of a
-/// run: sums and broadcasts of flat tensors. A world of one process needs no network.
+/// run: sums, means, broadcasts and gathers of flat values. A world of one process needs no
+/// network: its communicator's collectives are the identity, so that the learner calls them
+/// unconditionally. The ranks' watch over each other is rl/rank_watchdog.hpp's.
 
 #include <torch/torch.h>
 
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -33,17 +36,29 @@ class Communicator {
   virtual void sum(torch::Tensor values) = 0;
   /// Replaces `values` on every rank by rank `root`'s.
   virtual void broadcast(torch::Tensor values, int root) = 0;
+  /// Replaces `values` by its mean over the ranks: sum() divided by world_size().
+  virtual void average(torch::Tensor values);
+  /// average() of a few doubles.
+  virtual void average(std::span<double> values);
+  /// Calls `visit` with every rank's `local` values (their sizes may differ), in rank
+  /// order, on every rank.
+  virtual void gather(std::span<const double> local,
+                      const std::function<void(std::span<const double>)>& visit);
 };
 
-/// A world of one process: sums and broadcasts leave the values as they are.
+/// A world of one process: every collective leaves the values as they are, without a copy
+/// or an allocation (a single-process run is as fast as before there were ranks).
 class SoloCommunicator final : public Communicator {
  public:
   int rank() const override { return 0; }
   int world_size() const override { return 1; }
-  void sum(torch::Tensor values) override { static_cast<void>(values); }
-  void broadcast(torch::Tensor values, int root) override {
-    static_cast<void>(values);
-    static_cast<void>(root);
+  void sum(torch::Tensor /*values*/) override {}
+  void broadcast(torch::Tensor /*values*/, int /*root*/) override {}
+  void average(torch::Tensor /*values*/) override {}
+  void average(std::span<double> /*values*/) override {}
+  void gather(std::span<const double> local,
+              const std::function<void(std::span<const double>)>& visit) override {
+    visit(local);
   }
 };
 
@@ -58,18 +73,20 @@ struct CommunicatorOptions {
   std::chrono::milliseconds heartbeat_period{1000};
   /// A rank that sees another abort the run, or loses the store (rank 0 or the launcher is
   /// gone), and is still alive this much later (its main thread is stuck outside the
-  /// collectives, which would otherwise fail by themselves) gives up through `on_abandoned`.
+  /// collectives, which would otherwise fail by themselves) is told through `on_abandoned`.
   std::chrono::milliseconds abort_grace{10'000};
-  /// Called from the heartbeat thread with the reason. Default: print it on stderr and end
-  /// the process with exit code 1, so that no rank is left running.
+  /// Called from the watchdog's thread with the reason. Required for a world of more than
+  /// one: the application decides (upkie-rl train prints it and ends the process, so that
+  /// no rank is left running; a test records it).
   std::function<void(const std::string& reason)> on_abandoned;
 };
 
 /// Joins the world `launch` describes: rank 0 serves a c10d TCPStore at
 /// master_addr:master_port (unless the launcher serves it) and the others connect to it
-/// (the rendezvous), then a Gloo process group runs the collectives over TCP, and a thread
-/// of each rank beats its heartbeat. A world of one gives a SoloCommunicator.
-/// @throws DistributedError naming the address when the rendezvous fails.
+/// (the rendezvous), then a Gloo process group runs the collectives over TCP, and a
+/// RankWatchdog of each rank beats its heartbeat. A world of one gives a SoloCommunicator.
+/// @throws DistributedError naming the address when the rendezvous fails;
+/// std::invalid_argument without options.on_abandoned.
 std::unique_ptr<Communicator> connect_communicator(const DistributedLaunch& launch,
                                                    const CommunicatorOptions& options);
 

@@ -1,6 +1,7 @@
 #include "rl/ppo.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -91,6 +92,8 @@ Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
     throw std::invalid_argument("PPO: action space bounds do not match its size");
   }
   permutation_.resize(static_cast<std::size_t>(buffer_.size()));
+  // At most one episode ends per environment and step: no allocation during rollouts.
+  ended_episodes_.reserve(static_cast<std::size_t>(2 * num_envs_ * buffer_.num_steps()));
   if (upkie_rl::uses_hand_gradient(config_)) {
     gradient_.emplace(*policy_, std::min(config_.ppo.batch_size, buffer_.size()));
   }
@@ -111,7 +114,6 @@ void Ppo::reset_environments(std::uint64_t seed) {
 
 void Ppo::collect_rollout() {
   if (!started_) throw std::logic_error("PPO: call reset_environments() before collecting");
-  const double gamma = config_.ppo.gamma;
   // σ is constant during a rollout.
   std::vector<double> stds(action_size_);
   const std::span<const float> log_std(policy_->log_std().data_ptr<float>(),
@@ -121,28 +123,9 @@ void Ppo::collect_rollout() {
   }
   // The sampled noise is z of policy/diagonal_gaussian.hpp's log π.
   const double log_normaliser = gaussian_log_normaliser(log_std);
-  const std::size_t observation_bytes = last_observations_.size() * sizeof(float);
   for (std::int64_t t = 0; t < buffer_.num_steps(); ++t) {
     auto start = Clock::now();
-    inference_.run(last_observations_);
-    const std::span<const float> means = inference_.means();
-    const std::span<const float> values = inference_.values();
-    float* actions = buffer_.actions(t);
-    float* log_probs = buffer_.log_probs(t);
-    for (std::int64_t i = 0; i < num_envs_; ++i) {
-      double squared_noise = 0.0;
-      for (std::int64_t j = 0; j < action_size_; ++j) {
-        const std::size_t k = static_cast<std::size_t>(i * action_size_ + j);
-        const double noise = normal_(rng_);
-        squared_noise += noise * noise;
-        const float action = static_cast<float>(means[k] + stds[j] * noise);
-        actions[k] = action;
-        clipped_actions_[k] = std::clamp(action, action_low_[j], action_high_[j]);
-      }
-      log_probs[i] = static_cast<float>(-0.5 * squared_noise - log_normaliser);
-    }
-    std::memcpy(buffer_.observations(t), last_observations_.data(), observation_bytes);
-    std::memcpy(buffer_.values(t), values.data(), values.size_bytes());
+    sample_actions(t, stds, log_normaliser);
     timings_.inference_seconds += seconds_since(start);
 
     start = Clock::now();
@@ -151,40 +134,7 @@ void Ppo::collect_rollout() {
     if (step_observer_) step_observer_(step, clipped_actions_);
 
     start = Clock::now();
-    float* rewards = buffer_.rewards(t);
-    float* dones = buffer_.dones(t);
-    bool any_truncated = false;
-    for (std::int64_t i = 0; i < num_envs_; ++i) {
-      const bool terminated = step.terminated[i] != 0;
-      const bool truncated = step.truncated[i] != 0 && !terminated;
-      rewards[i] = step.rewards[i];
-      dones[i] = (terminated || truncated) ? 1.0f : 0.0f;
-      any_truncated = any_truncated || truncated;
-      if (terminated || step.truncated[i] != 0) {
-        const std::size_t num_terms = reward_terms_.num_terms();
-        if (num_terms > 0) {
-          reward_terms_.add(std::span<const double>(step.episode_reward_terms)
-                                .subspan(static_cast<std::size_t>(i) * num_terms, num_terms));
-        }
-        if (communicator_->world_size() == 1) {
-          episodes_.add(step.episode_returns[i], step.episode_lengths[i]);
-        } else {
-          ended_episodes_.push_back(step.episode_returns[i]);
-          ended_episodes_.push_back(static_cast<double>(step.episode_lengths[i]));
-        }
-      }
-    }
-    if (any_truncated) {
-      // Time limits are not failures: bootstrap with the current critic's value of the
-      // episode's last observation.
-      inference_.run_critic(step.final_observations);
-      const std::span<const float> final_values = inference_.values();
-      for (std::int64_t i = 0; i < num_envs_; ++i) {
-        if (step.truncated[i] != 0 && step.terminated[i] == 0) {
-          rewards[i] = static_cast<float>(rewards[i] + gamma * final_values[i]);
-        }
-      }
-    }
+    record_step(t, step);
     std::copy(step.observations.begin(), step.observations.end(), last_observations_.begin());
     num_timesteps_ += num_envs_ * communicator_->world_size();
     timings_.inference_seconds += seconds_since(start);
@@ -192,20 +142,73 @@ void Ppo::collect_rollout() {
   const auto start = Clock::now();
   inference_.run_critic(last_observations_);
   std::copy(inference_.values().begin(), inference_.values().end(), last_values_.begin());
-  buffer_.compute_returns_and_advantages(last_values_, gamma, config_.ppo.gae_lambda);
-  if (communicator_->world_size() > 1) gather_ended_episodes();
+  buffer_.compute_returns_and_advantages(last_values_, config_.ppo.gamma, config_.ppo.gae_lambda);
+  gather_ended_episodes();
   ++iterations_;
   timings_.update_seconds += seconds_since(start);
+}
+
+void Ppo::sample_actions(std::int64_t t, std::span<const double> stds, double log_normaliser) {
+  inference_.run(last_observations_);
+  const std::span<const float> means = inference_.means();
+  const std::span<const float> values = inference_.values();
+  float* actions = buffer_.actions(t);
+  float* log_probs = buffer_.log_probs(t);
+  for (std::int64_t i = 0; i < num_envs_; ++i) {
+    double squared_noise = 0.0;
+    for (std::int64_t j = 0; j < action_size_; ++j) {
+      const std::size_t k = static_cast<std::size_t>(i * action_size_ + j);
+      const double noise = normal_(rng_);
+      squared_noise += noise * noise;
+      const float action = static_cast<float>(means[k] + stds[j] * noise);
+      actions[k] = action;
+      clipped_actions_[k] = std::clamp(action, action_low_[j], action_high_[j]);
+    }
+    log_probs[i] = static_cast<float>(gaussian_log_probability(squared_noise, log_normaliser));
+  }
+  std::memcpy(buffer_.observations(t), last_observations_.data(),
+              last_observations_.size() * sizeof(float));
+  std::memcpy(buffer_.values(t), values.data(), values.size_bytes());
+}
+
+void Ppo::record_step(std::int64_t t, const VectorStep& step) {
+  float* rewards = buffer_.rewards(t);
+  float* dones = buffer_.dones(t);
+  bool any_truncated = false;
+  for (std::int64_t i = 0; i < num_envs_; ++i) {
+    const bool terminated = step.terminated[i] != 0;
+    const bool truncated = step.truncated[i] != 0 && !terminated;
+    rewards[i] = step.rewards[i];
+    dones[i] = (terminated || truncated) ? 1.0f : 0.0f;
+    any_truncated = any_truncated || truncated;
+    if (terminated || step.truncated[i] != 0) {
+      const std::size_t num_terms = reward_terms_.num_terms();
+      if (num_terms > 0) {
+        reward_terms_.add(std::span<const double>(step.episode_reward_terms)
+                              .subspan(static_cast<std::size_t>(i) * num_terms, num_terms));
+      }
+      ended_episodes_.push_back(step.episode_returns[i]);
+      ended_episodes_.push_back(static_cast<double>(step.episode_lengths[i]));
+    }
+  }
+  if (!any_truncated) return;
+  // Time limits are not failures: bootstrap with the current critic's value of the
+  // episode's last observation.
+  inference_.run_critic(step.final_observations);
+  const std::span<const float> final_values = inference_.values();
+  for (std::int64_t i = 0; i < num_envs_; ++i) {
+    if (step.truncated[i] != 0 && step.terminated[i] == 0) {
+      rewards[i] = static_cast<float>(rewards[i] + config_.ppo.gamma * final_values[i]);
+    }
+  }
 }
 
 void Ppo::set_communicator(Communicator* communicator) {
   if (started_) throw std::logic_error("Ppo::set_communicator after the first rollout");
   communicator_ = communicator != nullptr ? communicator : &solo_;
-  if (communicator_->world_size() == 1) return;
   reseed_rank_stream(0);
   torch::NoGradGuard no_grad;
   communicator_->broadcast(policy_->flat_parameters(), 0);
-  ended_episodes_.reserve(static_cast<std::size_t>(2 * num_envs_ * buffer_.num_steps()));
 }
 
 void Ppo::reseed_rank_stream(std::uint64_t segment) {
@@ -216,36 +219,20 @@ void Ppo::reseed_rank_stream(std::uint64_t segment) {
   normal_.reset();
 }
 
-void Ppo::average_over_ranks(torch::Tensor values) {
+template <typename Values>
+void Ppo::average_over_ranks(Values values) {
   const auto start = Clock::now();
-  communicator_->sum(values);
-  values.div_(static_cast<double>(communicator_->world_size()));
+  communicator_->average(values);
   timings_.communication_seconds += seconds_since(start);
 }
 
 void Ppo::gather_ended_episodes() {
-  // Each rank fills its own slot of a zeroed buffer, and a sum gives everyone every slot:
-  // first the number of values per rank, then the values.
-  const int world = communicator_->world_size();
-  const int rank = communicator_->rank();
-  torch::Tensor counts = torch::zeros({world}, torch::kFloat64);
-  counts.data_ptr<double>()[rank] = static_cast<double>(ended_episodes_.size());
-  communicator_->sum(counts);
-  const auto* count_of = counts.data_ptr<double>();
-  std::int64_t widest = 0;
-  for (int r = 0; r < world; ++r) widest = std::max(widest, static_cast<std::int64_t>(count_of[r]));
-  if (widest > 0) {
-    torch::Tensor values = torch::zeros({world, widest}, torch::kFloat64);
-    std::copy(ended_episodes_.begin(), ended_episodes_.end(), values[rank].data_ptr<double>());
-    communicator_->sum(values);
-    // In rank order, so that the episode statistics are the same on every rank.
-    for (int r = 0; r < world; ++r) {
-      const double* row = values[r].data_ptr<double>();
-      for (std::int64_t i = 0; i + 1 < static_cast<std::int64_t>(count_of[r]); i += 2) {
-        episodes_.add(row[i], static_cast<std::int64_t>(row[i + 1]));
-      }
+  // In rank order, so that the episode statistics are the same on every rank.
+  communicator_->gather(ended_episodes_, [this](std::span<const double> rank_episodes) {
+    for (std::size_t i = 0; i + 1 < rank_episodes.size(); i += 2) {
+      episodes_.add(rank_episodes[i], static_cast<std::int64_t>(rank_episodes[i + 1]));
     }
-  }
+  });
   ended_episodes_.clear();
 }
 
@@ -276,7 +263,7 @@ PpoUpdateStatistics Ppo::update() {
       const PpoLossStatistics loss = gradient_ ? gradient_->compute(minibatch, *policy_, ppo)
                                                : autograd_ppo_gradient(minibatch, *policy_, ppo);
       // DD-PPO: the gradient of the minibatch of every rank together.
-      if (communicator_->world_size() > 1) average_over_ranks(policy_->flat_gradients());
+      average_over_ranks(policy_->flat_gradients());
       clip_gradient_norm(policy_->flat_gradients(), ppo.max_grad_norm);
       optimizer_.step();
       sum_pg += loss.policy_gradient_loss;
@@ -289,15 +276,11 @@ PpoUpdateStatistics Ppo::update() {
     }
   }
   n_updates_ += ppo.n_epochs;
-  if (communicator_->world_size() > 1) {
-    // Report the losses of every rank's minibatches, the same on every rank.
-    torch::Tensor sums =
-        torch::tensor({sum_pg, sum_value, sum_entropy, sum_kl, sum_clip}, torch::kFloat64);
-    average_over_ranks(sums);
-    const auto* values = sums.data_ptr<double>();
-    sum_pg = values[0], sum_value = values[1], sum_entropy = values[2], sum_kl = values[3],
-    sum_clip = values[4];
-  }
+  // Report the losses of every rank's minibatches, the same on every rank.
+  std::array<double, 5> sums{sum_pg, sum_value, sum_entropy, sum_kl, sum_clip};
+  average_over_ranks(std::span<double>(sums));
+  sum_pg = sums[0], sum_value = sums[1], sum_entropy = sums[2], sum_kl = sums[3],
+  sum_clip = sums[4];
   const double count = static_cast<double>(minibatches);
   statistics.policy_gradient_loss = sum_pg / count;
   statistics.value_loss = sum_value / count;

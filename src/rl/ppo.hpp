@@ -115,6 +115,13 @@ class Ppo {
   void load_counters_state(const nlohmann::json& state);
 
  private:
+  /// One step of a rollout before the environments step: the policy's means and values of
+  /// the last observations, the sampled actions (into the buffer's row `t`, clipped into
+  /// clipped_actions_) and their log-probabilities.
+  void sample_actions(std::int64_t t, std::span<const double> stds, double log_normaliser);
+  /// The environments' step `step` into the buffer's row `t`: rewards (bootstrapped at time
+  /// limits), dones, and the episodes that ended.
+  void record_step(std::int64_t t, const VectorStep& step);
   VectorEnv& env_;
   TrainingConfig config_;
   std::int64_t observation_size_;
@@ -139,7 +146,9 @@ class Ppo {
   /// Episodes ended in this rollout (return, length), gathered over the ranks at its end.
   std::vector<double> ended_episodes_;
   void gather_ended_episodes();
-  void average_over_ranks(torch::Tensor values);
+  /// Communicator::average of a tensor or a span of doubles, timed.
+  template <typename Values>
+  void average_over_ranks(Values values);
   bool started_ = false;
   std::int64_t num_timesteps_ = 0;
   std::int64_t iterations_ = 0;

@@ -13,8 +13,10 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <unordered_set>
 #include <vector>
 
+#include "view/client_state.hpp"
 #include "view/drive_control.hpp"
 #include "view/origin_check.hpp"
 #include "view/view_error.hpp"
@@ -61,7 +63,8 @@ constexpr std::size_t kMaxQueuedTexts = 64;
 }  // namespace
 
 /// One browser's WebSocket: frames are written by the server's timer, one message at a
-/// time; a read loop notices when the browser goes away.
+/// time; a read loop notices when the browser goes away. Its `state` (view/client_state.hpp)
+/// changes only through Impl::transition.
 struct ViewClient : std::enable_shared_from_this<ViewClient> {
   explicit ViewClient(tcp::socket&& socket) : stream(std::move(socket)) {}
 
@@ -72,11 +75,8 @@ struct ViewClient : std::enable_shared_from_this<ViewClient> {
   std::deque<std::string> texts;  ///< Text messages waiting (driving replies), oldest first.
   std::uint64_t id = 0;           ///< Numbers the browsers for the DriveControl.
   std::uint64_t last_frame = 0;   ///< Number of the last frame sent.
-  bool open = false;              ///< Handshake done, not yet closed.
-  bool writing = false;
-  bool end_sent = false;
-  bool awaits_end = false;  ///< Connected when end() was called, and not yet closed.
-  SteadyClock::time_point write_started;
+  ClientState state = ClientState::kHandshaking;
+  SteadyClock::time_point write_started;  ///< When the write (or close) under way started.
 };
 
 struct ViewServer::Impl {
@@ -115,6 +115,8 @@ struct ViewServer::Impl {
   std::uint64_t next_client_id = 1;
   std::string end_reason;
   bool ended = false;
+  // The clients connected when end() was carried out that are not closed yet.
+  std::unordered_set<const ViewClient*> end_audience;
 
   // Read from any thread.
   std::atomic<std::size_t> num_clients{0};
@@ -161,8 +163,21 @@ struct ViewServer::Impl {
   /// everything sent before, then forgets the client.
   void close(const std::shared_ptr<ViewClient>& client);
   void notify();
-  /// Counts `client` out of those end() waits for.
-  void end_delivered(ViewClient& client);
+  /// Counts one client out of those end() waits for.
+  void end_delivered();
+  /// Moves `client` to its next state (view/client_state.hpp).
+  static void transition(ViewClient& client, ClientEvent event) {
+    client.state = next_client_state(client.state, event);
+  }
+  /// Starts writing `buffer` as the write `event` says (text or binary).
+  template <typename Buffer, typename Handler>
+  static void start_write(const std::shared_ptr<ViewClient>& client, ClientEvent event,
+                          const Buffer& buffer, bool binary, Handler&& on_written) {
+    transition(*client, event);
+    client->stream.binary(binary);
+    client->write_started = SteadyClock::now();
+    client->stream.async_write(buffer, std::forward<Handler>(on_written));
+  }
 };
 
 void ViewServer::Impl::listen() {
@@ -341,7 +356,7 @@ void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
   auto held = std::make_shared<http::request<http::string_body>>(request);
   client->stream.async_accept(*held, [this, client, held](beast::error_code error) {
     if (error) return;
-    client->open = true;
+    transition(*client, ClientEvent::kAccepted);
     client->id = next_client_id++;
     clients.push_back(client);
     if (drive) queue_text(client, drive->status_message(client->id));
@@ -374,7 +389,7 @@ void ViewServer::Impl::read_messages(const std::shared_ptr<ViewClient>& client) 
 }
 
 void ViewServer::Impl::queue_text(const std::shared_ptr<ViewClient>& client, std::string text) {
-  if (!client->open || client->texts.size() >= kMaxQueuedTexts) return;
+  if (!is_open(client->state) || client->texts.size() >= kMaxQueuedTexts) return;
   client->texts.push_back(std::move(text));
   send(client);
 }
@@ -398,14 +413,14 @@ void ViewServer::Impl::send_acknowledgement() {
 }
 
 void ViewServer::Impl::drop(const std::shared_ptr<ViewClient>& client) {
-  if (!client->open) return;
-  client->open = false;
+  if (!is_open(client->state)) return;
+  transition(*client, ClientEvent::kDropped);
   beast::error_code ignored;
   beast::get_lowest_layer(client->stream).socket().close(ignored);
   clients.remove(client);
   num_clients.store(clients.size());
   if (drive && drive->disconnect(client->id)) send_drive_statuses();
-  if (client->awaits_end) end_delivered(*client);
+  if (end_audience.erase(client.get()) > 0) end_delivered();
   notify();
 }
 
@@ -415,7 +430,7 @@ void ViewServer::Impl::tick() {
   // Copy: send() and drop() may change the list.
   const std::vector<std::shared_ptr<ViewClient>> current(clients.begin(), clients.end());
   for (const std::shared_ptr<ViewClient>& client : current) {
-    if (client->writing) {
+    if (is_writing(client->state)) {
       if (now - client->write_started > timeout) drop(client);
       continue;
     }
@@ -440,22 +455,20 @@ void ViewServer::Impl::start_ticking() {
 }
 
 void ViewServer::Impl::send(const std::shared_ptr<ViewClient>& client) {
-  if (!client->open || client->writing) return;
+  if (client->state != ClientState::kIdle) return;
   const auto on_text_written = [this, client](beast::error_code error, std::size_t) {
-    client->writing = false;
     if (error) {
       drop(client);
       return;
     }
+    transition(*client, ClientEvent::kWritten);
     send(client);  // the next text, or frames
   };
-  if (!client->texts.empty() && !client->end_sent) {
+  if (!client->texts.empty()) {
     client->text = std::move(client->texts.front());
     client->texts.pop_front();
-    client->stream.binary(false);
-    client->writing = true;
-    client->write_started = SteadyClock::now();
-    client->stream.async_write(net::buffer(client->text), on_text_written);
+    start_write(client, ClientEvent::kTextStarted, net::buffer(client->text), false,
+                on_text_written);
     return;
   }
   if (!frames) return;
@@ -465,42 +478,34 @@ void ViewServer::Impl::send(const std::shared_ptr<ViewClient>& client) {
   client->last_frame = collected.newest;
   frames_skipped += collected.skipped;
   const auto on_written = [this, client](beast::error_code error, std::size_t) {
-    client->writing = false;
     if (error) {
       drop(client);
       return;
     }
-    if (client->end_sent) close(client);
+    transition(*client, ClientEvent::kWritten);
+    if (client->state == ClientState::kClosing) close(client);  // the end message went out
   };
   if (!client->outgoing.empty()) {
     const std::size_t count = client->outgoing.size() / frames->frame_size();
     ++messages_sent;
     frames_sent += count;
-    client->stream.binary(true);
-    client->writing = true;
-    client->write_started = SteadyClock::now();
-    client->stream.async_write(
-        net::buffer(client->outgoing.data(), client->outgoing.size() * sizeof(double)), on_written);
-  } else if (ended && !client->end_sent) {
-    client->end_sent = true;
+    start_write(client, ClientEvent::kFramesStarted,
+                net::buffer(client->outgoing.data(), client->outgoing.size() * sizeof(double)),
+                true, on_written);
+  } else if (ended) {
     client->text = nlohmann::json{{"type", "end"}, {"reason", end_reason}}.dump();
-    client->stream.binary(false);
-    client->writing = true;
-    client->write_started = SteadyClock::now();
-    client->stream.async_write(net::buffer(client->text), on_written);
+    start_write(client, ClientEvent::kEndStarted, net::buffer(client->text), false, on_written);
   }
 }
 
-void ViewServer::Impl::end_delivered(ViewClient& client) {
-  client.awaits_end = false;
+void ViewServer::Impl::end_delivered() {
   const std::lock_guard lock(wait_mutex);
   if (awaiting_end > 0) --awaiting_end;
   changed.notify_all();
 }
 
 void ViewServer::Impl::close(const std::shared_ptr<ViewClient>& client) {
-  client->writing = true;  // nothing more is sent
-  client->write_started = SteadyClock::now();
+  client->write_started = SteadyClock::now();  // kClosing: nothing more is sent
   client->stream.async_close(websocket::close_code::normal,
                              [this, client](beast::error_code) { drop(client); });
 }
@@ -570,7 +575,10 @@ void ViewServer::end(const std::string& reason, std::chrono::milliseconds timeou
   net::post(impl_->io, [impl = impl_.get(), reason] {
     impl->end_reason = reason;
     impl->ended = true;
-    for (const std::shared_ptr<ViewClient>& client : impl->clients) client->awaits_end = true;
+    impl->end_audience.clear();
+    for (const std::shared_ptr<ViewClient>& client : impl->clients) {
+      impl->end_audience.insert(client.get());
+    }
     const std::lock_guard lock(impl->wait_mutex);
     impl->end_posted = true;
     impl->awaiting_end = impl->clients.size();
