@@ -24,22 +24,35 @@ struct RenderOptions {
   VideoOptions video;
 };
 
-void render_one(const std::string& record_path, const VideoOptions& options) {
-  const std::vector<RecordedStep> steps = read_record_file(record_path).steps;
-  VideoRecorder video(RobotModel::default_model(), options);
+/// The one walk through a record's episodes: `on_episode(episode)` as each starts, then
+/// `on_step(step, episode_return)` for each of its steps, with the return before the step
+/// (a row holds the state at t and the reward of the step taken from it).
+template <typename OnEpisode, typename OnStep>
+void walk_episodes(const std::vector<RecordedStep>& steps, OnEpisode&& on_episode,
+                   OnStep&& on_step) {
   int episode = -1;
   double episode_return = 0.0;
   for (const RecordedStep& step : steps) {
     if (step.episode != episode) {
       episode = step.episode;
       episode_return = 0.0;
-      video.start_episode(episode);
+      on_episode(episode);
     }
-    // A row holds the state at t and the reward of the step taken from it.
-    video.add(step.pose, step.time, episode_return, base_pitch(step.pose.base_orientation),
-              step.command ? &*step.command : nullptr, step.measured ? &*step.measured : nullptr);
+    on_step(step, episode_return);
     episode_return += step.reward;
   }
+}
+
+void render_one(const std::string& record_path, const VideoOptions& options) {
+  const std::vector<RecordedStep> steps = read_record_file(record_path).steps;
+  VideoRecorder video(RobotModel::default_model(), options);
+  walk_episodes(
+      steps, [&video](int episode) { video.start_episode(episode); },
+      [&video](const RecordedStep& step, double episode_return) {
+        video.add(step.pose, step.time, episode_return, base_pitch(step.pose.base_orientation),
+                  step.command ? &*step.command : nullptr,
+                  step.measured ? &*step.measured : nullptr);
+      });
   video.close();
   std::cout << "video " << options.path.string() << ": " << video.frames() << " frames at "
             << options.fps << " frames/s from " << steps.size() << " steps" << std::endl;
@@ -57,28 +70,26 @@ std::vector<PaneFrame> pane_frames(const std::vector<RecordedStep>& steps, const
   std::vector<PaneFrame> frames;
   FrameClock clock(fps);
   int episode = -1;
-  double episode_return = 0.0;
-  for (const RecordedStep& step : steps) {
-    if (step.episode != episode) {
-      episode = step.episode;
-      episode_return = 0.0;
-      clock.start_episode();
-    }
-    if (clock.take(step.time)) {
-      FrameCaption caption;
-      if (overlay) {
-        caption = episode_caption(episode, step.time, episode_return,
-                                  base_pitch(step.pose.base_orientation));
-        caption.titles = "record\n" + caption.titles;
-        caption.values = label + "\n" + caption.values;
-        if (step.command && step.measured) {
-          append_velocity_caption(caption, *step.command, *step.measured);
+  walk_episodes(
+      steps,
+      [&](int started) {
+        episode = started;
+        clock.start_episode();
+      },
+      [&](const RecordedStep& step, double episode_return) {
+        if (!clock.take(step.time)) return;
+        FrameCaption caption;
+        if (overlay) {
+          caption = episode_caption(episode, step.time, episode_return,
+                                    base_pitch(step.pose.base_orientation));
+          caption.titles = "record\n" + caption.titles;
+          caption.values = label + "\n" + caption.values;
+          if (step.command && step.measured) {
+            append_velocity_caption(caption, *step.command, *step.measured);
+          }
         }
-      }
-      frames.push_back({step.pose, std::move(caption)});
-    }
-    episode_return += step.reward;
-  }
+        frames.push_back({step.pose, std::move(caption)});
+      });
   return frames;
 }
 

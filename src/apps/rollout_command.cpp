@@ -99,128 +99,152 @@ struct VelocityTrace {
   }
 };
 
-void run_rollout(const RolloutOptions& options) {
-  EnvOptions env_options =
+/// What a rollout runs and writes: the environment and its controller, and the optional
+/// velocity-task pieces, live view, record file and video.
+struct Rollout {
+  EnvOptions env_options;
+  std::unique_ptr<Env> env;
+  std::unique_ptr<Controller> controller;
+  VelocityEnv* velocity = nullptr;  // In env, for a velocity task.
+  std::optional<VelocityCommandSchedule> schedule;
+  VelocityTrace trace;
+  std::optional<LiveView> view;
+  std::optional<EpisodeRecorder> recorder;
+  std::optional<VideoRecorder> video;
+};
+
+/// The environment (from a random evaluation start unless --exact-start), its controller
+/// and the velocity task's command schedule; refuses options that do not fit.
+void make_env_and_controller(const RolloutOptions& options, Rollout& rollout) {
+  rollout.env_options =
       run_env_options(options.env_id, options.model, parse_env_options(options.env_options));
   if (!options.exact_start) {
-    const EnvOptions start = evaluation_start_options(options.env_id, env_options);
+    const EnvOptions start = evaluation_start_options(options.env_id, rollout.env_options);
     if (!start.empty()) {
       std::cout << "random initial state: " << format_env_options(start)
                 << " (--exact-start: the environment's own)" << std::endl;
     }
-    env_options.insert(env_options.end(), start.begin(), start.end());
+    rollout.env_options.insert(rollout.env_options.end(), start.begin(), start.end());
   }
-  std::unique_ptr<Env> env = make_env(options.env_id, env_options);
-  std::unique_ptr<Controller> controller =
-      make_run_controller(options.env_id, options.controller, options.model, env_options, *env);
-  VelocityEnv* velocity = find_velocity_env(*env);
-  if (velocity == nullptr && (!options.commands_path.empty() || !options.plot_prefix.empty())) {
+  rollout.env = make_env(options.env_id, rollout.env_options);
+  rollout.controller = make_run_controller(options.env_id, options.controller, options.model,
+                                           rollout.env_options, *rollout.env);
+  rollout.velocity = find_velocity_env(*rollout.env);
+  if (rollout.velocity == nullptr &&
+      (!options.commands_path.empty() || !options.plot_prefix.empty())) {
     throw std::invalid_argument(
         "--commands and --plot need a velocity task (Upkie-*-Velocity), not " + options.env_id);
   }
-  std::optional<VelocityCommandSchedule> schedule;
   if (!options.commands_path.empty()) {
-    schedule.emplace(VelocityCommandSchedule::load(options.commands_path));
+    rollout.schedule.emplace(VelocityCommandSchedule::load(options.commands_path));
   }
   if (!options.plot_prefix.empty()) find_gnuplot();  // refuse at once, not after the work
-  VelocityTrace trace;
-  std::optional<LiveView> view;
+}
+
+/// The live view, the record file and the video, in that order.
+void open_outputs(const RolloutOptions& options, Rollout& rollout) {
+  Env& env = *rollout.env;
   if (options.view.enabled) {
-    if (env->full_observation() == nullptr) {
+    if (env.full_observation() == nullptr) {
       throw std::runtime_error("--view needs an environment with full observations");
     }
     ViewSession session;
     session.title =
         options.env_id + ": " + (options.model.empty() ? options.controller : options.model);
-    session.timestep = env->timestep();
-    session.action_names = env->action_space().names;
-    if (velocity != nullptr) add_velocity_charts(session);
-    view.emplace(options.view, std::move(session));
+    session.timestep = env.timestep();
+    session.action_names = env.action_space().names;
+    if (rollout.velocity != nullptr) add_velocity_charts(session);
+    rollout.view.emplace(options.view, std::move(session));
   }
   // Outputs last, once everything else is known to work: a failure above (a busy port, a
   // bad controller) leaves an existing record file as it was. Bad paths are still refused
   // before the first episode.
-  std::optional<EpisodeRecorder> recorder;
-  if (!options.record_path.empty()) recorder.emplace(options.record_path);
-  std::optional<VideoRecorder> video;
-  if (!options.video.path.empty()) video.emplace(RobotModel::default_model(), options.video);
-  if (recorder) recorder->write_header(*env);
-  if (view) view->wait_for_browsers();
+  if (!options.record_path.empty()) rollout.recorder.emplace(options.record_path);
+  if (!options.video.path.empty()) {
+    rollout.video.emplace(RobotModel::default_model(), options.video);
+  }
+  if (rollout.recorder) rollout.recorder->write_header(env);
+  if (rollout.view) rollout.view->wait_for_browsers();
+}
 
-  std::vector<float> observation(env->observation_space().size());
-  std::vector<float> action(env->action_space().size());
+/// Buffers of the episodes' loop, made once.
+struct RolloutBuffers {
+  std::vector<float> observation;
+  std::vector<float> action;
   std::array<double, kVelocityViewFields> velocity_fields{};
-  const std::span<const double> view_extra =
-      velocity != nullptr ? std::span<const double>(velocity_fields) : std::span<const double>();
+};
+
+/// Publishes the step about to be taken to the live view.
+void publish_step(Rollout& rollout, RolloutBuffers& buffers, int length, double total) {
+  std::span<const double> extra;
+  if (rollout.velocity != nullptr) {
+    write_velocity_fields(rollout.velocity->command(), rollout.velocity->measured_velocity(),
+                          buffers.velocity_fields);
+    extra = buffers.velocity_fields;
+  }
+  rollout.view->publish(*rollout.env->full_observation(), length, total, buffers.action, extra);
+}
+
+/// Runs episode `episode` to its end or options.max_steps and prints its line.
+EpisodeOutcome roll_out_episode(const RolloutOptions& options, Rollout& rollout,
+                                RolloutBuffers& buffers, int episode) {
+  Env& env = *rollout.env;
+  VelocityEnv* velocity = rollout.velocity;
+  if (rollout.schedule) velocity->set_command_override(rollout.schedule->at(0.0));
+  env.reset(options.seed + static_cast<std::uint64_t>(episode), buffers.observation);
+  rollout.controller->reset();
+  EpisodeOutcome outcome;
+  double total = 0.0;
+  if (rollout.video) {
+    rollout.video->start_episode(episode);
+    add_video_frame(*rollout.video, env, total);
+  }
+  int length = 0;
+  const char* ending = "max-steps";
+  if (rollout.view) rollout.view->start_episode(episode);
+  while (length < options.max_steps) {
+    rollout.controller->act(buffers.observation, buffers.action);
+    if (rollout.view) publish_step(rollout, buffers, length, total);
+    if (rollout.recorder) rollout.recorder->before_step(env, buffers.observation);
+    // The observation this step returns shows the command of the next one.
+    if (rollout.schedule) {
+      velocity->set_command_override(rollout.schedule->at((length + 1) * env.timestep()));
+    }
+    const StepResult result = env.step(buffers.action, buffers.observation);
+    if (rollout.recorder) rollout.recorder->after_step(episode, length, buffers.action, result);
+    total += result.reward;
+    ++length;
+    if (velocity != nullptr) {
+      outcome.tracking.add(*velocity, result.terminated);
+      if (episode == 0 && !options.plot_prefix.empty()) {
+        rollout.trace.add(length * env.timestep(), *velocity);
+      }
+    }
+    if (rollout.video) add_video_frame(*rollout.video, env, total);
+    if (result.terminated || result.truncated) {
+      ending = result.terminated ? "terminated" : "truncated";
+      outcome.terminated = result.terminated;
+      break;
+    }
+  }
+  outcome.total_reward = total;
+  outcome.length = length;
+  std::cout << "episode " << episode << ": return " << total << ", length " << length << " ("
+            << ending << ")" << std::endl;
+  if (options.info) {
+    const Observation* full = env.full_observation();
+    std::cout << "info: " << (full ? observation_to_json(*full).dump() : "{}") << std::endl;
+  }
+  return outcome;
+}
+
+/// The summary of the episodes: mean return and length, tracking errors, --json.
+void report_episodes(const RolloutOptions& options, const std::vector<EpisodeOutcome>& outcomes) {
   std::vector<double> returns;
   std::vector<int> lengths;
-  std::vector<EpisodeOutcome> outcomes;
-  for (int episode = 0; episode < options.episodes; ++episode) {
-    if (schedule) velocity->set_command_override(schedule->at(0.0));
-    env->reset(options.seed + static_cast<std::uint64_t>(episode), observation);
-    controller->reset();
-    EpisodeOutcome outcome;
-    double total = 0.0;
-    if (video) {
-      video->start_episode(episode);
-      add_video_frame(*video, *env, total);
-    }
-    int length = 0;
-    const char* ending = "max-steps";
-    if (view) view->start_episode(episode);
-    while (length < options.max_steps) {
-      controller->act(observation, action);
-      if (view) {
-        if (velocity != nullptr) {
-          write_velocity_fields(velocity->command(), velocity->measured_velocity(),
-                                velocity_fields);
-        }
-        view->publish(*env->full_observation(), length, total, action, view_extra);
-      }
-      if (recorder) recorder->before_step(*env, observation);
-      // The observation this step returns shows the command of the next one.
-      if (schedule) velocity->set_command_override(schedule->at((length + 1) * env->timestep()));
-      const StepResult result = env->step(action, observation);
-      if (recorder) recorder->after_step(episode, length, action, result);
-      total += result.reward;
-      ++length;
-      if (velocity != nullptr) {
-        outcome.tracking.add(*velocity, result.terminated);
-        if (episode == 0 && !options.plot_prefix.empty()) {
-          trace.add(length * env->timestep(), *velocity);
-        }
-      }
-      if (video) add_video_frame(*video, *env, total);
-      if (result.terminated || result.truncated) {
-        ending = result.terminated ? "terminated" : "truncated";
-        outcome.terminated = result.terminated;
-        break;
-      }
-    }
-    returns.push_back(total);
-    lengths.push_back(length);
-    outcome.total_reward = total;
-    outcome.length = length;
-    outcomes.push_back(outcome);
-    std::cout << "episode " << episode << ": return " << total << ", length " << length << " ("
-              << ending << ")" << std::endl;
-    if (options.info) {
-      const Observation* full = env->full_observation();
-      std::cout << "info: " << (full ? observation_to_json(*full).dump() : "{}") << std::endl;
-    }
-  }
-  if (recorder) recorder->close();
-  if (view) view->end("the rollout is over (" + std::to_string(options.episodes) + " episodes)");
-  if (video) {
-    video->close();
-    std::cout << "video " << options.video.path.string() << ": " << video->frames() << " frames at "
-              << options.video.fps << " frames/s" << std::endl;
-  }
-
-  if (!options.plot_prefix.empty()) {
-    trace.draw(options.plot_prefix,
-               options.env_id +
-                   ", episode 0: " + (options.model.empty() ? options.controller : options.model));
+  for (const EpisodeOutcome& outcome : outcomes) {
+    returns.push_back(outcome.total_reward);
+    lengths.push_back(outcome.length);
   }
   const EpisodeSummary summary = summarize_episodes(outcomes);
   const double mean = summary.mean_return;
@@ -239,6 +263,34 @@ void run_rollout(const RolloutOptions& options) {
     add_tracking_json(json, summary);
     std::cout << json.dump() << std::endl;
   }
+}
+
+void run_rollout(const RolloutOptions& options) {
+  Rollout rollout;
+  make_env_and_controller(options, rollout);
+  open_outputs(options, rollout);
+  RolloutBuffers buffers;
+  buffers.observation.resize(rollout.env->observation_space().size());
+  buffers.action.resize(rollout.env->action_space().size());
+  std::vector<EpisodeOutcome> outcomes;
+  for (int episode = 0; episode < options.episodes; ++episode) {
+    outcomes.push_back(roll_out_episode(options, rollout, buffers, episode));
+  }
+  if (rollout.recorder) rollout.recorder->close();
+  if (rollout.view) {
+    rollout.view->end("the rollout is over (" + std::to_string(options.episodes) + " episodes)");
+  }
+  if (rollout.video) {
+    rollout.video->close();
+    std::cout << "video " << options.video.path.string() << ": " << rollout.video->frames()
+              << " frames at " << options.video.fps << " frames/s" << std::endl;
+  }
+  if (!options.plot_prefix.empty()) {
+    rollout.trace.draw(options.plot_prefix,
+                       options.env_id + ", episode 0: " +
+                           (options.model.empty() ? options.controller : options.model));
+  }
+  report_episodes(options, outcomes);
 }
 
 }  // namespace

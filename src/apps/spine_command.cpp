@@ -11,9 +11,9 @@
 #include <string>
 
 #include "apps/commands.hpp"
-#include "apps/option_checks.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/live_view.hpp"
+#include "apps/option_checks.hpp"
 #include "model/robot_model.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "sim/mujoco_simulation.hpp"
@@ -104,6 +104,43 @@ std::unique_ptr<PhysicsSimulation> make_physics(const std::string& backend,
   return std::make_unique<BulletSimulation>(std::move(model), config);
 }
 
+/// The server's settings: shared memory, pacing, latency and the model's torque limits.
+SpineServerConfig spine_config(const SpineOptions& options, const PhysicsSimulation& simulation,
+                               const PhysicsConfig& physics, const RobotModel& model) {
+  SpineServerConfig config;
+  config.shm_name = options.shm_name;
+  config.shm_mode = parse_shm_mode(options.shm_mode);
+  config.real_time = options.nb_substeps == 0;
+  config.frequency = options.spine_frequency;
+  config.default_servo_gains = simulation.servo_gains();
+  // In simulation steps: one per cycle in real time, one per action on request.
+  const double step_duration = physics.physics_timestep * physics.nb_substeps;
+  config.observation_delay_steps =
+      static_cast<int>(std::lround(options.observation_latency / step_duration));
+  config.cycle_jitter = options.cycle_jitter;
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    config.maximum_torques[i] = model.servo_limits(i).effort;
+  }
+  return config;
+}
+
+/// What the spine serves, and how, in the log.
+void log_spine_start(const SpineOptions& options, const PhysicsConfig& physics,
+                     const SpineServerConfig& config) {
+  if (config.real_time) {
+    spdlog::info("spine {}: {}, real time, {} Hz, one {} s physics step per cycle",
+                 options.shm_name, options.backend, options.spine_frequency,
+                 physics.physics_timestep);
+  } else {
+    spdlog::info("spine {}: {}, on request, {} physics steps of {} s per action", options.shm_name,
+                 options.backend, physics.nb_substeps, physics.physics_timestep);
+  }
+  if (config.observation_delay_steps > 0 || config.cycle_jitter > 0.0) {
+    spdlog::info("spine {}: observations {} simulation steps old, cycles up to {} ms late",
+                 options.shm_name, config.observation_delay_steps, 1e3 * config.cycle_jitter);
+  }
+}
+
 void run_spine(const SpineOptions& options) {
   if (!(options.spine_frequency > 0.0)) {
     throw std::invalid_argument("--spine-frequency must be positive");
@@ -121,20 +158,7 @@ void run_spine(const SpineOptions& options) {
   const std::unique_ptr<PhysicsSimulation> engine = make_physics(options.backend, model, physics);
   PhysicsSimulation& simulation = *engine;
 
-  SpineServerConfig config;
-  config.shm_name = options.shm_name;
-  config.shm_mode = parse_shm_mode(options.shm_mode);
-  config.real_time = real_time;
-  config.frequency = options.spine_frequency;
-  config.default_servo_gains = simulation.servo_gains();
-  // In simulation steps: one per cycle in real time, one per action on request.
-  const double step_duration = physics.physics_timestep * physics.nb_substeps;
-  config.observation_delay_steps =
-      static_cast<int>(std::lround(options.observation_latency / step_duration));
-  config.cycle_jitter = options.cycle_jitter;
-  for (std::size_t i = 0; i < kNumServos; ++i) {
-    config.maximum_torques[i] = model->servo_limits(i).effort;
-  }
+  const SpineServerConfig config = spine_config(options, simulation, physics, *model);
 
   std::string error;
   {
@@ -158,19 +182,7 @@ void run_spine(const SpineOptions& options) {
             apply_push(options, simulation, observation);
           });
     }
-    if (real_time) {
-      spdlog::info("spine {}: {}, real time, {} Hz, one {} s physics step per cycle",
-                   options.shm_name, options.backend, options.spine_frequency,
-                   physics.physics_timestep);
-    } else {
-      spdlog::info("spine {}: {}, on request, {} physics steps of {} s per action",
-                   options.shm_name, options.backend, physics.nb_substeps,
-                   physics.physics_timestep);
-    }
-    if (config.observation_delay_steps > 0 || config.cycle_jitter > 0.0) {
-      spdlog::info("spine {}: observations {} simulation steps old, cycles up to {} ms late",
-                   options.shm_name, config.observation_delay_steps, 1e3 * config.cycle_jitter);
-    }
+    log_spine_start(options, physics, config);
     server.run(interrupt_requested);
     error = server.error();
     if (view) view->end(error.empty() ? "the spine is over" : "the spine shut down: " + error);

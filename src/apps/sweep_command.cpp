@@ -137,8 +137,30 @@ void run_one(const Sweep& sweep, const SweepRun& run) {
             << outcome.evaluation.mean_length << std::endl;
 }
 
+/// Prints how the child process of `run` ended; false when it failed (not stopped by
+/// an interrupt). `stamp`: "[elapsed]"; `progress`: "[elapsed] finished/pending".
+bool report_exit(const Sweep& sweep, const SweepRun& run, const ChildExit& child, bool stopping,
+                 const std::string& stamp, const std::string& progress) {
+  const std::optional<SweepOutcome> outcome =
+      child.exit_code == 0 ? read_sweep_outcome(sweep.run_dir(run)) : std::nullopt;
+  if (outcome) {
+    std::cout << progress << " done " << run.name << ": evaluation return " << std::fixed
+              << std::setprecision(1) << outcome->evaluation.mean_return << " +- "
+              << outcome->evaluation.std_return << std::defaultfloat << std::endl;
+    return true;
+  }
+  if (stopping) {
+    std::cout << stamp << " stopped " << run.name << std::endl;
+    return true;
+  }
+  std::cout << progress << " FAILED " << run.name << " (exit " << child.exit_code
+            << "): " << last_line(sweep.log_path(run)) << std::endl;
+  return false;
+}
+
 /// Runs the unfinished runs of the sweep as child processes (`upkie-rl sweep DIR --run I`),
-/// `jobs` at a time. Returns the number of runs that failed.
+/// `jobs` at a time. Returns the number of runs that failed. About 60 lines: one scheduling
+/// loop whose state (running, next, stopping) is clearer in one place than split.
 int run_pending(const Sweep& sweep, int jobs) {
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < sweep.plan.runs.size(); ++i) {
@@ -189,21 +211,10 @@ int run_pending(const Sweep& sweep, int jobs) {
     const SweepRun& run = sweep.plan.runs[found->second];
     running.erase(found);
     ++finished;
-    const std::optional<SweepOutcome> outcome =
-        child->exit_code == 0 ? read_sweep_outcome(sweep.run_dir(run)) : std::nullopt;
-    if (outcome) {
-      std::cout << "[" << elapsed() << "] " << finished << "/" << pending.size() << " done "
-                << run.name << ": evaluation return " << std::fixed << std::setprecision(1)
-                << outcome->evaluation.mean_return << " +- " << outcome->evaluation.std_return
-                << std::defaultfloat << std::endl;
-    } else if (stopping) {
-      std::cout << "[" << elapsed() << "] stopped " << run.name << std::endl;
-    } else {
-      ++failures;
-      std::cout << "[" << elapsed() << "] " << finished << "/" << pending.size() << " FAILED "
-                << run.name << " (exit " << child->exit_code
-                << "): " << last_line(sweep.log_path(run)) << std::endl;
-    }
+    const std::string stamp = "[" + elapsed() + "]";
+    const std::string progress =
+        stamp + " " + std::to_string(finished) + "/" + std::to_string(pending.size());
+    if (!report_exit(sweep, run, *child, stopping, stamp, progress)) ++failures;
   }
   if (stopping) {
     throw std::runtime_error("interrupted; `upkie-rl sweep " + sweep.directory.string() +

@@ -197,12 +197,11 @@ std::string sweep_group_label(const SweepRun& run) {
   return label;
 }
 
-SweepPlan make_sweep_plan(const TrainingConfig& base, std::vector<std::uint64_t> seeds,
-                          std::vector<SweepAxis> axes, int evaluation_episodes) {
-  if (seeds.empty()) throw std::invalid_argument("a sweep needs at least one seed");
-  if (evaluation_episodes < 1) {
-    throw std::invalid_argument("a sweep evaluates each run on at least one episode");
-  }
+namespace {
+
+// Refuses a seed axis and a key given twice; returns the short keys that several axes
+// share (their runs are named with the full key).
+std::set<std::string> checked_axes(const std::vector<SweepAxis>& axes) {
   std::set<std::string> keys, short_keys_seen, short_keys_repeated;
   for (const SweepAxis& axis : axes) {
     if (axis.key == "seed") throw std::invalid_argument("sweep seeds with --seeds, not --set seed");
@@ -212,6 +211,18 @@ SweepPlan make_sweep_plan(const TrainingConfig& base, std::vector<std::uint64_t>
     if (!short_keys_seen.insert(short_key(axis.key)).second)
       short_keys_repeated.insert(short_key(axis.key));
   }
+  return short_keys_repeated;
+}
+
+}  // namespace
+
+SweepPlan make_sweep_plan(const TrainingConfig& base, std::vector<std::uint64_t> seeds,
+                          std::vector<SweepAxis> axes, int evaluation_episodes) {
+  if (seeds.empty()) throw std::invalid_argument("a sweep needs at least one seed");
+  if (evaluation_episodes < 1) {
+    throw std::invalid_argument("a sweep evaluates each run on at least one episode");
+  }
+  const std::set<std::string> short_keys_repeated = checked_axes(axes);
   SweepPlan plan;
   plan.evaluation_episodes = evaluation_episodes;
   plan.seeds = std::move(seeds);

@@ -78,6 +78,60 @@ std::string checkpoint_name(std::int64_t timesteps) {
   return buffer;
 }
 
+// What train() reports after an iteration: `elapsed` seconds since it started, at
+// `start_timesteps`.
+TrainingProgress progress_of(const Ppo& ppo, std::int64_t total, std::int64_t start_timesteps,
+                             double elapsed, const PpoUpdateStatistics& update) {
+  TrainingProgress progress;
+  progress.timesteps = ppo.num_timesteps();
+  progress.total_timesteps = total;
+  progress.iterations = ppo.iterations();
+  progress.elapsed_seconds = elapsed;
+  progress.steps_per_second =
+      static_cast<double>(progress.timesteps - start_timesteps) / std::max(elapsed, 1e-9);
+  progress.mean_return = ppo.episodes().mean_return();
+  progress.mean_length = ppo.episodes().mean_length();
+  progress.update = update;
+  return progress;
+}
+
+// The scalars logged after an iteration (TensorBoard and progress.csv), into `scalars`.
+void collect_scalars(const TrainingProgress& progress, const Ppo& ppo,
+                     std::span<const std::string_view> reward_term_names,
+                     std::vector<ScalarValue>& scalars) {
+  const PpoUpdateStatistics& update = progress.update;
+  const PpoTimings& timings = ppo.timings();
+  auto f = [](double value) { return static_cast<float>(value); };
+  scalars = {{"time/total_timesteps", f(progress.timesteps)},
+             {"time/iterations", f(progress.iterations)},
+             {"time/fps", f(std::floor(progress.steps_per_second))},
+             {"time/time_elapsed", f(progress.elapsed_seconds)},
+             {"train/loss", f(update.loss)},
+             {"train/policy_gradient_loss", f(update.policy_gradient_loss)},
+             {"train/value_loss", f(update.value_loss)},
+             {"train/entropy_loss", f(update.entropy_loss)},
+             {"train/approx_kl", f(update.approx_kl)},
+             {"train/clip_fraction", f(update.clip_fraction)},
+             {"train/explained_variance", f(update.explained_variance)},
+             {"train/learning_rate", f(update.learning_rate)},
+             {"train/std", f(update.std)},
+             {"train/clip_range", f(update.clip_range)},
+             {"train/n_updates", f(static_cast<double>(update.n_updates))},
+             {"time/env_seconds", f(timings.env_seconds)},
+             {"time/inference_seconds", f(timings.inference_seconds)},
+             {"time/update_seconds", f(timings.update_seconds)}};
+  if (ppo.episodes().size() > 0) {
+    scalars.push_back({"rollout/ep_rew_mean", f(progress.mean_return)});
+    scalars.push_back({"rollout/ep_len_mean", f(progress.mean_length)});
+  }
+  const RewardTermStatistics& terms = ppo.reward_terms();
+  if (terms.size() > 0) {
+    for (std::size_t k = 0; k < reward_term_names.size(); ++k) {
+      scalars.push_back({TrainingRun::reward_term_tag(reward_term_names[k]), f(terms.mean(k))});
+    }
+  }
+}
+
 }  // namespace
 
 std::string local_timestamp() {
@@ -194,10 +248,9 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
                                                  std::shared_ptr<Communicator> communicator,
                                                  bool allow_other_run_dir) {
   if (run_dir && !allow_other_run_dir && is_other_run(checkpoint_path, *run_dir)) {
-    throw std::invalid_argument("run directory " + run_dir->string() +
-                                " is not empty and is not the checkpoint's run (" +
-                                own_run_dir(checkpoint_path).string() +
-                                "); choose an empty one, or pass --force-run-dir");
+    throw std::invalid_argument(
+        "run directory " + run_dir->string() + " is not empty and is not the checkpoint's run (" +
+        own_run_dir(checkpoint_path).string() + "); choose an empty one, or pass --force-run-dir");
   }
   const Checkpoint checkpoint = load_checkpoint(checkpoint_path);
   TrainingConfig config;
@@ -306,48 +359,8 @@ std::filesystem::path TrainingRun::train(
     const PpoUpdateStatistics update = ppo_->iterate();
     if (communicator_->world_size() > 1) normalize_->merge_statistics(sum_over_ranks);
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    TrainingProgress progress;
-    progress.timesteps = ppo_->num_timesteps();
-    progress.total_timesteps = total;
-    progress.iterations = ppo_->iterations();
-    progress.elapsed_seconds = elapsed;
-    progress.steps_per_second =
-        static_cast<double>(progress.timesteps - start_timesteps) / std::max(elapsed, 1e-9);
-    progress.mean_return = ppo_->episodes().mean_return();
-    progress.mean_length = ppo_->episodes().mean_length();
-    progress.update = update;
-
-    const PpoTimings& timings = ppo_->timings();
-    auto f = [](double value) { return static_cast<float>(value); };
-    scalars = {{"time/total_timesteps", f(progress.timesteps)},
-               {"time/iterations", f(progress.iterations)},
-               {"time/fps", f(std::floor(progress.steps_per_second))},
-               {"time/time_elapsed", f(elapsed)},
-               {"train/loss", f(update.loss)},
-               {"train/policy_gradient_loss", f(update.policy_gradient_loss)},
-               {"train/value_loss", f(update.value_loss)},
-               {"train/entropy_loss", f(update.entropy_loss)},
-               {"train/approx_kl", f(update.approx_kl)},
-               {"train/clip_fraction", f(update.clip_fraction)},
-               {"train/explained_variance", f(update.explained_variance)},
-               {"train/learning_rate", f(update.learning_rate)},
-               {"train/std", f(update.std)},
-               {"train/clip_range", f(update.clip_range)},
-               {"train/n_updates", f(static_cast<double>(update.n_updates))},
-               {"time/env_seconds", f(timings.env_seconds)},
-               {"time/inference_seconds", f(timings.inference_seconds)},
-               {"time/update_seconds", f(timings.update_seconds)}};
-    if (ppo_->episodes().size() > 0) {
-      scalars.push_back({"rollout/ep_rew_mean", f(progress.mean_return)});
-      scalars.push_back({"rollout/ep_len_mean", f(progress.mean_length)});
-    }
-    const RewardTermStatistics& terms = ppo_->reward_terms();
-    if (terms.size() > 0) {
-      const std::span<const std::string_view> names = env_->reward_term_names();
-      for (std::size_t k = 0; k < names.size(); ++k) {
-        scalars.push_back({reward_term_tag(names[k]), f(terms.mean(k))});
-      }
-    }
+    const TrainingProgress progress = progress_of(*ppo_, total, start_timesteps, elapsed, update);
+    collect_scalars(progress, *ppo_, env_->reward_term_names(), scalars);
     if (events) {
       events->add_scalars(progress.timesteps, scalars, wall_time());
       csv->write_row(scalars);
