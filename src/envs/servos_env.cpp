@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "sim/random_draws.hpp"
 
@@ -12,12 +13,48 @@ namespace upkie_rl {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr std::size_t kActionKeys = kServoActionKeys.size();
-constexpr std::size_t kObservationKeys = kServoObservationKeys.size();
+constexpr std::size_t kActionKeys = kServoCommandFields.size();
+constexpr std::size_t kObservationKeys = kServoObservationFields.size();
+// position_indices_ marks the first component of each joint's row as its position.
+static_assert(kServoCommandFields[0].member == &ServoCommand::position);
 
 // Observation bounds of servo temperature [deg C] and voltage [V].
 constexpr float kMaxTemperature = 100.0f;
 constexpr float kMaxVoltage = 64.0f;
+
+/// Bounds of one command field of a joint: the joint limits, and [0, kMaxGainScale] for the
+/// gain scales.
+std::pair<float, float> command_bounds(double ServoCommand::*member, const JointLimits& limits) {
+  const auto velocity = static_cast<float>(limits.velocity);
+  const auto effort = static_cast<float>(limits.effort);
+  if (member == &ServoCommand::position) {
+    if (!limits.has_position_limits()) return {-kInf, kInf};
+    return {static_cast<float>(limits.lower), static_cast<float>(limits.upper)};
+  }
+  if (member == &ServoCommand::velocity) return {-velocity, velocity};
+  if (member == &ServoCommand::feedforward_torque) return {-effort, effort};
+  if (member == &ServoCommand::kp_scale || member == &ServoCommand::kd_scale) {
+    return {0.0f, static_cast<float>(ServosEnv::kMaxGainScale)};
+  }
+  if (member == &ServoCommand::maximum_torque) return {0.0f, effort};
+  throw std::logic_error("ServosEnv: no bounds for a servo command field");
+}
+
+/// Bounds of one measured field of a joint. Measured positions and velocities are not
+/// bounded by the command limits: a joint overshoots its velocity limit after a position
+/// step, and Bullet lets a joint rest up to 0.05 rad past a limit. The bounds are what can
+/// be observed (Gymnasium checks it).
+std::pair<float, float> observation_bounds(double ServoObservation::*member,
+                                           const JointLimits& limits) {
+  const auto effort = static_cast<float>(limits.effort);
+  if (member == &ServoObservation::position || member == &ServoObservation::velocity) {
+    return {-kInf, kInf};
+  }
+  if (member == &ServoObservation::torque) return {-effort, effort};
+  if (member == &ServoObservation::temperature) return {0.0f, kMaxTemperature};
+  if (member == &ServoObservation::voltage) return {0.0f, kMaxVoltage};
+  throw std::logic_error("ServosEnv: no bounds for a servo observation field");
+}
 
 /// Stream of the perturbation generator, derived from a reset's seed.
 constexpr std::uint64_t kPerturbationStream = 1;
@@ -41,29 +78,18 @@ ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
         "ServosEnv: perturbations need a physics backend (Bullet or MuJoCo)");
   }
   perturbations_.validate();
-  const float gain = static_cast<float>(kMaxGainScale);
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const JointLimits& limits = model_->servo_limits(i);
-    const float lower = limits.has_position_limits() ? static_cast<float>(limits.lower) : -kInf;
-    const float upper = limits.has_position_limits() ? static_cast<float>(limits.upper) : kInf;
-    const auto velocity = static_cast<float>(limits.velocity);
-    const auto effort = static_cast<float>(limits.effort);
     BoxSpace action;
-    action.add(kServoActionKeys[0], lower, upper);
-    action.add(kServoActionKeys[1], -velocity, velocity);
-    action.add(kServoActionKeys[2], -effort, effort);
-    action.add(kServoActionKeys[3], 0.0f, gain);
-    action.add(kServoActionKeys[4], 0.0f, gain);
-    action.add(kServoActionKeys[5], 0.0f, effort);
-    // Measured positions and velocities are not bounded by the command limits: a joint
-    // overshoots its velocity limit after a position step, and Bullet lets a joint rest up to
-    // 0.05 rad past a limit. The bounds are what can be observed (Gymnasium checks it).
+    for (const ServoCommandField& field : kServoCommandFields) {
+      const auto [lower, upper] = command_bounds(field.member, limits);
+      action.add(std::string(field.key), lower, upper);
+    }
     BoxSpace observation;
-    observation.add(kServoObservationKeys[0], -kInf, kInf);
-    observation.add(kServoObservationKeys[1], -kInf, kInf);
-    observation.add(kServoObservationKeys[2], -effort, effort);
-    observation.add(kServoObservationKeys[3], 0.0f, kMaxTemperature);
-    observation.add(kServoObservationKeys[4], 0.0f, kMaxVoltage);
+    for (const ServoObservationField& field : kServoObservationFields) {
+      const auto [lower, upper] = observation_bounds(field.member, limits);
+      observation.add(std::string(field.key), lower, upper);
+    }
     const std::string joint(kServoNames[i]);
     action_dict_space_.entries.emplace_back(joint, std::move(action));
     observation_dict_space_.entries.emplace_back(joint, std::move(observation));
@@ -159,12 +185,9 @@ void ServosEnv::neutral_action(std::span<float> action) const {
   const ServoAction neutral = neutral_servo_action();
   for (std::size_t i = 0; i < kNumServos; ++i) {
     float* row = action.data() + i * kActionKeys;
-    row[0] = static_cast<float>(neutral[i].position);
-    row[1] = static_cast<float>(neutral[i].velocity);
-    row[2] = static_cast<float>(neutral[i].feedforward_torque);
-    row[3] = static_cast<float>(neutral[i].kp_scale);
-    row[4] = static_cast<float>(neutral[i].kd_scale);
-    row[5] = static_cast<float>(neutral[i].maximum_torque);
+    for (std::size_t k = 0; k < kActionKeys; ++k) {
+      row[k] = static_cast<float>(neutral[i].*kServoCommandFields[k].member);
+    }
   }
 }
 
@@ -177,11 +200,9 @@ void ServosEnv::write_observation(const Observation& full, std::span<float> obse
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const ServoObservation& servo = full.servo[i];
     float* row = observation.data() + i * kObservationKeys;
-    row[0] = static_cast<float>(servo.position);
-    row[1] = static_cast<float>(servo.velocity);
-    row[2] = static_cast<float>(servo.torque);
-    row[3] = static_cast<float>(servo.temperature);
-    row[4] = static_cast<float>(servo.voltage);
+    for (std::size_t k = 0; k < kObservationKeys; ++k) {
+      row[k] = static_cast<float>(servo.*kServoObservationFields[k].member);
+    }
   }
 }
 
@@ -193,7 +214,9 @@ StepResult ServosEnv::step(std::span<const float> action, std::span<float> obser
   clamp_to_space(action_space_, action, flat_buffer_, position_indices_);
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const float* row = flat_buffer_.data() + i * kActionKeys;
-    action_buffer_[i] = ServoCommand{row[0], row[1], row[2], row[3], row[4], row[5]};
+    for (std::size_t k = 0; k < kActionKeys; ++k) {
+      action_buffer_[i].*kServoCommandFields[k].member = row[k];
+    }
   }
   write_observation(step_servos(action_buffer_), observation);
   return StepResult{};

@@ -17,13 +17,6 @@
 
 namespace upkie_rl {
 
-/// Keys of one servo's action, in the flat order.
-inline constexpr std::array<const char*, 6> kServoActionKeys = {
-    "position", "velocity", "feedforward_torque", "kp_scale", "kd_scale", "maximum_torque"};
-/// Keys of one servo's observation, in the flat order.
-inline constexpr std::array<const char*, 5> kServoObservationKeys = {
-    "position", "velocity", "torque", "temperature", "voltage"};
-
 /// Position NaN, velocity 0, feedforward 0, gain scales 1, maximum torque = effort: the
 /// neutral servo commands (the zero controller of the servos environment).
 ServoAction neutral_servo_action(const RobotModel& model);
@@ -36,8 +29,8 @@ ServoAction neutral_servo_action(const RobotModel& model);
 /// limit, feedforward torque to the effort, kp_scale and kd_scale to [0, kMaxGainScale],
 /// maximum_torque to [0, effort].
 ///
-/// As a flat Env: the action is 6 joints x 6 keys (kServoActionKeys), the observation 6
-/// joints x 5 keys (kServoObservationKeys), components named like `left_hip.position`;
+/// As a flat Env: the action is 6 joints x 6 keys (kServoCommandFields), the observation 6
+/// joints x 5 keys (kServoObservationFields), components named like `left_hip.position`;
 /// NaN is legal in the position components only.
 class ServosEnv final : public Env {
  public:
@@ -76,9 +69,9 @@ class ServosEnv final : public Env {
   /// upkie_rl::neutral_servo_action() of this model.
   ServoAction neutral_servo_action() const { return upkie_rl::neutral_servo_action(*model_); }
 
-  /// The action space as one Box per joint (keys kServoActionKeys).
+  /// The action space as one Box per joint (keys kServoCommandFields).
   const DictSpace& action_dict_space() const { return action_dict_space_; }
-  /// The observation space as one Box per joint (keys kServoObservationKeys).
+  /// The observation space as one Box per joint (keys kServoObservationFields).
   const DictSpace& observation_dict_space() const { return observation_dict_space_; }
 
   const RobotModel& model() const { return *model_; }

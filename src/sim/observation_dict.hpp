@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// The nested-dictionary view of an Observation, with the key names the Upkie spine
-/// writes (spine.md section 5): as a JSON tree for logs and `info`, and as msgpack for the
-/// spine link. Neither is built on the step path; the msgpack writer packs straight from
-/// the struct into a caller-owned buffer, without an intermediate tree.
+/// writes (docs/spine.md; declared once in sim/observation_fields.hpp): as a JSON tree for logs and
+/// `info`, and as msgpack for the spine link. Neither is built on the step path; the msgpack writer
+/// packs straight from the struct into a caller-owned buffer, without an intermediate tree.
 ///
 /// Fields the spine writes but the typed Observation does not carry get these simulated
 /// values (documented here so users know they are not measured):
@@ -29,11 +29,9 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/observation.hpp"
+#include "sim/observation_fields.hpp"
 
 namespace upkie_rl {
-
-/// moteus' mode number for position control, written as `servo.<joint>.mode`.
-inline constexpr int kServoModePosition = 10;
 
 /// The observation as a nested JSON object (allocates; for logs and `info`).
 nlohmann::json observation_to_json(const Observation& observation);

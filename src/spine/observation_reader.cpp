@@ -3,6 +3,7 @@
 #include <string>
 #include <string_view>
 
+#include "sim/observation_fields.hpp"
 #include "spine/spine_error.hpp"
 
 namespace upkie_rl {
@@ -35,18 +36,6 @@ const msgpack::object* find(const msgpack::object& map, std::string_view key) {
   return nullptr;
 }
 
-const msgpack::object& require(const msgpack::object& map, const KeyPath& path) {
-  const msgpack::object* value = find(map, path.key);
-  if (value == nullptr) fail(path, "is missing");
-  return *value;
-}
-
-const msgpack::object& require_map(const msgpack::object& map, const KeyPath& path) {
-  const msgpack::object& value = require(map, path);
-  if (value.type != msgpack::type::MAP) fail(path, "is not a map");
-  return value;
-}
-
 double number(const msgpack::object& value, const KeyPath& path) {
   switch (value.type) {
     case msgpack::type::FLOAT32:
@@ -69,32 +58,74 @@ void numbers(const msgpack::object& value, const KeyPath& path, double* out, std
   for (std::uint32_t i = 0; i < size; ++i) out[i] = number(value.via.array.ptr[i], path);
 }
 
-void read_number(const msgpack::object& map, const KeyPath& path, double& out, bool required) {
-  const msgpack::object* value = find(map, path.key);
-  if (value == nullptr) {
-    if (required) fail(path, "is missing");
-    return;
-  }
-  out = number(*value, path);
-}
+/// Reads a spine observation map by walking the declaration of sim/observation_fields.hpp.
+class MsgpackObservationReader {
+ public:
+  MsgpackObservationReader(const msgpack::object& map, const KeyPath* path)
+      : map_(map), path_(path) {}
 
-void read_vector3(const msgpack::object& map, const KeyPath& path, Eigen::Vector3d& out,
-                  bool required) {
-  const msgpack::object* value = find(map, path.key);
-  if (value == nullptr) {
-    if (required) fail(path, "is missing");
-    return;
+  template <typename Children>
+  void map(std::string_view key, KeyPresence presence, Children&& children) {
+    const KeyPath path{path_, key};
+    const msgpack::object* value = lookup(path, presence);
+    if (value == nullptr) return;
+    if (value->type != msgpack::type::MAP) fail(path, "is not a map");
+    MsgpackObservationReader fields(*value, &path);
+    children(fields);
   }
-  numbers(*value, path, out.data(), 3);
-}
+  template <typename Children>
+  void map_if(std::string_view key, bool& flag, Children&& children) {
+    flag = find(map_, key) != nullptr;
+    if (flag) map(key, KeyPresence::kOptional, children);
+  }
+  void real(std::string_view key, double& out, KeyPresence presence) {
+    const KeyPath path{path_, key};
+    if (const msgpack::object* value = lookup(path, presence)) out = number(*value, path);
+  }
+  void boolean(std::string_view key, bool& out, KeyPresence presence) {
+    const KeyPath path{path_, key};
+    const msgpack::object* value = lookup(path, presence);
+    if (value == nullptr) return;
+    if (value->type != msgpack::type::BOOLEAN) fail(path, "is not a bool");
+    out = value->via.boolean;
+  }
+  void vector3(std::string_view key, Eigen::Vector3d& out, KeyPresence presence) {
+    const KeyPath path{path_, key};
+    if (const msgpack::object* value = lookup(path, presence)) numbers(*value, path, out.data(), 3);
+  }
+  void quaternion(std::string_view key, Eigen::Quaterniond& out, KeyPresence presence) {
+    const KeyPath path{path_, key};
+    const msgpack::object* value = lookup(path, presence);
+    if (value == nullptr) return;
+    double wxyz[4];
+    numbers(*value, path, wxyz, 4);
+    out = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+  }
+  void matrix3(std::string_view key, Eigen::Matrix3d& out, KeyPresence presence) {
+    const KeyPath path{path_, key};
+    const msgpack::object* value = lookup(path, presence);
+    if (value == nullptr) return;
+    double row_major[9];
+    numbers(*value, path, row_major, 9);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) out(i, j) = row_major[3 * i + j];
+    }
+  }
+  /// Values the typed Observation does not carry are not read.
+  template <typename Value>
+  void computed(std::string_view, Value&&) {}
 
-void read_quaternion(const msgpack::object& map, const KeyPath& path, Eigen::Quaterniond& out) {
-  const msgpack::object* value = find(map, path.key);
-  if (value == nullptr) return;
-  double wxyz[4];
-  numbers(*value, path, wxyz, 4);
-  out = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
-}
+ private:
+  /// The value at `path.key`, or nullptr when an optional key is absent.
+  const msgpack::object* lookup(const KeyPath& path, KeyPresence presence) const {
+    const msgpack::object* value = find(map_, path.key);
+    if (value == nullptr && presence == KeyPresence::kRequired) fail(path, "is missing");
+    return value;
+  }
+
+  const msgpack::object& map_;
+  const KeyPath* path_;
+};
 
 }  // namespace
 
@@ -102,76 +133,8 @@ void read_observation(const msgpack::object& message, Observation& observation) 
   if (message.type != msgpack::type::MAP) {
     throw SpineError("spine observation is not a map");
   }
-  if (const msgpack::object* time = find(message, "time")) {
-    observation.time = number(*time, {nullptr, "time"});
-  }
-
-  const KeyPath servo_path{nullptr, "servo"};
-  const msgpack::object& servos = require_map(message, servo_path);
-  for (std::size_t i = 0; i < kNumServos; ++i) {
-    const KeyPath joint_path{&servo_path, kServoNames[i]};
-    const msgpack::object& servo = require_map(servos, joint_path);
-    ServoObservation& out = observation.servo[i];
-    read_number(servo, {&joint_path, "position"}, out.position, true);
-    read_number(servo, {&joint_path, "velocity"}, out.velocity, true);
-    read_number(servo, {&joint_path, "torque"}, out.torque, true);
-    read_number(servo, {&joint_path, "temperature"}, out.temperature, false);
-    read_number(servo, {&joint_path, "voltage"}, out.voltage, false);
-  }
-
-  const KeyPath base_path{nullptr, "base_orientation"};
-  const msgpack::object& base = require_map(message, base_path);
-  auto& base_orientation = observation.base_orientation;
-  read_number(base, {&base_path, "pitch"}, base_orientation.pitch, true);
-  read_vector3(base, {&base_path, "angular_velocity"}, base_orientation.angular_velocity, true);
-  const KeyPath rotation_path{&base_path, "rotation_base_to_world"};
-  if (const msgpack::object* rotation = find(base, rotation_path.key)) {
-    double row_major[9];
-    numbers(*rotation, rotation_path, row_major, 9);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j)
-        base_orientation.rotation_base_to_world(i, j) = row_major[3 * i + j];
-    }
-  }
-
-  const KeyPath odometry_path{nullptr, "wheel_odometry"};
-  const msgpack::object& odometry = require_map(message, odometry_path);
-  read_number(odometry, {&odometry_path, "position"}, observation.wheel_odometry.position, true);
-  read_number(odometry, {&odometry_path, "velocity"}, observation.wheel_odometry.velocity, true);
-
-  const KeyPath imu_path{nullptr, "imu"};
-  if (const msgpack::object* imu = find(message, imu_path.key)) {
-    read_quaternion(*imu, {&imu_path, "orientation"}, observation.imu.orientation);
-    read_vector3(*imu, {&imu_path, "angular_velocity"}, observation.imu.angular_velocity, false);
-    read_vector3(*imu, {&imu_path, "linear_acceleration"}, observation.imu.linear_acceleration,
-                 false);
-    read_vector3(*imu, {&imu_path, "raw_linear_acceleration"},
-                 observation.imu.raw_linear_acceleration, false);
-  }
-
-  const KeyPath contact_path{nullptr, "floor_contact"};
-  if (const msgpack::object* floor_contact = find(message, contact_path.key)) {
-    if (const msgpack::object* contact = find(*floor_contact, "contact")) {
-      if (contact->type != msgpack::type::BOOLEAN) {
-        fail({&contact_path, "contact"}, "is not a bool");
-      }
-      observation.floor_contact.contact = contact->via.boolean;
-    }
-  }
-
-  observation.has_sim = false;
-  const KeyPath sim_path{nullptr, "sim"};
-  if (const msgpack::object* sim = find(message, sim_path.key)) {
-    const KeyPath sim_base_path{&sim_path, "base"};
-    if (const msgpack::object* sim_base = find(*sim, sim_base_path.key)) {
-      auto& out = observation.sim_base;
-      read_vector3(*sim_base, {&sim_base_path, "position"}, out.position, true);
-      read_quaternion(*sim_base, {&sim_base_path, "orientation"}, out.orientation);
-      read_vector3(*sim_base, {&sim_base_path, "linear_velocity"}, out.linear_velocity, false);
-      read_vector3(*sim_base, {&sim_base_path, "angular_velocity"}, out.angular_velocity, false);
-      observation.has_sim = true;
-    }
-  }
+  MsgpackObservationReader reader(message, nullptr);
+  visit_observation_fields(observation, reader);
 }
 
 }  // namespace upkie_rl

@@ -27,19 +27,11 @@ void write_servo_action_msgpack(const ServoAction& action, msgpack::sbuffer& buf
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const ServoCommand& command = action[i];
     pack_key(packer, kServoNames[i]);
-    packer.pack_map(6);
-    pack_key(packer, "feedforward_torque");
-    pack_float64(buffer, command.feedforward_torque);
-    pack_key(packer, "kd_scale");
-    pack_float64(buffer, command.kd_scale);
-    pack_key(packer, "kp_scale");
-    pack_float64(buffer, command.kp_scale);
-    pack_key(packer, "maximum_torque");
-    pack_float64(buffer, command.maximum_torque);
-    pack_key(packer, "position");
-    pack_float64(buffer, command.position);
-    pack_key(packer, "velocity");
-    pack_float64(buffer, command.velocity);
+    packer.pack_map(static_cast<std::uint32_t>(kServoCommandFieldsByKey.size()));
+    for (const ServoCommandField& field : kServoCommandFieldsByKey) {
+      pack_key(packer, field.key);
+      pack_float64(buffer, command.*field.member);
+    }
   }
 }
 
@@ -70,12 +62,8 @@ void read_servo_action(const Dictionary& dictionary, ServoAction& action,
       }
       out = value.as_number();
     };
-    read("position", command.position);
-    read("velocity", command.velocity);
-    read("feedforward_torque", command.feedforward_torque);
-    read("kp_scale", command.kp_scale);
-    read("kd_scale", command.kd_scale);
-    read("maximum_torque", command.maximum_torque);
+    for (const ServoCommandField& field : kServoCommandFields)
+      read(field.key, command.*field.member);
     if (maximum_torques != nullptr &&
         !(command.maximum_torque >= 0.0 && command.maximum_torque <= (*maximum_torques)[i])) {
       throw SpineError("action servo." + std::string(kServoNames[i]) +

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include "spine/observation_reader.hpp"
@@ -35,9 +36,9 @@ SharedMemory open_with_retries(const SpineBackendConfig& config) {
                    "); is `upkie-rl spine` running?");
 }
 
-void check_finite(double value, std::size_t servo, const char* field) {
+void check_finite(double value, std::size_t servo, std::string_view field) {
   if (!std::isfinite(value)) {
-    throw InvalidCommandError(std::string(kServoNames[servo]) + "." + field +
+    throw InvalidCommandError(std::string(kServoNames[servo]) + "." + std::string(field) +
                               " must be finite, got " + std::to_string(value));
   }
 }
@@ -139,12 +140,12 @@ void SpineBackend::regulate() {
 const Observation& SpineBackend::step(const ServoAction& action) {
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const ServoCommand& command = action[i];
-    if (std::isinf(command.position)) check_finite(command.position, i, "position");
-    check_finite(command.velocity, i, "velocity");
-    check_finite(command.feedforward_torque, i, "feedforward_torque");
-    check_finite(command.kp_scale, i, "kp_scale");
-    check_finite(command.kd_scale, i, "kd_scale");
-    check_finite(command.maximum_torque, i, "maximum_torque");
+    // The robot gets finite values only: NaN where the field allows it ("no position
+    // loop"), never the +inf maximum torque a simulation accepts.
+    for (const ServoCommandField& field : kServoCommandFields) {
+      const double value = command.*field.member;
+      if (!(field.nan_allowed && std::isnan(value))) check_finite(value, i, field.key);
+    }
   }
   write_servo_action_msgpack(action, buffer_);
   if (config_.regulate_frequency) regulate();

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/observation_key_paths.hpp"
 #include "message_builder.hpp"
 #include "sim/observation_dict.hpp"
 #include "spine/spine_error.hpp"
@@ -89,7 +90,9 @@ std::string error_of(testing::MessageBuilder& message) {
 TEST(ObservationReader, NamesMissingAndMistypedKeys) {
   testing::MessageBuilder empty;
   empty.map(0);
-  EXPECT_NE(error_of(empty).find("'servo' is missing"), std::string::npos);
+  // The first required key of the declaration, in sorted order.
+  EXPECT_NE(error_of(empty).find("'base_orientation' is missing"), std::string::npos)
+      << error_of(empty);
 
   // Take a valid observation and break one value: a float replaced by a string.
   msgpack::sbuffer buffer;
@@ -116,6 +119,74 @@ TEST(ObservationReader, NamesMissingAndMistypedKeys) {
   testing::MessageBuilder not_a_map;
   not_a_map.array(0);
   EXPECT_NE(error_of(not_a_map).find("not a map"), std::string::npos);
+}
+
+/// The observation's dictionary without the key at the dotted `path`, as a msgpack object.
+msgpack::object_handle without_key(const Observation& observation, const std::string& path) {
+  nlohmann::json tree = observation_to_json(observation);
+  nlohmann::json* map = &tree;
+  std::string rest = path;
+  for (std::size_t dot = rest.find('.'); dot != std::string::npos; dot = rest.find('.')) {
+    map = &(*map)[rest.substr(0, dot)];
+    rest = rest.substr(dot + 1);
+  }
+  EXPECT_EQ(map->erase(rest), 1u) << path;
+  const std::vector<std::uint8_t> bytes = nlohmann::json::to_msgpack(tree);
+  return msgpack::unpack(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+Observation distinct_observation() {
+  Observation observation;
+  testing::DistinctValueFiller filler;
+  visit_observation_fields(observation, filler);
+  return observation;
+}
+
+TEST(ObservationReader, EveryDeclaredFieldRoundTrips) {
+  // Every field the declaration reads differs from its default, so a reader that skipped
+  // one would leave a default the written dictionary does not have.
+  const Observation written = distinct_observation();
+  msgpack::sbuffer buffer;
+  write_observation_msgpack(written, buffer);
+  Observation read;
+  read_observation(msgpack::unpack(buffer.data(), buffer.size()).get(), read);
+  EXPECT_TRUE(read.has_sim);
+  EXPECT_EQ(observation_to_json(read), observation_to_json(written));
+}
+
+TEST(ObservationReader, RefusesEachMissingRequiredKeyAndAcceptsEachMissingOptionalOne) {
+  const Observation written = distinct_observation();
+  int required = 0;
+  const testing::KeyPathCollector declaration = testing::observation_key_paths();
+  std::vector<testing::ObservationKeyPath> entries = declaration.leaves;
+  entries.insert(entries.end(), declaration.maps.begin(), declaration.maps.end());
+  for (const auto& leaf : entries) {
+    const msgpack::object_handle message = without_key(written, leaf.path);
+    Observation read = written;
+    if (leaf.required) {
+      ++required;
+      try {
+        read_observation(message.get(), read);
+        ADD_FAILURE() << leaf.path << " is required but a message without it was read";
+      } catch (const SpineError& error) {
+        EXPECT_NE(std::string(error.what()).find("'" + leaf.path + "' is missing"),
+                  std::string::npos)
+            << error.what();
+      }
+    } else {
+      // An absent optional key leaves its field as it was; without `sim`, has_sim is false.
+      EXPECT_NO_THROW(read_observation(message.get(), read)) << leaf.path;
+      if (leaf.path == "sim") {
+        EXPECT_FALSE(read.has_sim);
+      } else {
+        EXPECT_EQ(observation_to_json(read), observation_to_json(written)) << leaf.path;
+      }
+    }
+  }
+  // Leaves: position, velocity and torque of six joints, pitch and angular velocity, the
+  // odometry's two, sim.base.position. Maps: base_orientation, servo and its six joints,
+  // sim.base, wheel_odometry.
+  EXPECT_EQ(required, (3 * 6 + 2 + 2 + 1) + (1 + 1 + 6 + 1 + 1));
 }
 
 }  // namespace
