@@ -19,7 +19,8 @@ void bind_registry(py::module_& module) {
       [](const std::string& id) {
         py::list options;
         for (const OptionInfo& info : env_option_info(id)) {
-          static constexpr const char* kTypes[] = {"real", "integer", "text", "choice"};
+          static constexpr const char* kTypes[] = {"real",   "integer", "text",
+                                                   "choice", "boolean", "integer_list"};
           py::dict option;
           option["name"] = info.name;
           option["type"] = kTypes[static_cast<int>(info.type)];

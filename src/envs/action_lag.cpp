@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
+#include "envs/shared_options.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
@@ -14,18 +16,33 @@ constexpr int kMaxDelaySteps = 10000;
 
 }  // namespace
 
-void ActionLagSettings::validate() const {
+std::string ActionLagSettings::problem() const {
   const double low = time_constant_min;
   const double high = time_constant_max;
   if (!(std::isfinite(low) && std::isfinite(high) && low >= 0.0 && high >= low)) {
-    throw std::invalid_argument("ActionLag: need 0 <= action_lag_min <= action_lag_max, got " +
-                                std::to_string(low) + " and " + std::to_string(high));
+    return "ActionLag: need 0 <= action_lag_min <= action_lag_max, got " + std::to_string(low) +
+           " and " + std::to_string(high);
   }
   if (delay_steps < 0 || delay_steps > kMaxDelaySteps) {
-    throw std::invalid_argument("ActionLag: action_delay must be in [0, " +
-                                std::to_string(kMaxDelaySteps) + "], got " +
-                                std::to_string(delay_steps));
+    return "ActionLag: action_delay must be in [0, " + std::to_string(kMaxDelaySteps) + "], got " +
+           std::to_string(delay_steps);
   }
+  return "";
+}
+
+void ActionLagSettings::validate() const {
+  const std::string what = problem();
+  if (!what.empty()) throw std::invalid_argument(what);
+}
+
+void ActionLagSettings::declare_options(OptionTable& table) {
+  table.add_real("action_lag_min", &time_constant_min, 0.0, kOptionHuge,
+                 "first-order action lag: time constant drawn in U(min, max) at reset [s]");
+  table.add_real("action_lag_max", &time_constant_max, 0.0, kOptionHuge,
+                 "largest action lag time constant [s], 0 for no lag");
+  table.add_integer("action_delay", &delay_steps, 0, kMaxDelaySteps,
+                    "steps between an action and its application");
+  table.add_rule([this] { return problem(); });
 }
 
 ActionLag::ActionLag(std::unique_ptr<Env> env, const ActionLagSettings& settings)

@@ -4,9 +4,11 @@
 /// environment applies (the actuation of a real robot; ppo_balancer's sim-to-real wrapper).
 
 #include <random>
+#include <string>
 #include <vector>
 
 #include "envs/env_wrapper.hpp"
+#include "model/option_table.hpp"
 
 namespace upkie_rl {
 
@@ -18,9 +20,15 @@ struct ActionLagSettings {
 
   bool any() const { return time_constant_max > 0.0 || delay_steps > 0; }
 
-  /// @throws std::invalid_argument unless 0 <= min <= max (finite) and the delay is in
-  ///         [0, 10000].
+  /// What is wrong unless 0 <= min <= max (finite) and the delay is in [0, 10000]; "" if
+  /// nothing.
+  std::string problem() const;
+  /// @throws std::invalid_argument with problem(), if any.
   void validate() const;
+
+  /// Declares the options action_lag_min, action_lag_max and action_delay, and problem()
+  /// as their rule.
+  void declare_options(OptionTable& table);
 };
 
 /// The action applied at step t is the agent's action of step t - delay (the neutral

@@ -2,6 +2,8 @@
 /// @file
 /// The seed's balance reward (eq. 9 for the pendulum, eq. 22 for the servos task).
 
+#include "model/option_table.hpp"
+
 namespace upkie_rl {
 
 /// Weights of the balance reward.
@@ -17,6 +19,9 @@ struct BalanceRewardWeights {
   static BalanceRewardWeights pendulum() { return {}; }
   /// Seed eq. 23-28.
   static BalanceRewardWeights servos() { return {0.5, 0.1, 0.1, 0.05, 0.01, 0.005}; }
+
+  /// Declares the options w_theta ... w_accel (balance_options.cpp).
+  void declare_options(OptionTable& table);
 };
 
 /// r_t = 1 - (w_theta θ² + w_theta_dot θ̇² + w_p_dot ṗ² + w_a a² + w_s Δa² + w_accel (Δ²a)²)

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "model/option_table.hpp"
+
 namespace upkie_rl {
 
 /// Thresholds of the termination conditions.
@@ -12,6 +14,10 @@ struct BalanceTermination {
   double max_position_drift = 5.0;     ///< |p - p0| above it: drift [m].
   double max_angular_velocity = 10.0;  ///< |θ̇| above it [rad/s].
   double max_linear_velocity = 2.0;    ///< |ṗ| above it [m/s].
+
+  /// Declares the options fall_pitch, max_position_drift, max_angular_velocity and
+  /// max_linear_velocity (balance_options.cpp).
+  void declare_options(OptionTable& table);
 
   /// Why an episode ended, in the order the conditions are checked.
   enum class Reason { kNone = 0, kFall, kPositionDrift, kAngularVelocity, kLinearVelocity };

@@ -3,13 +3,14 @@
 /// Environment options as the user gives them: key=value strings.
 
 #include <string>
-#include <utility>
 #include <vector>
+
+#include "model/option_table.hpp"
 
 namespace upkie_rl {
 
 /// key=value options, in the order given.
-using EnvOptions = std::vector<std::pair<std::string, std::string>>;
+using EnvOptions = OptionValues;
 
 /// Parses "k=v" strings; throws std::invalid_argument naming a malformed one.
 EnvOptions parse_env_options(const std::vector<std::string>& key_values);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include "envs/shared_options.hpp"
 
 namespace upkie_rl {
 
@@ -68,6 +69,14 @@ StepResult GyropodEnv::step(std::span<const float> action, std::span<float> obse
   result.reward = 1.0;
   result.terminated = std::abs(full.base_orientation.pitch) > config_.fall_pitch;
   return result;
+}
+
+void GyropodConfig::declare_options(OptionTable& table) {
+  table.add_real(kMaxGroundVelocityOption, &max_ground_velocity);
+  table.add_real("max_yaw_velocity", &max_yaw_velocity, 1e-6, kOptionHuge,
+                 "yaw velocity bound [rad/s]");
+  table.add_real(kFallPitchOption, &fall_pitch);
+  table.add_real(kLegGainScaleOption, &leg_gain_scale);
 }
 
 }  // namespace upkie_rl

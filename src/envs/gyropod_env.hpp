@@ -15,6 +15,9 @@ struct GyropodConfig {
   double max_yaw_velocity = 1.0;     ///< Bound of ψ̇* [rad/s].
   double fall_pitch = 1.0;           ///< |θ| above it terminates [rad].
   double leg_gain_scale = 1.0;       ///< Gain scales of the held legs.
+
+  /// Declares the options of the fields, by their names.
+  void declare_options(OptionTable& table);
 };
 
 /// Observation [p, θ, ψ, ṗ, θ̇, ψ̇] (m, rad, rad, m/s, rad/s, rad/s), action [ṗ*, ψ̇*]

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <random>
 
+#include "model/option_table.hpp"
 #include "sim/random_draws.hpp"
 #include "sim/reset_state.hpp"
 
@@ -33,6 +34,9 @@ struct InitRandomization {
   /// Draws an initial state. Always consumes the same number of draws, so the sequence of
   /// states from a seed does not depend on which ranges are zero.
   ResetState sample(std::mt19937_64& generator) const;
+
+  /// Declares the options init_rand_roll ... init_rand_v_z.
+  void declare_options(OptionTable& table);
 };
 
 }  // namespace upkie_rl

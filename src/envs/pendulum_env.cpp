@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numbers>
 #include <stdexcept>
+#include "envs/shared_options.hpp"
 
 namespace upkie_rl {
 
@@ -58,6 +59,13 @@ StepResult PendulumEnv::step(std::span<const float> action, std::span<float> obs
   const Observation& full = servos_->step_servos(commander_.command(ground_velocity, 0.0));
   write_observation(full, observation);
   return task_.evaluate(full, ground_velocity);
+}
+
+void PendulumConfig::declare_options(OptionTable& table) {
+  table.add_real(kMaxGroundVelocityOption, &max_ground_velocity);
+  table.add_real(kLegGainScaleOption, &leg_gain_scale);
+  termination.declare_options(table);
+  reward.declare_options(table);
 }
 
 }  // namespace upkie_rl

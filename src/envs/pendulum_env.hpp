@@ -16,6 +16,9 @@ struct PendulumConfig {
   double leg_gain_scale = 1.0;       ///< Gain scales of the held legs.
   BalanceRewardWeights reward = BalanceRewardWeights::pendulum();
   BalanceTermination termination;
+
+  /// Declares max_ground_velocity, leg_gain_scale, then the termination's and reward's.
+  void declare_options(OptionTable& table);
 };
 
 /// Observation o = [θ, p, θ̇, ṗ] (pitch [rad], wheel odometry position [m], pitch rate

@@ -3,15 +3,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "envs/shared_options.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
-namespace {
-
-constexpr double kHuge = 1e9;
-
-}  // namespace
-
 bool PerturbationSettings::any() const {
   return mass_scale != 1.0 || inertia_variation != 0.0 || joint_friction != 0.0 ||
          torque_control_noise != 0.0 || torque_measurement_noise != 0.0 ||
@@ -43,53 +38,61 @@ PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double
   return variation;
 }
 
-void PerturbationSettings::add_options(OptionTable& table) {
-  table.add_double("mass_scale", &mass_scale, 0.01, 100.0,
-                   "factor on every body's mass and inertia");
-  table.add_double("inertia_variation", &inertia_variation, 0.0, 0.99,
-                   "each body's mass and inertia times 1 + U(-it, it), drawn at reset");
-  table.add_double("joint_friction", &joint_friction, 0.0, kHuge,
-                   "each joint's kinetic friction drawn in U(0, it) at reset [N.m]");
-  table.add_double("torque_control_noise", &torque_control_noise, 0.0, kHuge,
-                   "std of Gaussian noise on applied joint torques [N.m]");
-  table.add_double("torque_measurement_noise", &torque_measurement_noise, 0.0, kHuge,
-                   "std of Gaussian noise on observed joint torques [N.m]");
-  table.add_double("imu_accelerometer_bias", &imu_accelerometer_bias, 0.0, kHuge,
-                   "accelerometer bias components drawn in U(-it, it) at reset [m/s^2]");
-  table.add_double("imu_accelerometer_noise", &imu_accelerometer_noise, 0.0, kHuge,
-                   "std of accelerometer white noise [m/s^2]");
-  table.add_double("imu_gyroscope_bias", &imu_gyroscope_bias, 0.0, kHuge,
-                   "gyroscope bias components drawn in U(-it, it) at reset [rad/s]");
-  table.add_double("imu_gyroscope_noise", &imu_gyroscope_noise, 0.0, kHuge,
-                   "std of gyroscope white noise (it reaches the pitch rate) [rad/s]");
-  table.add_double("floor_friction", &floor_friction, 0.01, 100.0,
-                   "factor on the tire-floor friction");
-  table.add_double("floor_friction_variation", &floor_friction_variation, 0.0, 0.99,
-                   "tire-floor friction times 1 + U(-it, it), drawn at reset");
-  table.add_double("push_force", &push.force, 0.0, kHuge,
-                   "largest push on the base [N], 0 for no pushes");
-  table.add_double("push_force_min", &push.force_min, 0.0, kHuge,
-                   "smallest push [N]; magnitudes drawn in U(push_force_min, push_force)");
-  table.add_double("push_duration", &push.duration, 1e-6, kHuge, "duration of a push [s]");
-  table.add_double("push_start", &push.start, 0.0, kHuge, "start of the first push window [s]");
-  table.add_double("push_interval", &push.interval, 1e-6, kHuge,
-                   "one push at a random time in each window of this length [s]");
-  table.add_choice(
-      "push_direction", {"sagittal", "forward", "backward", "lateral", "any"},
-      [this](std::size_t choice) { push.direction = static_cast<PushDirection>(choice); },
-      "direction of pushes relative to the robot's heading");
+void PerturbationSettings::declare_options(OptionTable& table) {
+  table.add_real("mass_scale", &mass_scale, 0.01, 100.0, "factor on every body's mass and inertia");
+  table.add_real("inertia_variation", &inertia_variation, 0.0, 0.99,
+                 "each body's mass and inertia times 1 + U(-it, it), drawn at reset");
+  table.add_real("joint_friction", &joint_friction, 0.0, kOptionHuge,
+                 "each joint's kinetic friction drawn in U(0, it) at reset [N.m]");
+  table.add_real("torque_control_noise", &torque_control_noise, 0.0, kOptionHuge,
+                 "std of Gaussian noise on applied joint torques [N.m]");
+  table.add_real("torque_measurement_noise", &torque_measurement_noise, 0.0, kOptionHuge,
+                 "std of Gaussian noise on observed joint torques [N.m]");
+  table.add_real("imu_accelerometer_bias", &imu_accelerometer_bias, 0.0, kOptionHuge,
+                 "accelerometer bias components drawn in U(-it, it) at reset [m/s^2]");
+  table.add_real("imu_accelerometer_noise", &imu_accelerometer_noise, 0.0, kOptionHuge,
+                 "std of accelerometer white noise [m/s^2]");
+  table.add_real("imu_gyroscope_bias", &imu_gyroscope_bias, 0.0, kOptionHuge,
+                 "gyroscope bias components drawn in U(-it, it) at reset [rad/s]");
+  table.add_real("imu_gyroscope_noise", &imu_gyroscope_noise, 0.0, kOptionHuge,
+                 "std of gyroscope white noise (it reaches the pitch rate) [rad/s]");
+  table.add_real("floor_friction", &floor_friction, 0.01, 100.0,
+                 "factor on the tire-floor friction");
+  table.add_real("floor_friction_variation", &floor_friction_variation, 0.0, 0.99,
+                 "tire-floor friction times 1 + U(-it, it), drawn at reset");
+  table.add_real("push_force", &push.force, 0.0, kOptionHuge,
+                 "largest push on the base [N], 0 for no pushes");
+  table.add_real("push_force_min", &push.force_min, 0.0, kOptionHuge,
+                 "smallest push [N]; magnitudes drawn in U(push_force_min, push_force)");
+  table.add_real("push_duration", &push.duration, 1e-6, kOptionHuge, "duration of a push [s]");
+  table.add_real("push_start", &push.start, 0.0, kOptionHuge, "start of the first push window [s]");
+  table.add_real("push_interval", &push.interval, 1e-6, kOptionHuge,
+                 "one push at a random time in each window of this length [s]");
+  table.add_choice("push_direction", &push.direction,
+                   {{"sagittal", PushDirection::kSagittal},
+                    {"forward", PushDirection::kForward},
+                    {"backward", PushDirection::kBackward},
+                    {"lateral", PushDirection::kLateral},
+                    {"any", PushDirection::kAny}},
+                   "direction of pushes relative to the robot's heading");
+  table.add_rule([this] { return problem(); });
+}
+
+std::string PerturbationSettings::problem() const {
+  if (push.enabled() && push.force_min > push.force) {
+    return "push_force_min (" + std::to_string(push.force_min) + " N) is above push_force (" +
+           std::to_string(push.force) + " N)";
+  }
+  if (push.enabled() && push.duration > push.interval) {
+    return "push_duration (" + std::to_string(push.duration) +
+           " s) is longer than push_interval (" + std::to_string(push.interval) + " s)";
+  }
+  return "";
 }
 
 void PerturbationSettings::validate() const {
-  if (push.enabled() && push.force_min > push.force) {
-    throw std::invalid_argument("push_force_min (" + std::to_string(push.force_min) +
-                                " N) is above push_force (" + std::to_string(push.force) + " N)");
-  }
-  if (push.enabled() && push.duration > push.interval) {
-    throw std::invalid_argument("push_duration (" + std::to_string(push.duration) +
-                                " s) is longer than push_interval (" +
-                                std::to_string(push.interval) + " s)");
-  }
+  const std::string what = problem();
+  if (!what.empty()) throw std::invalid_argument(what);
 }
 
 }  // namespace upkie_rl

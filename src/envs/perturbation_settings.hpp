@@ -4,8 +4,9 @@
 /// frictions, torque and IMU noise, pushes), as options, drawn at each reset.
 
 #include <random>
+#include <string>
 
-#include "envs/option_table.hpp"
+#include "model/option_table.hpp"
 #include "sim/physics_variation.hpp"
 
 namespace upkie_rl {
@@ -57,11 +58,14 @@ struct PerturbationSettings {
   /// the same number of draws, whatever the settings.
   PhysicsVariation sample(std::mt19937_64& generator, double scale) const;
 
-  /// Declares the options (names as the fields, pushes as push_*) in `table`.
-  void add_options(OptionTable& table);
+  /// Declares the options (names as the fields, pushes as push_*) in `table`, and
+  /// problem() as their rule.
+  void declare_options(OptionTable& table);
 
-  /// @throws std::invalid_argument naming an inconsistent pair (force_min above force, a
-  ///         push longer than its interval).
+  /// An inconsistent pair (force_min above force, a push longer than its interval), named;
+  /// "" if none.
+  std::string problem() const;
+  /// @throws std::invalid_argument with problem(), if any.
   void validate() const;
 };
 

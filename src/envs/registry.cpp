@@ -9,6 +9,7 @@
 #include "envs/env_settings.hpp"
 #include "envs/observation_noise.hpp"
 #include "envs/servos_env.hpp"
+#include "envs/shared_options.hpp"
 #include "envs/time_limit.hpp"
 #include "envs/velocity_env.hpp"
 
@@ -46,78 +47,66 @@ std::string registered_list() {
   return list;
 }
 
-constexpr double kHuge = 1e9;
-
-void add_balance_options(OptionTable& table, BalanceRewardWeights& reward,
-                         BalanceTermination& termination) {
-  table.add_double("fall_pitch", &termination.fall_pitch, 0.0, kHuge,
-                   "terminate when |pitch| exceeds it [rad]");
-  table.add_double("max_position_drift", &termination.max_position_drift, 0.0, kHuge,
-                   "terminate when |p - p0| exceeds it [m]");
-  table.add_double("max_angular_velocity", &termination.max_angular_velocity, 0.0, kHuge,
-                   "terminate when |pitch rate| exceeds it [rad/s]");
-  table.add_double("max_linear_velocity", &termination.max_linear_velocity, 0.0, kHuge,
-                   "terminate when |ground velocity| exceeds it [m/s]");
-  table.add_double("w_theta", &reward.w_theta, -kHuge, kHuge, "reward weight of pitch^2");
-  table.add_double("w_theta_dot", &reward.w_theta_dot, -kHuge, kHuge,
-                   "reward weight of pitch rate^2");
-  table.add_double("w_p_dot", &reward.w_p_dot, -kHuge, kHuge, "reward weight of ground velocity^2");
-  table.add_double("w_a", &reward.w_a, -kHuge, kHuge, "reward weight of action^2");
-  table.add_double("w_s", &reward.w_s, -kHuge, kHuge, "reward weight of (action change)^2");
-  table.add_double("w_accel", &reward.w_accel, -kHuge, kHuge,
-                   "reward weight of (second action difference)^2");
-}
-
 constexpr double kVelocityFrequency = 50.0;  // [Hz]
 constexpr int kVelocityEpisodeSteps = 1000;  // 20 s
 
-void add_velocity_options(OptionTable& table, VelocityTaskConfig& task,
-                          VelocityCommandRanges& commands) {
-  table.add_double("max_forward_velocity", &commands.max_forward_velocity, 0.0, kHuge,
-                   "random forward velocity commands in +-it [m/s]");
-  table.add_double("max_yaw_rate", &commands.max_yaw_rate, 0.0, kHuge,
-                   "random yaw rate commands in +-it [rad/s]");
-  table.add_double("zero_command_probability", &commands.zero_command_probability, 0.0, 1.0,
-                   "share of random commands that ask to stand still");
-  table.add_double("command_resample_time_min", &commands.resample_time_min, 0.0, kHuge,
-                   "a random command holds U(min, max) seconds [s]");
-  table.add_double("command_resample_time_max", &commands.resample_time_max, 0.0, kHuge,
-                   "longest hold of a random command [s], 0 for one command per episode");
-  table.add_double("wheel_velocity_scale", &task.wheel_velocity_scale, 1e-6, kHuge,
-                   "wheel velocity target at action 1 [rad/s]");
-  table.add_double("leg_action_scale", &task.leg_action_scale, 1e-6, 10.0,
-                   "hip and knee target offset from the default pose at action 1 [rad]");
-  table.add_double("leg_kp_scale", &task.leg_kp_scale, 0.0, ServosEnv::kMaxGainScale,
-                   "kp_scale of hips and knees");
-  table.add_double("leg_kd_scale", &task.leg_kd_scale, 0.0, ServosEnv::kMaxGainScale,
-                   "kd_scale of hips and knees");
-  table.add_double("wheel_kd_scale", &task.wheel_kd_scale, 0.0, ServosEnv::kMaxGainScale,
-                   "kd_scale of the wheels' velocity loop");
-  table.add_double("fall_tilt", &task.fall_tilt, 0.0, 3.2,
-                   "terminate when the base tilts more than it [rad]");
-  table.add_choice(
-      "terminate_on_contact", {"true", "false"},
-      [&task](std::size_t choice) { task.terminate_on_contact = choice == 0; },
-      "terminate when a part other than a wheel touches the floor");
-  table.add_string("base_controller", &task.base_controller,
-                   "residual mode: a controller spec (balancer:... from `rollout --controller "
-                   "lqr`) whose action is added to residual_scale times the agent's");
-  table.add_double("residual_scale", &task.residual_scale, 0.0, 1.0,
-                   "residual mode: weight of the agent's action");
-  VelocityRewardWeights& reward = task.reward;
-  table.add_double("w_track_forward_velocity", &reward.w_track_forward_velocity, 0.0, kHuge,
-                   "reward weight of forward velocity tracking");
-  table.add_double("w_track_yaw_rate", &reward.w_track_yaw_rate, 0.0, kHuge,
-                   "reward weight of yaw rate tracking");
-  table.add_double("w_upright", &reward.w_upright, 0.0, kHuge, "reward weight of uprightness");
-  table.add_double("w_pose", &reward.w_pose, 0.0, kHuge,
-                   "reward weight of the legs' closeness to the default pose");
-  table.add_double("w_action_rate", &reward.w_action_rate, 0.0, kHuge,
-                   "penalty weight of the squared action change");
-  table.add_double("forward_velocity_sigma", &reward.forward_velocity_sigma, 1e-6, kHuge,
-                   "width of the forward velocity tracking kernel [m/s]");
-  table.add_double("yaw_rate_sigma", &reward.yaw_rate_sigma, 1e-6, kHuge,
-                   "width of the yaw rate tracking kernel [rad/s]");
+// The defaults of `kind` that differ from EnvSettings'.
+void set_kind_defaults(Kind kind, EnvSettings& settings) {
+  const bool timed = kind == Kind::kPendulum || kind == Kind::kServosTask;
+  settings.max_episode_steps = timed ? 300 : 0;
+  if (kind == Kind::kVelocity) {
+    // The policy runs at 50 Hz (as mjlab_upkie's); episodes of 20 s. Physics stays at the
+    // 1 ms reference on both engines: at 5 ms MuJoCo's wheel velocity loop and tire contact
+    // go unstable (the pendulum's balancer falls), at 2 ms the wheel speeds jitter by
+    // ±0.5 m/s and the balancer tracks 4x worse than at 1 ms.
+    settings.frequency = kVelocityFrequency;
+    settings.max_episode_steps = kVelocityEpisodeSteps;
+  }
+}
+
+// Declares what `declare` adds to `table` as randomisation (OptionInfo::randomization).
+template <class Declare>
+void declare_randomization(OptionTable& table, Declare declare) {
+  const std::size_t first = table.size();
+  declare();
+  table.mark_randomization(first);
+}
+
+// The options of the backend: the spine's, or the physics engine's and its perturbations.
+void declare_backend_options(Backend backend, EnvSettings& settings, OptionTable& table) {
+  if (backend == Backend::kSpine) {
+    settings.spine.declare_options(table);
+    return;
+  }
+  table.add_integer("nb_substeps", &settings.nb_substeps, 0, 10000,
+                    "physics steps per agent step, 0 for round(1000/frequency)");
+  table.add_choice("inertia", &settings.inertia_source,
+                   {{"box", InertiaSource::kBulletBoxRule}, {"urdf", InertiaSource::kUrdf}},
+                   "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
+  if (backend != Backend::kMock) {
+    declare_randomization(table, [&] { settings.perturbations.declare_options(table); });
+  }
+}
+
+// The options of the task of `kind`.
+void declare_kind_options(Kind kind, EnvSettings& settings, OptionTable& table) {
+  switch (kind) {
+    case Kind::kServos:
+      break;
+    case Kind::kPendulum:
+      settings.pendulum.declare_options(table);
+      break;
+    case Kind::kGyropod:
+      settings.gyropod.declare_options(table);
+      break;
+    case Kind::kServosTask:
+      settings.task.declare_options(table);
+      break;
+    case Kind::kVelocity:
+      settings.commands.declare_options(table);
+      settings.velocity.declare_options(table);
+      break;
+  }
 }
 
 }  // namespace
@@ -143,120 +132,19 @@ EnvId parse_env_id(const std::string& id) {
 }
 
 OptionTable env_option_table(const EnvId& id, EnvSettings& settings) {
-  const Kind kind = id.kind;
-  const bool timed = kind == Kind::kPendulum || kind == Kind::kServosTask;
-  settings.max_episode_steps = timed ? 300 : 0;
-  if (kind == Kind::kVelocity) {
-    // The policy runs at 50 Hz (as mjlab_upkie's); episodes of 20 s. Physics stays at the
-    // 1 ms reference on both engines: at 5 ms MuJoCo's wheel velocity loop and tire contact
-    // go unstable (the pendulum's balancer falls), at 2 ms the wheel speeds jitter by
-    // ±0.5 m/s and the balancer tracks 4x worse than at 1 ms.
-    settings.frequency = kVelocityFrequency;
-    settings.max_episode_steps = kVelocityEpisodeSteps;
-  }
+  set_kind_defaults(id.kind, settings);
   OptionTable table;
-  table.add_double("frequency", &settings.frequency, 1.0, 10000.0, "agent rate [Hz]");
-  if (id.backend == Backend::kSpine) {
-    SpineBackendConfig& spine = settings.spine;
-    table.add_string("shm_name", &spine.shm_name, "shared-memory name of the spine");
-    table.add_choice(
-        "regulate_frequency", {"true", "false"},
-        [&spine](std::size_t choice) { spine.regulate_frequency = choice == 0; },
-        "sleep so that actions leave at the agent rate (real-time spines)");
-    table.add_double("request_timeout", &spine.request_timeout, 1e-3, 3600.0,
-                     "longest wait for the spine to answer [s]");
-    table.add_int("open_tries", &spine.open_tries, 1, 1000,
-                  "attempts at opening the spine's shared memory, 1 s apart");
-  } else {
-    table.add_int("nb_substeps", &settings.nb_substeps, 0, 10000,
-                  "physics steps per agent step, 0 for round(1000/frequency)");
-    table.add_choice(
-        "inertia", {"box", "urdf"},
-        [&settings](std::size_t choice) {
-          settings.inertia_source =
-              choice == 0 ? InertiaSource::kBulletBoxRule : InertiaSource::kUrdf;
-        },
-        "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
-    if (id.backend != Backend::kMock) {
-      const std::size_t first = table.size();
-      settings.perturbations.add_options(table);
-      table.mark_randomization(first);
-    }
-  }
-  const std::size_t first_noise_option = table.size();
-  table.add_double("observation_noise", &settings.observation_noise, 0.0, kHuge,
+  table.add_real("frequency", &settings.frequency, 1.0, 10000.0, "agent rate [Hz]");
+  declare_backend_options(id.backend, settings, table);
+  declare_randomization(table, [&] {
+    table.add_real("observation_noise", &settings.observation_noise, 0.0, kOptionHuge,
                    "uniform noise in +-it on every observation component");
-  table.add_double("action_lag_min", &settings.action_lag.time_constant_min, 0.0, kHuge,
-                   "first-order action lag: time constant drawn in U(min, max) at reset [s]");
-  table.add_double("action_lag_max", &settings.action_lag.time_constant_max, 0.0, kHuge,
-                   "largest action lag time constant [s], 0 for no lag");
-  table.add_int("action_delay", &settings.action_lag.delay_steps, 0, 10000,
-                "steps between an action and its application");
-  table.mark_randomization(first_noise_option);
-  table.add_int("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
-                "truncate episodes after this many steps, 0 for never");
-  const std::size_t first_init_option = table.size();
-  InitRandomization& init = settings.init_rand;
-  table.add_double("init_rand_roll", &init.roll, 0.0, 3.2, "initial roll drawn in +-it [rad]");
-  table.add_double("init_rand_pitch", &init.pitch, 0.0, 3.2, "initial pitch drawn in +-it [rad]");
-  table.add_double("init_rand_x", &init.x, 0.0, kHuge, "initial x drawn in +-it [m]");
-  table.add_double("init_rand_z", &init.z, 0.0, kHuge, "initial height raised by [0, it] [m]");
-  table.add_double("init_rand_omega_x", &init.omega_x, 0.0, kHuge,
-                   "initial roll rate drawn in +-it [rad/s]");
-  table.add_double("init_rand_omega_y", &init.omega_y, 0.0, kHuge,
-                   "initial pitch rate drawn in +-it [rad/s]");
-  table.add_double("init_rand_v_x", &init.v_x, 0.0, kHuge, "initial x velocity in +-it [m/s]");
-  table.add_double("init_rand_v_y", &init.v_y, 0.0, kHuge, "initial y velocity in +-it [m/s]");
-  table.add_double("init_rand_v_z", &init.v_z, 0.0, kHuge, "initial z velocity in +-it [m/s]");
-  table.mark_randomization(first_init_option);
-  switch (kind) {
-    case Kind::kServos:
-      break;
-    case Kind::kPendulum: {
-      PendulumConfig& pendulum = settings.pendulum;
-      table.add_double("max_ground_velocity", &pendulum.max_ground_velocity, 1e-6, kHuge,
-                       "action bound a_max [m/s]");
-      table.add_double("leg_gain_scale", &pendulum.leg_gain_scale, 0.0, ServosEnv::kMaxGainScale,
-                       "gain scales of the held legs");
-      add_balance_options(table, pendulum.reward, pendulum.termination);
-      break;
-    }
-    case Kind::kGyropod: {
-      GyropodConfig& gyropod = settings.gyropod;
-      table.add_double("max_ground_velocity", &gyropod.max_ground_velocity, 1e-6, kHuge,
-                       "ground velocity bound [m/s]");
-      table.add_double("max_yaw_velocity", &gyropod.max_yaw_velocity, 1e-6, kHuge,
-                       "yaw velocity bound [rad/s]");
-      table.add_double("fall_pitch", &gyropod.fall_pitch, 0.0, kHuge,
-                       "terminate when |pitch| exceeds it [rad]");
-      table.add_double("leg_gain_scale", &gyropod.leg_gain_scale, 0.0, ServosEnv::kMaxGainScale,
-                       "gain scales of the held legs");
-      break;
-    }
-    case Kind::kServosTask: {
-      ServosTaskConfig& task = settings.task;
-      add_balance_options(table, task.reward, task.termination);
-      table.add_choice(
-          "observe_pitch", {"false", "true"},
-          [&task](std::size_t choice) { task.observe_pitch = choice == 1; },
-          "append the base pitch and pitch rate (the IMU's) to the 12 joint components");
-      table.add_choice(
-          "action_magnitude", {"servo", "normalized"},
-          [&task](std::size_t choice) {
-            task.action_magnitude = choice == 0 ? ServosTaskConfig::ActionMagnitude::kServo
-                                                : ServosTaskConfig::ActionMagnitude::kNormalized;
-          },
-          "|a| of the reward: wheel rad/s + leg rad (seed) or mean |u| of the action");
-      table.add_double("max_wheel_velocity", &task.max_wheel_velocity, 0.0, kHuge,
-                       "wheel velocity at action 1 [rad/s], 0 for the velocity limit");
-      table.add_double("leg_action_scale", &task.leg_action_scale, 1e-3, 1.0,
-                       "fraction of each leg joint's range spanned by the action");
-      break;
-    }
-    case Kind::kVelocity:
-      add_velocity_options(table, settings.velocity, settings.commands);
-      break;
-  }
+    settings.action_lag.declare_options(table);
+  });
+  table.add_integer("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
+                    "truncate episodes after this many steps, 0 for never");
+  declare_randomization(table, [&] { settings.init_rand.declare_options(table); });
+  declare_kind_options(id.kind, settings, table);
   return table;
 }
 
@@ -274,14 +162,9 @@ std::string env_id_name(EnvBackend backend, EnvKind kind) {
 EnvSettings parse_env_settings(const EnvId& id, const std::string& name,
                                const EnvOptions& options) {
   EnvSettings settings;
+  // The table checks every option's range and the settings' own rules (pushes, lag,
+  // command ranges) once all are read.
   env_option_table(id, settings).apply(options, name);
-  try {
-    settings.perturbations.validate();
-    settings.action_lag.validate();
-    if (id.kind == Kind::kVelocity) settings.commands.validate();
-  } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument(name + ": " + error.what());
-  }
   return settings;
 }
 

@@ -16,7 +16,7 @@
 
 #include "envs/env.hpp"
 #include "envs/env_options.hpp"
-#include "envs/option_table.hpp"
+#include "model/option_table.hpp"
 
 namespace upkie_rl {
 

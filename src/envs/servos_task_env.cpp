@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include "envs/shared_options.hpp"
 
 namespace upkie_rl {
 
@@ -105,6 +106,21 @@ StepResult ServosTaskEnv::step(std::span<const float> action, std::span<float> o
           ? normalized_action_magnitude(clamped_)
           : action_magnitude(servo_action_);
   return task_.evaluate(full, magnitude);
+}
+
+void ServosTaskConfig::declare_options(OptionTable& table) {
+  termination.declare_options(table);
+  reward.declare_options(table);
+  table.add_choice("observe_pitch", &observe_pitch, {{"false", false}, {"true", true}},
+                   "append the base pitch and pitch rate (the IMU's) to the 12 joint components");
+  table.add_choice(
+      "action_magnitude", &action_magnitude,
+      {{"servo", ActionMagnitude::kServo}, {"normalized", ActionMagnitude::kNormalized}},
+      "|a| of the reward: wheel rad/s + leg rad (seed) or mean |u| of the action");
+  table.add_real("max_wheel_velocity", &max_wheel_velocity, 0.0, kOptionHuge,
+                 "wheel velocity at action 1 [rad/s], 0 for the velocity limit");
+  table.add_real("leg_action_scale", &leg_action_scale, 1e-3, 1.0,
+                 "fraction of each leg joint's range spanned by the action");
 }
 
 }  // namespace upkie_rl

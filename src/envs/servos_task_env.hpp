@@ -34,6 +34,10 @@ struct ServosTaskConfig {
   /// Fraction of each leg joint's range that u in [-1, 1] spans, centred on the middle of
   /// the range (1: the whole range, the seed's mapping).
   double leg_action_scale = 1.0;
+
+  /// Declares the termination's and reward's options, then observe_pitch,
+  /// action_magnitude, max_wheel_velocity and leg_action_scale.
+  void declare_options(OptionTable& table);
 };
 
 /// Action u in [-1, 1]^6, one per joint in the standard order. Wheels: velocity =

@@ -4,37 +4,60 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "envs/shared_options.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
 
 namespace {
 
-void check_non_negative(const char* option, double value) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument(std::string(option) + " must be finite and non-negative, got " +
-                                std::to_string(value));
-  }
+std::string negative_problem(const char* option, double value) {
+  if (std::isfinite(value) && value >= 0.0) return "";
+  return std::string(option) + " must be finite and non-negative, got " + std::to_string(value);
 }
 
 }  // namespace
 
-void VelocityCommandRanges::validate() const {
-  check_non_negative("max_forward_velocity", max_forward_velocity);
-  check_non_negative("max_yaw_rate", max_yaw_rate);
-  check_non_negative("zero_command_probability", zero_command_probability);
-  check_non_negative("command_resample_time_min", resample_time_min);
-  check_non_negative("command_resample_time_max", resample_time_max);
+std::string VelocityCommandRanges::problem() const {
+  for (const auto& [option, value] :
+       {std::pair{"max_forward_velocity", max_forward_velocity},
+        std::pair{"max_yaw_rate", max_yaw_rate},
+        std::pair{"zero_command_probability", zero_command_probability},
+        std::pair{"command_resample_time_min", resample_time_min},
+        std::pair{"command_resample_time_max", resample_time_max}}) {
+    std::string negative = negative_problem(option, value);
+    if (!negative.empty()) return negative;
+  }
   if (zero_command_probability > 1.0) {
-    throw std::invalid_argument("zero_command_probability must be at most 1, got " +
-                                std::to_string(zero_command_probability));
+    return "zero_command_probability must be at most 1, got " +
+           std::to_string(zero_command_probability);
   }
   if (resample_time_min > resample_time_max) {
-    throw std::invalid_argument("command_resample_time_min (" + std::to_string(resample_time_min) +
-                                ") exceeds command_resample_time_max (" +
-                                std::to_string(resample_time_max) + ")");
+    return "command_resample_time_min (" + std::to_string(resample_time_min) +
+           ") exceeds command_resample_time_max (" + std::to_string(resample_time_max) + ")";
   }
+  return "";
+}
+
+void VelocityCommandRanges::validate() const {
+  const std::string what = problem();
+  if (!what.empty()) throw std::invalid_argument(what);
+}
+
+void VelocityCommandRanges::declare_options(OptionTable& table) {
+  table.add_real("max_forward_velocity", &max_forward_velocity, 0.0, kOptionHuge,
+                 "random forward velocity commands in +-it [m/s]");
+  table.add_real("max_yaw_rate", &max_yaw_rate, 0.0, kOptionHuge,
+                 "random yaw rate commands in +-it [rad/s]");
+  table.add_real("zero_command_probability", &zero_command_probability, 0.0, 1.0,
+                 "share of random commands that ask to stand still");
+  table.add_real("command_resample_time_min", &resample_time_min, 0.0, kOptionHuge,
+                 "a random command holds U(min, max) seconds [s]");
+  table.add_real("command_resample_time_max", &resample_time_max, 0.0, kOptionHuge,
+                 "longest hold of a random command [s], 0 for one command per episode");
+  table.add_rule([this] { return problem(); });
 }
 
 VelocityCommandSampler::VelocityCommandSampler(const VelocityCommandRanges& ranges)

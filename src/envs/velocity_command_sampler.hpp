@@ -5,8 +5,10 @@
 
 #include <cstdint>
 #include <random>
+#include <string>
 
 #include "envs/velocity_command.hpp"
+#include "model/option_table.hpp"
 
 namespace upkie_rl {
 
@@ -18,9 +20,15 @@ struct VelocityCommandRanges {
   double resample_time_min = 2.0;         ///< A command holds U(min, max) seconds [s].
   double resample_time_max = 5.0;         ///< 0 for min and max: one command per episode.
 
-  /// @throws std::invalid_argument naming the option at fault: a negative or non-finite
-  ///         value, a probability above 1, or resample_time_min above resample_time_max.
+  /// What is wrong, naming the option at fault: a negative or non-finite value, a
+  /// probability above 1, or resample_time_min above resample_time_max; "" if nothing.
+  std::string problem() const;
+  /// @throws std::invalid_argument with problem(), if any.
   void validate() const;
+
+  /// Declares the options max_forward_velocity, max_yaw_rate, zero_command_probability,
+  /// command_resample_time_min and command_resample_time_max, and problem() as their rule.
+  void declare_options(OptionTable& table);
 };
 
 /// Draws a command at reset, then a new one whenever the current one has held its drawn

@@ -1,6 +1,7 @@
 #include "envs/velocity_reward.hpp"
 
 #include <cmath>
+#include "envs/shared_options.hpp"
 
 namespace upkie_rl {
 
@@ -36,6 +37,22 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
   double sum = 0.0;
   for (const double term : terms_) sum += term;
   return sum;
+}
+
+void VelocityRewardWeights::declare_options(OptionTable& table) {
+  table.add_real("w_track_forward_velocity", &w_track_forward_velocity, 0.0, kOptionHuge,
+                 "reward weight of forward velocity tracking");
+  table.add_real("w_track_yaw_rate", &w_track_yaw_rate, 0.0, kOptionHuge,
+                 "reward weight of yaw rate tracking");
+  table.add_real("w_upright", &w_upright, 0.0, kOptionHuge, "reward weight of uprightness");
+  table.add_real("w_pose", &w_pose, 0.0, kOptionHuge,
+                 "reward weight of the legs' closeness to the default pose");
+  table.add_real("w_action_rate", &w_action_rate, 0.0, kOptionHuge,
+                 "penalty weight of the squared action change");
+  table.add_real("forward_velocity_sigma", &forward_velocity_sigma, 1e-6, kOptionHuge,
+                 "width of the forward velocity tracking kernel [m/s]");
+  table.add_real("yaw_rate_sigma", &yaw_rate_sigma, 1e-6, kOptionHuge,
+                 "width of the yaw rate tracking kernel [rad/s]");
 }
 
 }  // namespace upkie_rl

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "envs/velocity_command.hpp"
+#include "model/option_table.hpp"
 
 namespace upkie_rl {
 
@@ -22,6 +23,9 @@ struct VelocityRewardWeights {
   double w_action_rate = 0.1;            ///< Subtracted: a penalty.
   double forward_velocity_sigma = 0.25;  ///< Width of the forward tracking kernel [m/s].
   double yaw_rate_sigma = 0.5;           ///< Width of the yaw tracking kernel [rad/s].
+
+  /// Declares the options of the fields, by their names.
+  void declare_options(OptionTable& table);
 };
 
 /// What a step gives the reward.

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include "envs/shared_options.hpp"
 
 namespace upkie_rl {
 
@@ -129,6 +130,30 @@ StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand
   }
   result.terminated = reason_ != VelocityTermination::kNone;
   return result;
+}
+
+void VelocityTaskConfig::declare_options(OptionTable& table) {
+  table.add_real("wheel_velocity_scale", &wheel_velocity_scale, 1e-6, kOptionHuge,
+                 "wheel velocity target at action 1 [rad/s]");
+  table.add_real("leg_action_scale", &leg_action_scale, 1e-6, 10.0,
+                 "hip and knee target offset from the default pose at action 1 [rad]");
+  table.add_real("leg_kp_scale", &leg_kp_scale, 0.0, ServosEnv::kMaxGainScale,
+                 "kp_scale of hips and knees");
+  table.add_real("leg_kd_scale", &leg_kd_scale, 0.0, ServosEnv::kMaxGainScale,
+                 "kd_scale of hips and knees");
+  table.add_real("wheel_kd_scale", &wheel_kd_scale, 0.0, ServosEnv::kMaxGainScale,
+                 "kd_scale of the wheels' velocity loop");
+  table.add_real("fall_tilt", &fall_tilt, 0.0, 3.2,
+                 "terminate when the base tilts more than it [rad]");
+  table.add_choice("terminate_on_contact", &terminate_on_contact,
+                   {{"true", true}, {"false", false}},
+                   "terminate when a part other than a wheel touches the floor");
+  table.add_text("base_controller", &base_controller,
+                 "residual mode: a controller spec (balancer:... from `rollout --controller "
+                 "lqr`) whose action is added to residual_scale times the agent's");
+  table.add_real("residual_scale", &residual_scale, 0.0, 1.0,
+                 "residual mode: weight of the agent's action");
+  reward.declare_options(table);
 }
 
 }  // namespace upkie_rl

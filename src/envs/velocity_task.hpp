@@ -34,6 +34,9 @@ struct VelocityTaskConfig {
   std::string base_controller;
   double residual_scale = 1.0;
   VelocityRewardWeights reward;
+
+  /// Declares the options of the fields, by their names, then the reward's.
+  void declare_options(OptionTable& table);
 };
 
 /// Why an episode of the velocity task ended.

@@ -29,15 +29,21 @@ std::string format_bytes(double bytes) {
 
 void check_setting(const std::string& name, double value, double min, double max,
                    LowerBound lower) {
+  check_setting(name, value, "", min, max, lower);
+}
+
+void check_setting(const std::string& name, double value, const std::string& shown, double min,
+                   double max, LowerBound lower) {
   const bool below = lower == LowerBound::kIncluded ? value < min : value <= min;
   if (std::isfinite(value) && !below && value <= max) return;
   const std::string range = (lower == LowerBound::kIncluded ? "[" : "(") + format_number(min) +
                             ", " + format_number(max) + "]";
+  const std::string text = shown.empty() ? format_number(value) : shown;
   if (!std::isfinite(value)) {
-    throw std::invalid_argument(name + ": " + format_number(value) +
-                                " is not a finite number; expected one in " + range);
+    throw std::invalid_argument(name + ": " + text + " is not a finite number; expected one in " +
+                                range);
   }
-  throw std::invalid_argument(name + ": " + format_number(value) + " is outside " + range);
+  throw std::invalid_argument(name + ": " + text + " is outside " + range);
 }
 
 void check_setting(const std::string& name, std::int64_t value, std::int64_t min,

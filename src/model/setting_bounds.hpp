@@ -18,9 +18,13 @@ enum class LowerBound { kIncluded, kExcluded };
 void check_setting(const std::string& name, double value, double min, double max,
                    LowerBound lower = LowerBound::kIncluded);
 
+/// The same, showing the value as `shown` (as the user wrote it; "" for the shortest text
+/// that reads back as `value`).
+void check_setting(const std::string& name, double value, const std::string& shown, double min,
+                   double max, LowerBound lower = LowerBound::kIncluded);
+
 /// Throws unless min <= value <= max.
-void check_setting(const std::string& name, std::int64_t value, std::int64_t min,
-                   std::int64_t max);
+void check_setting(const std::string& name, std::int64_t value, std::int64_t min, std::int64_t max);
 
 /// Bytes of physical memory of this machine (0 when unknown).
 std::uint64_t physical_memory_bytes();

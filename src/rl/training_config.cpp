@@ -6,11 +6,11 @@
 #include <charconv>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 
-#include "model/integer_text.hpp"
 #include "model/setting_bounds.hpp"
 #include "policy/network_limits.hpp"
 #include "rl/ppo_gradient.hpp"
@@ -34,30 +34,7 @@ std::string trim(const std::string& text) {
                               "'");
 }
 
-template <typename T>
-T parse_integer(const std::string& key, const std::string& raw) {
-  const std::optional<T> value = integer_from_text<T>(raw);
-  if (!value) bad_value(key, raw, "an integer");
-  return *value;
-}
-
-double parse_double(const std::string& key, const std::string& raw) {
-  const std::string text = trim(raw);
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-    bad_value(key, raw, "a number");
-  }
-  return value;
-}
-
-bool parse_bool(const std::string& key, const std::string& raw) {
-  std::string text = trim(raw);
-  std::transform(text.begin(), text.end(), text.begin(), ::tolower);
-  if (text == "true" || text == "yes" || text == "on" || text == "1") return true;
-  if (text == "false" || text == "no" || text == "off" || text == "0") return false;
-  bad_value(key, raw, "true or false");
-}
+std::string config_key(const std::string& key) { return "config key '" + key + "'"; }
 
 // The values of ppo.gradient, spelled once for parsing, writing and messages.
 constexpr std::pair<GradientMethod, const char*> kGradientMethods[] = {
@@ -66,129 +43,34 @@ constexpr std::pair<GradientMethod, const char*> kGradientMethods[] = {
     {GradientMethod::kAutograd, "autograd"},
 };
 
-GradientMethod parse_gradient_method(const std::string& key, const std::string& text) {
-  std::string known;
-  for (const auto& [method, name] : kGradientMethods) {
-    if (text == name) return method;
-    known += (known.empty() ? "" : ", ") + std::string(name);
-  }
-  bad_value(key, text, "one of " + known);
+std::vector<std::pair<std::string, GradientMethod>> gradient_choices() {
+  std::vector<std::pair<std::string, GradientMethod>> choices;
+  for (const auto& [method, name] : kGradientMethods) choices.emplace_back(name, method);
+  return choices;
 }
 
-std::vector<std::int64_t> parse_sizes(const std::string& key, const std::string& raw) {
-  std::string text = trim(raw);
-  if (text.size() >= 2 && text.front() == '[' && text.back() == ']') {
-    text = text.substr(1, text.size() - 2);
+std::vector<std::pair<std::string, Activation>> activation_choices() {
+  std::vector<std::pair<std::string, Activation>> choices;
+  for (Activation activation : all_activations()) {
+    choices.emplace_back(activation_name(activation), activation);
   }
-  std::vector<std::int64_t> sizes;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    if (trim(item).empty()) continue;
-    const auto size = parse_integer<std::int64_t>(key, item);
-    if (size <= 0) bad_value(key, raw, "positive layer sizes");
-    sizes.push_back(size);
-  }
-  return sizes;
+  return choices;
 }
 
-std::string format_double(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  std::string text(buffer, result.ptr);
-  // Keep it a YAML float (e.g. "1" would read back fine, but "1.0" says what it is).
-  if (text.find_first_of(".einn") == std::string::npos) text += ".0";
-  return text;
-}
-
-std::string format_sizes(const std::vector<std::int64_t>& sizes) {
-  std::string text = "[";
-  for (std::size_t i = 0; i < sizes.size(); ++i) {
-    text += (i ? ", " : "") + std::to_string(sizes[i]);
-  }
-  return text + "]";
-}
-
-// One scalar setting: its dotted key, how to set it from text and how to print it.
-struct Field {
-  std::string key;
-  std::function<void(const std::string&)> set;
-  std::function<std::string()> get;
-};
-
-std::vector<Field> fields(TrainingConfig& c) {
-  std::vector<Field> out;
-  auto integer = [&out](const std::string& key, std::int64_t& value) {
-    out.push_back(
-        {key,
-         [&value, key](const std::string& text) { value = parse_integer<std::int64_t>(key, text); },
-         [&value] { return std::to_string(value); }});
-  };
-  auto real = [&out](const std::string& key, double& value) {
-    out.push_back({key, [&value, key](const std::string& text) { value = parse_double(key, text); },
-                   [&value] { return format_double(value); }});
-  };
-  auto boolean = [&out](const std::string& key, bool& value) {
-    out.push_back({key, [&value, key](const std::string& text) { value = parse_bool(key, text); },
-                   [&value] { return std::string(value ? "true" : "false"); }});
-  };
-  auto sizes = [&out](const std::string& key, std::vector<std::int64_t>& value) {
-    out.push_back({key, [&value, key](const std::string& text) { value = parse_sizes(key, text); },
-                   [&value] { return format_sizes(value); }});
-  };
-  out.push_back({"env.id", [&c](const std::string& text) { c.env_id = trim(text); },
-                 [&c] { return c.env_id; }});
-  integer("env.num_envs", c.num_envs);
-  integer("env.threads", c.env_threads);
-  integer("env.curriculum_steps", c.curriculum_steps);
-  boolean("normalize.observations", c.normalize.observations);
-  boolean("normalize.rewards", c.normalize.rewards);
-  real("normalize.clip_observations", c.normalize.clip_observations);
-  real("normalize.clip_rewards", c.normalize.clip_rewards);
-  real("normalize.gamma", c.normalize.gamma);
-  real("normalize.epsilon", c.normalize.epsilon);
-  sizes("policy.actor_hidden_sizes", c.policy.actor_hidden_sizes);
-  sizes("policy.critic_hidden_sizes", c.policy.critic_hidden_sizes);
-  out.push_back({"policy.activation",
-                 [&c](const std::string& text) {
-                   try {
-                     c.policy.activation = parse_activation(trim(text));
-                   } catch (const std::invalid_argument&) {
-                     bad_value("policy.activation", text, activation_names());
-                   }
-                 },
-                 [&c] { return std::string(activation_name(c.policy.activation)); }});
-  real("policy.log_std_init", c.policy.log_std_init);
-  integer("ppo.total_timesteps", c.ppo.total_timesteps);
-  integer("ppo.n_steps", c.ppo.n_steps);
-  integer("ppo.batch_size", c.ppo.batch_size);
-  integer("ppo.n_epochs", c.ppo.n_epochs);
-  real("ppo.gamma", c.ppo.gamma);
-  real("ppo.gae_lambda", c.ppo.gae_lambda);
-  real("ppo.clip_range", c.ppo.clip_range);
-  real("ppo.clip_range_vf", c.ppo.clip_range_vf);
-  real("ppo.ent_coef", c.ppo.ent_coef);
-  real("ppo.vf_coef", c.ppo.vf_coef);
-  real("ppo.max_grad_norm", c.ppo.max_grad_norm);
-  real("ppo.learning_rate_initial", c.ppo.learning_rate_initial);
-  real("ppo.learning_rate_final", c.ppo.learning_rate_final);
-  real("ppo.adam_eps", c.ppo.adam_eps);
-  boolean("ppo.normalize_advantage", c.ppo.normalize_advantage);
-  out.push_back({"ppo.gradient",
-                 [&c](const std::string& text) {
-                   c.ppo.gradient = parse_gradient_method("ppo.gradient", trim(text));
-                 },
-                 [&c] { return std::string(gradient_method_name(c.ppo.gradient)); }});
-  out.push_back(
-      {"seed",
-       [&c](const std::string& text) { c.seed = parse_integer<std::uint64_t>("seed", text); },
-       [&c] { return std::to_string(c.seed); }});
-  integer("checkpoint_every", c.checkpoint_every);
-  integer("torch_threads", c.torch_threads);
-  return out;
+void check_hidden_sizes_of(const std::string& where, const std::vector<std::int64_t>& sizes) {
+  check_hidden_sizes(where, sizes);
 }
 
 constexpr const char* kEnvOptionsPrefix = "env.options.";
+
+// The env.options mapping, in the env section of to_yaml.
+std::string env_options_yaml(const std::vector<std::pair<std::string, std::string>>& options) {
+  std::string out = "  options:" + std::string(options.empty() ? " {}" : "") + "\n";
+  for (const auto& [key, value] : options) {
+    out += "    " + key + ": " + YAML::Dump(YAML::Node(value)) + "\n";
+  }
+  return out;
+}
 
 void set_env_option(TrainingConfig& config, const std::string& name, const std::string& value) {
   if (name.empty()) throw std::invalid_argument("config key 'env.options': empty option name");
@@ -201,19 +83,14 @@ void set_env_option(TrainingConfig& config, const std::string& name, const std::
   config.env_options.emplace_back(name, value);
 }
 
-void set_key(TrainingConfig& config, std::vector<Field>& table, const std::string& key,
+void set_key(TrainingConfig& config, const OptionTable& table, const std::string& key,
              const std::string& value) {
   if (key.rfind(kEnvOptionsPrefix, 0) == 0) {
     set_env_option(config, key.substr(std::string(kEnvOptionsPrefix).size()), trim(value));
     return;
   }
-  for (Field& field : table) {
-    if (field.key == key) {
-      field.set(value);
-      return;
-    }
-  }
-  throw std::invalid_argument("unknown config key '" + key + "'");
+  if (!table.contains(key)) throw std::invalid_argument("unknown config key '" + key + "'");
+  table.read(key, value, config_key(key));
 }
 
 std::string node_text(const YAML::Node& node, const std::string& key) {
@@ -231,7 +108,7 @@ std::string node_text(const YAML::Node& node, const std::string& key) {
 }
 
 void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& config,
-          std::vector<Field>& table) {
+          const OptionTable& table) {
   for (const auto& item : node) {
     const std::string name = item.first.as<std::string>();
     const std::string key = prefix.empty() ? name : prefix + "." + name;
@@ -274,54 +151,108 @@ std::int64_t TrainingConfig::steps_per_env() const {
   return std::max<std::int64_t>(1, ppo.n_steps / std::max<std::int64_t>(1, num_envs));
 }
 
+void TrainingConfig::declare_options(OptionTable& table) {
+  declare_run_options(table);
+  normalize.declare_options(table);
+  policy.declare_options(table);
+  ppo.declare_options(table, num_envs, policy.activation);
+  table.add_integer<std::uint64_t>("seed", &seed, 0, std::numeric_limits<std::uint64_t>::max(),
+                                   "random seed of the environments, the policy and the updates");
+  table.add_integer<std::int64_t>("checkpoint_every", &checkpoint_every, 0, kMaxTimesteps,
+                                  "timesteps between checkpoints, 0 for none");
+  table.add_integer<std::int64_t>("torch_threads", &torch_threads, 1, kMaxTorchThreads,
+                                  "intra-op threads of libtorch");
+}
+
+void TrainingConfig::declare_run_options(OptionTable& table) {
+  table.add_text("env.id", &env_id, "environment id (`upkie-rl envs`)",
+                 [this] { return env_id.empty() ? std::string("must not be empty") : ""; });
+  table.add_integer<std::int64_t>("env.num_envs", &num_envs, 1,
+                                  static_cast<std::int64_t>(kMaxVectorEnvs),
+                                  "environments stepped together");
+  table.add_integer<std::int64_t>("env.threads", &env_threads, 0,
+                                  static_cast<std::int64_t>(kMaxEnvThreads),
+                                  "worker threads of the vector environment, 0 for none");
+  table.add_integer<std::int64_t>("env.curriculum_steps", &curriculum_steps, 0, kMaxTimesteps,
+                                  "timesteps over which randomisation ramps up, 0 for none");
+}
+
+void NormalizationConfig::declare_options(OptionTable& table) {
+  table.add_boolean("normalize.observations", &observations, "normalise observations");
+  table.add_boolean("normalize.rewards", &rewards, "normalise rewards by the return's std");
+  table.add_real("normalize.clip_observations", &clip_observations, 0, kMaxNormalizationClip,
+                 "clip normalised observations to +-it", true);
+  table.add_real("normalize.clip_rewards", &clip_rewards, 0, kMaxNormalizationClip,
+                 "clip normalised rewards to +-it", true);
+  table.add_real("normalize.gamma", &gamma, 0, 1, "discount of the return", true);
+  table.add_real("normalize.epsilon", &epsilon, 0, 1, "added to variances", true);
+}
+
+void PolicyConfig::declare_options(OptionTable& table) {
+  table.add_integer_list("policy.actor_hidden_sizes", &actor_hidden_sizes,
+                         "hidden layer widths of the actor", check_hidden_sizes_of);
+  table.add_integer_list("policy.critic_hidden_sizes", &critic_hidden_sizes,
+                         "hidden layer widths of the critic", check_hidden_sizes_of);
+  table.add_choice("policy.activation", &activation, activation_choices(),
+                   "activation of the hidden layers");
+  table.add_real("policy.log_std_init", &log_std_init, -20, 5,
+                 "initial log standard deviation of the actions");
+}
+
+void PpoConfig::declare_options(OptionTable& table, const std::int64_t& num_envs,
+                                const Activation& activation) {
+  using I = std::int64_t;
+  table.add_integer<I>("ppo.total_timesteps", &total_timesteps, 1, kMaxTimesteps,
+                       "timesteps of the run");
+  // The lower bound is env.num_envs (every environment steps at least once per update).
+  table.add_integer<I>("ppo.n_steps", &n_steps, 1, kMaxRolloutSteps,
+                       "steps per update, all environments together", [this, &num_envs] {
+                         if (n_steps < num_envs)
+                           return std::string("must be at least env.num_envs");
+                         if (n_steps <= kMaxRolloutSteps) return std::string();
+                         return std::to_string(n_steps) + " is outside [" +
+                                std::to_string(num_envs) + ", " + std::to_string(kMaxRolloutSteps) +
+                                "]";
+                       });
+  table.add_integer<I>("ppo.batch_size", &batch_size, std::numeric_limits<I>::min(),
+                       std::numeric_limits<I>::max(), "minibatch size", [this, &num_envs] {
+                         if (batch_size < 1) return std::string("must be at least 1");
+                         const I steps = std::max<I>(1, n_steps / std::max<I>(1, num_envs));
+                         if (batch_size <= steps * num_envs) return std::string();
+                         return std::string("must not exceed the steps per update");
+                       });
+  table.add_integer<I>("ppo.n_epochs", &n_epochs, 1, 10'000, "passes over each rollout");
+  table.add_real("ppo.gamma", &gamma, 0, 1, "discount", true);
+  table.add_real("ppo.gae_lambda", &gae_lambda, 0, 1, "GAE lambda");
+  table.add_real("ppo.clip_range", &clip_range, 0, 100, "policy ratio clipping", true);
+  table.add_real("ppo.clip_range_vf", &clip_range_vf, -kMaxClip, kMaxClip,
+                 "value clipping range, <= 0 for none");
+  table.add_real("ppo.ent_coef", &ent_coef, -1000, 1000, "entropy coefficient");
+  table.add_real("ppo.vf_coef", &vf_coef, 0, 1000, "value loss coefficient");
+  table.add_real("ppo.max_grad_norm", &max_grad_norm, 0, kMaxClip, "gradient norm clipping", true);
+  table.add_real("ppo.learning_rate_initial", &learning_rate_initial, 0, 1,
+                 "learning rate at the start (linear schedule)", true);
+  table.add_real("ppo.learning_rate_final", &learning_rate_final, 0, 1, "learning rate at the end");
+  table.add_real("ppo.adam_eps", &adam_eps, 0, 1, "Adam's epsilon", true);
+  table.add_boolean("ppo.normalize_advantage", &normalize_advantage,
+                    "normalise advantages per minibatch");
+  table.add_choice("ppo.gradient", &gradient, gradient_choices(),
+                   "how the gradient is computed (auto: hand when it covers the activation)",
+                   [this, &activation] {
+                     if (gradient != GradientMethod::kHand || PpoGradient::covers(activation)) {
+                       return std::string();
+                     }
+                     return std::string("hand covers the relu and tanh activations, not ") +
+                            activation_name(activation) + "; use autograd or auto";
+                   });
+}
+
 void TrainingConfig::validate() const {
-  auto require = [](bool condition, const std::string& key, const std::string& what) {
-    if (!condition) throw std::invalid_argument("config key '" + key + "': " + what);
-  };
-  auto integer = [](const std::string& key, std::int64_t value, std::int64_t min,
-                    std::int64_t max) {
-    check_setting("config key '" + key + "'", value, min, max);
-  };
-  auto real = [](const std::string& key, double value, double min, double max,
-                 LowerBound lower = LowerBound::kIncluded) {
-    check_setting("config key '" + key + "'", value, min, max, lower);
-  };
-  constexpr auto kExcluded = LowerBound::kExcluded;
-  require(!env_id.empty(), "env.id", "must not be empty");
-  integer("env.num_envs", num_envs, 1, static_cast<std::int64_t>(kMaxVectorEnvs));
-  integer("env.threads", env_threads, 0, static_cast<std::int64_t>(kMaxEnvThreads));
-  integer("env.curriculum_steps", curriculum_steps, 0, kMaxTimesteps);
-  real("normalize.clip_observations", normalize.clip_observations, 0, kMaxNormalizationClip,
-       kExcluded);
-  real("normalize.clip_rewards", normalize.clip_rewards, 0, kMaxNormalizationClip, kExcluded);
-  real("normalize.gamma", normalize.gamma, 0, 1, kExcluded);
-  real("normalize.epsilon", normalize.epsilon, 0, 1, kExcluded);
-  check_hidden_sizes("config key 'policy.actor_hidden_sizes'", policy.actor_hidden_sizes);
-  check_hidden_sizes("config key 'policy.critic_hidden_sizes'", policy.critic_hidden_sizes);
-  real("policy.log_std_init", policy.log_std_init, -20, 5);
-  integer("ppo.total_timesteps", ppo.total_timesteps, 1, kMaxTimesteps);
-  require(ppo.n_steps >= num_envs, "ppo.n_steps", "must be at least env.num_envs");
-  integer("ppo.n_steps", ppo.n_steps, num_envs, kMaxRolloutSteps);
-  require(ppo.batch_size >= 1, "ppo.batch_size", "must be at least 1");
-  require(ppo.batch_size <= steps_per_env() * num_envs, "ppo.batch_size",
-          "must not exceed the steps per update");
-  integer("ppo.n_epochs", ppo.n_epochs, 1, 10'000);
-  real("ppo.gamma", ppo.gamma, 0, 1, kExcluded);
-  real("ppo.gae_lambda", ppo.gae_lambda, 0, 1);
-  real("ppo.clip_range", ppo.clip_range, 0, 100, kExcluded);
-  real("ppo.clip_range_vf", ppo.clip_range_vf, -kMaxClip, kMaxClip);
-  real("ppo.ent_coef", ppo.ent_coef, -1000, 1000);
-  real("ppo.vf_coef", ppo.vf_coef, 0, 1000);
-  real("ppo.max_grad_norm", ppo.max_grad_norm, 0, kMaxClip, kExcluded);
-  real("ppo.learning_rate_initial", ppo.learning_rate_initial, 0, 1, kExcluded);
-  real("ppo.learning_rate_final", ppo.learning_rate_final, 0, 1);
-  real("ppo.adam_eps", ppo.adam_eps, 0, 1, kExcluded);
-  require(ppo.gradient != GradientMethod::kHand || PpoGradient::covers(policy.activation),
-          "ppo.gradient",
-          std::string("hand covers the relu and tanh activations, not ") +
-              activation_name(policy.activation) + "; use autograd or auto");
-  integer("checkpoint_every", checkpoint_every, 0, kMaxTimesteps);
-  integer("torch_threads", torch_threads, 1, kMaxTorchThreads);
+  // The table binds mutable fields: a copy, read only (validate runs once per run).
+  TrainingConfig copy = *this;
+  OptionTable table;
+  copy.declare_options(table);
+  table.check(config_key, "config");
 }
 
 void TrainingConfig::check_allocations(std::int64_t observation_size,
@@ -352,7 +283,8 @@ TrainingConfig parse_training_config(const std::string& yaml_text) {
   TrainingConfig config;
   if (root.IsNull()) return config;
   if (!root.IsMap()) throw std::invalid_argument("config: expected a mapping at the top level");
-  std::vector<Field> table = fields(config);
+  OptionTable table;
+  config.declare_options(table);
   walk(root, "", config, table);
   return config;
 }
@@ -370,7 +302,8 @@ TrainingConfig load_training_config(const std::string& path) {
 }
 
 void apply_overrides(TrainingConfig& config, const std::vector<std::string>& overrides) {
-  std::vector<Field> table = fields(config);
+  OptionTable table;
+  config.declare_options(table);
   for (const std::string& item : overrides) {
     const auto equal = item.find('=');
     if (equal == std::string::npos || equal == 0) {
@@ -387,27 +320,28 @@ double TrainingConfig::randomization_scale(std::int64_t timesteps) const {
 }
 
 std::string to_yaml(const TrainingConfig& const_config) {
-  TrainingConfig config = const_config;  // the field table binds mutable references
-  std::vector<Field> table = fields(config);
+  TrainingConfig config = const_config;  // the option table binds mutable fields
+  OptionTable table;
+  config.declare_options(table);
   std::string out;
   std::string section;
-  for (const Field& field : table) {
-    const auto dot = field.key.find('.');
-    const std::string field_section = dot == std::string::npos ? "" : field.key.substr(0, dot);
-    const std::string name = dot == std::string::npos ? field.key : field.key.substr(dot + 1);
-    if (field_section != section) {
-      if (section == "env") {
-        out += "  options:" + std::string(config.env_options.empty() ? " {}" : "") + "\n";
-        for (const auto& [key, value] : config.env_options) {
-          out += "    " + key + ": " + YAML::Dump(YAML::Node(value)) + "\n";
-        }
-      }
-      section = field_section;
+  for (const OptionInfo& option : table.info()) {
+    const auto dot = option.name.find('.');
+    const std::string option_section = dot == std::string::npos ? "" : option.name.substr(0, dot);
+    const std::string name = dot == std::string::npos ? option.name : option.name.substr(dot + 1);
+    if (option_section != section) {
+      if (section == "env") out += env_options_yaml(config.env_options);
+      section = option_section;
       if (!section.empty()) out += section + ":\n";
     }
-    const std::string value = field.get();
-    out += (section.empty() ? "" : "  ") + name + ": " +
-           (field.key == "env.id" ? YAML::Dump(YAML::Node(value)) : value) + "\n";
+    std::string value = table.value_text(option.name);
+    if (option.type == OptionInfo::Type::kText) value = YAML::Dump(YAML::Node(value));
+    // Keep a real a YAML float ("1" would read back fine, but "1.0" says what it is).
+    if (option.type == OptionInfo::Type::kReal &&
+        value.find_first_of(".einn") == std::string::npos) {
+      value += ".0";
+    }
+    out += (section.empty() ? "" : "  ") + name + ": " + value + "\n";
   }
   return out;
 }

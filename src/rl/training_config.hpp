@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/option_table.hpp"
 #include "policy/activation.hpp"
 
 namespace upkie_rl {
@@ -29,6 +30,9 @@ struct PolicyConfig {
   std::vector<std::int64_t> critic_hidden_sizes{64, 64};
   Activation activation = Activation::kReLU;
   double log_std_init = 0.0;  ///< Initial log standard deviation of the Gaussian.
+
+  /// Declares the keys policy.* (training_config.cpp).
+  void declare_options(OptionTable& table);
 };
 
 /// How Ppo::update computes the gradient of the loss (`ppo.gradient`; docs/training.md).
@@ -60,6 +64,11 @@ struct PpoConfig {
   double adam_eps = 1e-5;
   bool normalize_advantage = true;
   GradientMethod gradient = GradientMethod::kAuto;  ///< Not SB3's: how the gradient is made.
+
+  /// Declares the keys ppo.*; n_steps and batch_size are checked against `num_envs`, the
+  /// gradient against `activation` (both bound, read when the table checks).
+  void declare_options(OptionTable& table, const std::int64_t& num_envs,
+                       const Activation& activation);
 };
 
 /// Observation and reward normalisation (SB3 VecNormalize).
@@ -70,6 +79,9 @@ struct NormalizationConfig {
   double clip_rewards = 10.0;
   double gamma = 0.99;
   double epsilon = 1e-8;
+
+  /// Declares the keys normalize.*.
+  void declare_options(OptionTable& table);
 };
 
 /// Everything a training run needs.
@@ -99,6 +111,13 @@ struct TrainingConfig {
 
   /// Steps each environment collects per update: n_steps / num_envs (at least 1).
   std::int64_t steps_per_env() const;
+
+  /// Declares every key (dotted, in YAML order) with its range, rules and help: the one
+  /// list that parse_training_config, apply_overrides, validate and to_yaml read.
+  /// env.options.* are the environment's (envs/registry.hpp), not declared here.
+  void declare_options(OptionTable& table);
+  /// Declares env.id, env.num_envs, env.threads and env.curriculum_steps.
+  void declare_run_options(OptionTable& table);
 
   /// Throws std::invalid_argument naming the key of the first inconsistent or out-of-range
   /// value, its value and the range (one line). Every number must be finite.

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "model/option_table.hpp"
 #include "sim/simulation.hpp"
 #include "spine/payload_unpacker.hpp"
 #include "spine/reset_config.hpp"
@@ -28,6 +29,10 @@ struct SpineBackendConfig {
   int open_tries = 10;                    ///< Attempts at opening the shared memory.
   double open_retry_delay = 1.0;          ///< Pause between two attempts [s].
   SpineStartParameters start_parameters;  ///< Sent with every Start.
+
+  /// Declares the options shm_name, regulate_frequency, request_timeout and open_tries
+  /// (spine_backend_options.cpp); the agent frequency is the environment's `frequency`.
+  void declare_options(OptionTable& table);
 };
 
 /// Talks to a spine through its shared memory (spine.md section 2): reset() is stop()

@@ -1,0 +1,24 @@
+#pragma once
+/// @file
+/// Options that several environment kinds declare: one name, range and help each, so that
+/// the pendulum and the gyropod (say) cannot come to mean different things by the same name.
+
+#include "envs/servos_env.hpp"
+#include "model/option_table.hpp"
+
+namespace upkie_rl {
+
+/// Largest value of the options that accept any non-negative magnitude.
+inline constexpr double kOptionHuge = 1e9;
+
+/// Terminate on |pitch| above it (BalanceTermination, GyropodConfig).
+inline constexpr RealOptionSpec kFallPitchOption{"fall_pitch", 0.0, kOptionHuge,
+                                                 "terminate when |pitch| exceeds it [rad]"};
+/// Bound of the commanded ground velocity (PendulumConfig, GyropodConfig).
+inline constexpr RealOptionSpec kMaxGroundVelocityOption{"max_ground_velocity", 1e-6, kOptionHuge,
+                                                         "action bound a_max [m/s]"};
+/// Gain scales of the legs held at their default pose (PendulumConfig, GyropodConfig).
+inline constexpr RealOptionSpec kLegGainScaleOption{"leg_gain_scale", 0.0, ServosEnv::kMaxGainScale,
+                                                    "gain scales of the held legs"};
+
+}  // namespace upkie_rl
