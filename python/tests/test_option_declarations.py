@@ -7,7 +7,7 @@ import os
 import re
 import subprocess
 from pathlib import Path
-from typing import Dict, List
+from typing import Any, Dict, List
 
 import pytest
 
@@ -33,7 +33,7 @@ def cli_listing() -> Dict[str, List[str]]:
             listing[current] = []
         elif line == "  options:":
             in_options = True
-        elif in_options and current is not None:
+        elif in_options and current is not None and line.startswith("      "):
             listing[current].append(line.strip().split(":", 1)[0])
     return listing
 
@@ -50,7 +50,7 @@ def test_cli_listing_and_python_table_hold_the_same_options():
 def test_every_default_goes_through_the_keyword_arguments(env_id):
     """Each option's listed default, typed as Python would give it, is accepted by the
     keyword-argument layer and by the C++ parser."""
-    keywords = {}
+    keywords: Dict[str, Any] = {}
     for option in upkie_rl.env_options(env_id):
         default, kind = option["default"], option["type"]
         if kind == "real":

@@ -30,10 +30,7 @@ std::string ActionLagSettings::problem() const {
   return "";
 }
 
-void ActionLagSettings::validate() const {
-  const std::string what = problem();
-  if (!what.empty()) throw std::invalid_argument(what);
-}
+void ActionLagSettings::validate() const { throw_problem(problem()); }
 
 void ActionLagSettings::declare_options(OptionTable& table) {
   table.add_real("action_lag_min", &time_constant_min, 0.0, kOptionHuge,

@@ -90,9 +90,6 @@ std::string PerturbationSettings::problem() const {
   return "";
 }
 
-void PerturbationSettings::validate() const {
-  const std::string what = problem();
-  if (!what.empty()) throw std::invalid_argument(what);
-}
+void PerturbationSettings::validate() const { throw_problem(problem()); }
 
 }  // namespace upkie_rl

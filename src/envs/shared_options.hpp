@@ -3,6 +3,9 @@
 /// Options that several environment kinds declare: one name, range and help each, so that
 /// the pendulum and the gyropod (say) cannot come to mean different things by the same name.
 
+#include <stdexcept>
+#include <string>
+
 #include "envs/servos_env.hpp"
 #include "model/option_table.hpp"
 
@@ -20,5 +23,11 @@ inline constexpr RealOptionSpec kMaxGroundVelocityOption{"max_ground_velocity", 
 /// Gain scales of the legs held at their default pose (PendulumConfig, GyropodConfig).
 inline constexpr RealOptionSpec kLegGainScaleOption{"leg_gain_scale", 0.0, ServosEnv::kMaxGainScale,
                                                     "gain scales of the held legs"};
+
+/// A settings struct's validate(): throws std::invalid_argument with the problem its
+/// rule found (the same text the option table reports), if any.
+inline void throw_problem(const std::string& problem) {
+  if (!problem.empty()) throw std::invalid_argument(problem);
+}
 
 }  // namespace upkie_rl

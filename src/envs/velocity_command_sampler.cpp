@@ -41,10 +41,7 @@ std::string VelocityCommandRanges::problem() const {
   return "";
 }
 
-void VelocityCommandRanges::validate() const {
-  const std::string what = problem();
-  if (!what.empty()) throw std::invalid_argument(what);
-}
+void VelocityCommandRanges::validate() const { throw_problem(problem()); }
 
 void VelocityCommandRanges::declare_options(OptionTable& table) {
   table.add_real("max_forward_velocity", &max_forward_velocity, 0.0, kOptionHuge,
