@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/servo_law.hpp"
+
 namespace upkie_rl {
 
 namespace {
@@ -55,7 +57,7 @@ const Observation& MockSimulation::step(const ServoAction& action) {
     servo.position =
         std::isnan(command.position) ? servo.position + command.velocity * dt : command.position;
     servo.velocity = command.velocity;
-    const double torque_limit = std::min(command.maximum_torque, model_->servo_limits(i).effort);
+    const double torque_limit = servo_torque_limit(command, model_->servo_limits(i).effort);
     servo.torque = std::clamp(command.feedforward_torque, -torque_limit, torque_limit);
   }
   // Left-wheeled: a positive left-wheel velocity rolls forward.

@@ -18,6 +18,12 @@ struct ServoGains {
 /// Whether `gain` can be a servo gain (kp or kd): finite and non-negative.
 inline bool is_valid_servo_gain(double gain) { return std::isfinite(gain) && gain >= 0.0; }
 
+/// The largest torque [N.m] the servo applies for `command` on a joint of effort `effort`:
+/// min(max_torque, effort), never negative.
+inline double servo_torque_limit(const ServoCommand& command, double effort) {
+  return std::max(0.0, std::min(command.maximum_torque, effort));
+}
+
 /// Torque [N.m] the servo applies for `command` at joint angle `position` [rad] and
 /// velocity `velocity` [rad/s]:
 /// clamp(tau_ff + kp*kp_scale*(q* - q) + kd*kd_scale*(qdot* - qdot), +-min(max_torque, effort)),
@@ -29,7 +35,7 @@ inline double servo_torque(const ServoCommand& command, double position, double 
   if (!std::isnan(command.position)) {
     torque += gains.kp * command.kp_scale * (command.position - position);
   }
-  const double limit = std::max(0.0, std::min(command.maximum_torque, effort));
+  const double limit = servo_torque_limit(command, effort);
   return std::clamp(torque, -limit, limit);
 }
 
