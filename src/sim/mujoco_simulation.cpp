@@ -48,12 +48,19 @@ void MujocoSimulation::apply_model_variation() {
   }
   mjModel* varied = varied_model_.get();
   episode_model_ = varied;
+  const MujocoRobotIndex& index = compiled_->index;
   if (!variation.changes_model()) {
-    // Undo an earlier episode's variation: same sizes, so the copy allocates nothing.
-    mj_copyModel(varied, nominal);
+    // Undo an earlier episode's variation (same sizes: the copy allocates nothing); else
+    // only the wheels' damping, which the steps rewrite, differs from the nominal model.
+    if (holds_variation_) mj_copyModel(varied, nominal);
+    holds_variation_ = false;
+    for (const std::size_t wheel : {kLeftWheel, kRightWheel}) {
+      const int dof = index.servo_dof[wheel];
+      varied->dof_damping[dof] = nominal->dof_damping[dof];
+    }
     return;
   }
-  const MujocoRobotIndex& index = compiled_->index;
+  holds_variation_ = true;
   const auto parent_of = [nominal, &index](int body) {
     return body == index.root_body ? -1 : nominal->body_parentid[body];
   };
@@ -113,7 +120,7 @@ void MujocoSimulation::apply_servo_torques(const ServoAction& action, bool brake
     // damping); adding damping·v now leaves the servo's torque, its damping implicit. Not
     // while the torque is at its limit, where the law does not depend on v.
     const ServoCommand& command = action[servo];
-    const double limit = std::min(command.maximum_torque, model().servo_limits(servo).effort);
+    const double limit = servo_torque_limit(command, model().servo_limits(servo).effort);
     const bool linear = !braked && std::abs(applied_torques_[servo]) < limit;
     const double damping = linear ? servo_gains().kd * command.kd_scale : 0.0;
     varied_model_->dof_damping[dof] = damping;

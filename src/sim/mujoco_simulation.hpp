@@ -58,6 +58,7 @@ class MujocoSimulation final : public PhysicsSimulation {
   /// Made at the first reset with a model variation, or at construction with implicit
   /// wheel damping.
   MujocoModelPtr varied_model_;
+  bool holds_variation_ = false;  ///< varied_model_ differs from the nominal one in masses.
   const mjModel_* episode_model_ = nullptr;
   MujocoDataPtr data_;
 };
