@@ -78,10 +78,10 @@ bool DriveLoop::take_inputs(const std::atomic<bool>& stop, DriveInputs& inputs) 
     if (stop.load()) return false;
     std::this_thread::sleep_for(kPausePoll);
     DriveInputs next = drive_.take();
-    // Requests made while paused are kept for the step after the pause.
+    // Requests made while paused are kept for the step after the pause (pushes wait in
+    // DriveControl).
     next.new_command = next.new_command || inputs.new_command;
     next.reset = next.reset || inputs.reset;
-    if (!next.push_heading) next.push_heading = inputs.push_heading;
     inputs = next;
   }
   view_.restart_pacing();

@@ -130,7 +130,8 @@ DriveInputs DriveControl::take() {
   DriveInputs inputs = pending_;
   pending_.new_command = false;
   pending_.reset = false;
-  if (waiting_push_count_ > 0) {
+  // Pushes wait while the run is paused, each for a step of its own after it.
+  if (waiting_push_count_ > 0 && !pending_.paused) {
     inputs.push_heading = waiting_pushes_[0];
     std::copy(waiting_pushes_.begin() + 1, waiting_pushes_.begin() + waiting_push_count_,
               waiting_pushes_.begin());

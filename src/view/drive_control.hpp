@@ -80,7 +80,7 @@ class DriveControl {
   std::string status_message(ClientId client) const;
 
   /// Simulation loop: the latest command and the requests since the last take (a reset is
-  /// taken once; pushes one per take, oldest first).
+  /// taken once; pushes one per take, oldest first, none while paused).
   DriveInputs take();
 
   /// Simulation loop: the command of `inputs` is in the simulation now. Counts its latency

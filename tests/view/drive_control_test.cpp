@@ -205,6 +205,20 @@ TEST(DriveControl, QuickPushesAreEachTakenInOrderAndAFloodIsRefused) {
   EXPECT_EQ(control.statistics().refused, 1U);
 }
 
+TEST(DriveControl, PushesWaitWhileThePauseLasts) {
+  DriveControl control(kLimits);
+  const auto now = Clock::now();
+  control.receive(1, R"({"type":"pause"})", now);
+  control.receive(1, R"({"type":"push","heading":0.5})", now);
+  control.receive(1, R"({"type":"push","heading":-0.5})", now);
+  EXPECT_FALSE(control.take().push_heading.has_value());
+  EXPECT_FALSE(control.take().push_heading.has_value());
+  control.receive(1, R"({"type":"pause"})", now);  // resume
+  EXPECT_EQ(control.take().push_heading, 0.5);
+  EXPECT_EQ(control.take().push_heading, -0.5);
+  EXPECT_FALSE(control.take().push_heading.has_value());
+}
+
 TEST(DriveControl, FloodsAreCutByTheRateLimitAndToldOnce) {
   DriveControl control(kLimits, DriveRateSettings{10.0, 5.0});
   const auto now = Clock::now();
