@@ -60,6 +60,13 @@ constexpr auto kAcceptRetryDelay = std::chrono::milliseconds(200);
 /// server with refused messages must not grow its queue without bound).
 constexpr std::size_t kMaxQueuedTexts = 64;
 
+/// The value of header `field` of `request`, empty when it has none.
+std::string_view header_value(const http::request<http::string_body>& request, http::field field) {
+  const auto found = request.find(field);
+  return found == request.end() ? std::string_view()
+                                : std::string_view(found->value().data(), found->value().size());
+}
+
 }  // namespace
 
 /// One browser's WebSocket: frames are written by the server's timer, one message at a
@@ -145,10 +152,11 @@ struct ViewServer::Impl {
               const http::request<http::string_body>& request);
   void upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
                const http::request<http::string_body>& request);
-  /// Answers a WebSocket handshake with a plain HTTP `status` and `reason`, then closes.
-  void refuse_upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
-                      const http::request<http::string_body>& request, http::status status,
-                      const char* reason);
+  /// Answers a request (a WebSocket handshake or a page's) with a plain HTTP `status` and
+  /// `reason`, then closes.
+  void refuse(const std::shared_ptr<beast::tcp_stream>& stream,
+              const http::request<http::string_body>& request, http::status status,
+              const char* reason);
   void read_messages(const std::shared_ptr<ViewClient>& client);
   /// Queues a text message for `client` and sends it as soon as its writes allow.
   void queue_text(const std::shared_ptr<ViewClient>& client, std::string text);
@@ -242,25 +250,21 @@ void ViewServer::Impl::read_request(const std::shared_ptr<beast::tcp_stream>& st
   parser->header_limit(kViewMaxRequestBytes);
   parser->body_limit(kViewMaxRequestBytes);
   stream->expires_after(idle_timeout());
-  http::async_read(
-      *stream, *buffer, *parser,
-      [this, stream, buffer, parser](beast::error_code error, std::size_t) {
-        if (error) return;  // closed, timed out or malformed: drop the connection
-        ++http_requests;
-        http::request<http::string_body> request = parser->release();
-        const auto host = request.find(http::field::host);
-        if (host != request.end() &&
-            !is_allowed_host(std::string_view(host->value().data(), host->value().size()),
-                             loopback)) {
-          refuse_upgrade(stream, request, http::status::forbidden,
-                         "the Host header names another site; this viewer "
-                         "listens on a loopback address (127.0.0.1, localhost)\n");
-        } else if (websocket::is_upgrade(request)) {
-          upgrade(stream, request);
-        } else {
-          answer(stream, buffer, request);
-        }
-      });
+  http::async_read(*stream, *buffer, *parser,
+                   [this, stream, buffer, parser](beast::error_code error, std::size_t) {
+                     if (error) return;  // closed, timed out or malformed: drop the connection
+                     ++http_requests;
+                     http::request<http::string_body> request = parser->release();
+                     if (!is_allowed_host(header_value(request, http::field::host), loopback)) {
+                       refuse(stream, request, http::status::forbidden,
+                              "the Host header names another site; this viewer "
+                              "listens on a loopback address (127.0.0.1, localhost)\n");
+                     } else if (websocket::is_upgrade(request)) {
+                       upgrade(stream, request);
+                     } else {
+                       answer(stream, buffer, request);
+                     }
+                   });
 }
 
 void ViewServer::Impl::answer(const std::shared_ptr<beast::tcp_stream>& stream,
@@ -305,9 +309,9 @@ void ViewServer::Impl::answer(const std::shared_ptr<beast::tcp_stream>& stream,
                     });
 }
 
-void ViewServer::Impl::refuse_upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
-                                      const http::request<http::string_body>& request,
-                                      http::status status, const char* reason) {
+void ViewServer::Impl::refuse(const std::shared_ptr<beast::tcp_stream>& stream,
+                              const http::request<http::string_body>& request, http::status status,
+                              const char* reason) {
   auto response = std::make_shared<http::response<http::string_body>>(status, request.version());
   response->set(http::field::content_type, "text/plain");
   response->body() = reason;
@@ -322,22 +326,17 @@ void ViewServer::Impl::upgrade(const std::shared_ptr<beast::tcp_stream>& stream,
                                const http::request<http::string_body>& request) {
   const std::string_view target(request.target().data(), request.target().size());
   const bool frames_path = target.substr(0, target.find('?')) == kViewFramesPath;
-  const auto header = [&request](http::field field) {
-    const auto found = request.find(field);
-    return found == request.end() ? std::string_view()
-                                  : std::string_view(found->value().data(), found->value().size());
-  };
-  if (!is_same_origin(header(http::field::origin), header(http::field::host))) {
-    refuse_upgrade(stream, request, http::status::forbidden,
-                   "a page of another site may not open the viewer's WebSocket\n");
+  if (!is_same_origin(header_value(request, http::field::origin),
+                      header_value(request, http::field::host))) {
+    refuse(stream, request, http::status::forbidden,
+           "a page of another site may not open the viewer's WebSocket\n");
     return;
   }
   if (!frames || !frames_path || clients.size() >= config.max_clients) {
     // Not a frame stream here, or too many browsers: a plain HTTP refusal.
     const bool busy = frames && frames_path;
-    refuse_upgrade(stream, request,
-                   busy ? http::status::service_unavailable : http::status::not_found,
-                   busy ? "too many viewers\n" : "no frame stream here\n");
+    refuse(stream, request, busy ? http::status::service_unavailable : http::status::not_found,
+           busy ? "too many viewers\n" : "no frame stream here\n");
     return;
   }
   stream->expires_never();  // the websocket stream keeps its own timeouts
