@@ -52,7 +52,7 @@ std::shared_ptr<Communicator> join_world(const TrainOptions& options, Distribute
       std::chrono::milliseconds(static_cast<std::int64_t>(1000.0 * options.distributed_timeout));
   // An abandoned rank (another aborted the run, or the store is gone) while this one's
   // main thread is stuck outside the collectives: no rank is left running.
-  communicator_options.on_abandoned = [](const std::string& reason) { exit_stuck_process(reason); };
+  communicator_options.on_abandoned = exit_stuck_process;
   const std::string where = launch.master_addr + ":" + std::to_string(launch.master_port);
   RendezvousWatchdog watchdog(
       communicator_options.timeout + std::chrono::seconds(2),

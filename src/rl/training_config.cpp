@@ -3,9 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <charconv>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -55,10 +53,6 @@ std::vector<std::pair<std::string, Activation>> activation_choices() {
     choices.emplace_back(activation_name(activation), activation);
   }
   return choices;
-}
-
-void check_hidden_sizes_of(const std::string& where, const std::vector<std::int64_t>& sizes) {
-  check_hidden_sizes(where, sizes);
 }
 
 constexpr const char* kEnvOptionsPrefix = "env.options.";
@@ -190,9 +184,9 @@ void NormalizationConfig::declare_options(OptionTable& table) {
 
 void PolicyConfig::declare_options(OptionTable& table) {
   table.add_integer_list("policy.actor_hidden_sizes", &actor_hidden_sizes,
-                         "hidden layer widths of the actor", check_hidden_sizes_of);
+                         "hidden layer widths of the actor", check_hidden_sizes);
   table.add_integer_list("policy.critic_hidden_sizes", &critic_hidden_sizes,
-                         "hidden layer widths of the critic", check_hidden_sizes_of);
+                         "hidden layer widths of the critic", check_hidden_sizes);
   table.add_choice("policy.activation", &activation, activation_choices(),
                    "activation of the hidden layers");
   table.add_real("policy.log_std_init", &log_std_init, -20, 5,
