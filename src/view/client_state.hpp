@@ -2,7 +2,7 @@
 /// @file
 /// Where one browser's WebSocket connection to the viewer server is, and the transitions
 /// between those states: the whole life of a viewer client as one state machine (the
-/// server's io thread drives it, view/view_server.cpp).
+/// server's io thread drives it, view/view_client.cpp).
 ///
 ///   kHandshaking --accepted--> kIdle
 ///   kIdle --text/frames/end started--> kWritingText / kWritingFrames / kWritingEnd
