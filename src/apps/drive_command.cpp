@@ -60,11 +60,7 @@ void print_summary(const DriveSummary& summary, const DriveStatistics& statistic
 void run_drive(const DriveOptions& options) {
   const EnvOptions env_options = drive_env_options(options);
   std::unique_ptr<Env> env = make_env(options.env_id, env_options);
-  const VelocityEnv* velocity = find_velocity_env(*env);
-  if (velocity == nullptr) {
-    throw std::invalid_argument("drive needs a velocity task (Upkie-*-Velocity), not " +
-                                options.env_id);
-  }
+  VelocityEnv& velocity = drive_velocity_env(*env, options.env_id);
   if (env->full_observation() == nullptr || !env->full_observation()->has_sim) {
     throw std::invalid_argument(
         "drive needs a simulator's ground truth to draw the robot (MuJoCo or Bullet), not " +
@@ -72,7 +68,7 @@ void run_drive(const DriveOptions& options) {
   }
   std::unique_ptr<Controller> controller =
       make_run_controller(options.env_id, options.controller, options.model, env_options, *env);
-  const VelocityCommandRanges& ranges = velocity->command_ranges();
+  const VelocityCommandRanges& ranges = velocity.command_ranges();
   auto drive = std::make_shared<DriveControl>(
       DriveLimits{ranges.max_forward_velocity, ranges.max_yaw_rate}, options.rate);
   ViewSession session;
@@ -95,7 +91,8 @@ void run_drive(const DriveOptions& options) {
   DriveSummary summary;
   {
     const InterruptHandlers interrupts;
-    DriveLoop loop(*env, *controller, view, *drive, recorder ? &*recorder : nullptr, options.loop);
+    DriveLoop loop(*env, velocity, *controller, view, *drive, recorder ? &*recorder : nullptr,
+                   options.loop);
     summary = loop.run(interrupt_requested);
   }
   if (recorder) recorder->close();

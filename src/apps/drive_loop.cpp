@@ -7,6 +7,8 @@
 #include <string>
 #include <thread>
 
+#include "sim/base_observer.hpp"
+
 namespace upkie_rl::apps {
 
 namespace {
@@ -14,20 +16,21 @@ namespace {
 /// How often a paused run looks at the page's inputs.
 constexpr auto kPausePoll = std::chrono::milliseconds(10);
 
-VelocityEnv& velocity_env_of(Env& env) {
+}  // namespace
+
+VelocityEnv& drive_velocity_env(Env& env, const std::string& env_id) {
   VelocityEnv* velocity = find_velocity_env(env);
   if (velocity == nullptr) {
-    throw std::invalid_argument("drive needs a velocity task (Upkie-*-Velocity)");
+    throw std::invalid_argument("drive needs a velocity task (Upkie-*-Velocity), not " + env_id);
   }
   return *velocity;
 }
 
-}  // namespace
-
-DriveLoop::DriveLoop(Env& env, Controller& controller, LiveView& view, DriveControl& drive,
-                     EpisodeRecorder* recorder, const DriveLoopSettings& settings)
+DriveLoop::DriveLoop(Env& env, VelocityEnv& velocity, Controller& controller, LiveView& view,
+                     DriveControl& drive, EpisodeRecorder* recorder,
+                     const DriveLoopSettings& settings)
     : env_(env),
-      velocity_(velocity_env_of(env)),
+      velocity_(velocity),
       controller_(controller),
       view_(view),
       drive_(drive),
@@ -89,9 +92,8 @@ bool DriveLoop::take_inputs(const std::atomic<bool>& stop, DriveInputs& inputs) 
 }
 
 void DriveLoop::push(double heading) {
-  const Eigen::Matrix3d& rotation =
-      env_.full_observation()->base_orientation.rotation_base_to_world;
-  const double direction = std::atan2(rotation(1, 0), rotation(0, 0)) + heading;
+  const double direction =
+      base_yaw(env_.full_observation()->base_orientation.rotation_base_to_world) + heading;
   const Eigen::Vector3d force(settings_.push_force * std::cos(direction),
                               settings_.push_force * std::sin(direction), 0.0);
   if (velocity_.servos().push_base(force, settings_.push_duration)) {

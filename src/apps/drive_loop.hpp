@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "apps/live_view.hpp"
@@ -35,12 +36,16 @@ struct DriveSummary {
   double simulated_time = 0.0;  ///< [s]
 };
 
+/// The velocity task inside `env` (environment `env_id`), which a drive steers.
+/// @throws std::invalid_argument naming `env_id` when `env` is not a velocity task.
+VelocityEnv& drive_velocity_env(Env& env, const std::string& env_id);
+
 class DriveLoop {
  public:
   /// Everything is borrowed and must outlive the loop; `recorder` may be null.
-  /// @throws std::invalid_argument when `env` is not a velocity task.
-  DriveLoop(Env& env, Controller& controller, LiveView& view, DriveControl& drive,
-            EpisodeRecorder* recorder, const DriveLoopSettings& settings);
+  /// @param velocity The velocity task inside `env` (drive_velocity_env).
+  DriveLoop(Env& env, VelocityEnv& velocity, Controller& controller, LiveView& view,
+            DriveControl& drive, EpisodeRecorder* recorder, const DriveLoopSettings& settings);
 
   /// Runs until `stop` becomes true or the duration has passed.
   DriveSummary run(const std::atomic<bool>& stop);

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "sim/base_observer.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
@@ -156,8 +157,7 @@ const Observation& ServosEnv::step_servos(const ServoAction& action) {
   const Observation& last = simulation_->observation();
   const bool hand_push = hand_push_end_ > 0.0;
   if (perturbations_.push.enabled() || hand_push) {
-    const Eigen::Matrix3d& rotation = last.base_orientation.rotation_base_to_world;
-    const double yaw = std::atan2(rotation(1, 0), rotation(0, 0));
+    const double yaw = base_yaw(last.base_orientation.rotation_base_to_world);
     Eigen::Vector3d force =
         perturbations_.push.enabled() ? pushes_.force(last.time, yaw) : Eigen::Vector3d::Zero();
     if (hand_push && last.time < hand_push_end_) force += hand_push_force_;

@@ -10,6 +10,10 @@ double base_pitch(const Eigen::Quaterniond& q) {
   return std::asin(sin_pitch);
 }
 
+double base_yaw(const Eigen::Matrix3d& rotation_base_to_world) {
+  return std::atan2(rotation_base_to_world(1, 0), rotation_base_to_world(0, 0));
+}
+
 void observe_base(const MeasuredBase& base, SimBaseObservation& sim_base,
                   BaseOrientationObservation& base_orientation) {
   const Eigen::Matrix3d rotation_base_to_world = base.pose_in_world.linear();

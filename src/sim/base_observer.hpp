@@ -11,6 +11,10 @@ namespace upkie_rl {
 /// ZYX Euler pitch, positive when leaning forward, independent of yaw.
 double base_pitch(const Eigen::Quaterniond& orientation_base_in_world);
 
+/// Yaw [rad] of a base orientation: the heading of the base's x axis in the world's
+/// horizontal plane, counterclockwise from the world's x axis, in [-pi, pi].
+double base_yaw(const Eigen::Matrix3d& rotation_base_to_world);
+
 /// Fills `sim_base` (ground truth) and `base_orientation` from the measured base.
 void observe_base(const MeasuredBase& base, SimBaseObservation& sim_base,
                   BaseOrientationObservation& base_orientation);

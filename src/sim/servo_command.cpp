@@ -14,12 +14,13 @@ namespace {
 
 }  // namespace
 
-void validate_servo_action(const ServoAction& action) {
+void validate_servo_action(const ServoAction& action, ServoActionTarget target) {
+  const bool simulation = target == ServoActionTarget::kSimulation;
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     for (const ServoCommandField& field : kServoCommandFields) {
       const double value = action[servo].*field.member;
       const bool allowed = std::isfinite(value) || (std::isnan(value) && field.nan_allowed) ||
-                           (value == INFINITY && field.positive_infinity_allowed);
+                           (simulation && value == INFINITY && field.positive_infinity_allowed);
       if (!allowed) refuse(servo, field.key, value);
     }
   }

@@ -75,10 +75,15 @@ class InvalidCommandError : public Error {
   using Error::Error;
 };
 
+/// Where a servo action goes: a simulation takes the +inf maximum torque of the table
+/// ("no clamp beyond the effort limit"); the robot gets finite values only.
+enum class ServoActionTarget { kSimulation, kRobot };
+
 /// Checks every field of kServoCommandFields: finite, except where the table allows NaN (a
-/// NaN position is the documented "no position loop") or +inf (a maximum_torque of +inf
-/// is "no clamp beyond the effort limit").
+/// NaN position is the documented "no position loop") or, for a simulation, +inf (a
+/// maximum_torque of +inf is "no clamp beyond the effort limit").
 /// @throws InvalidCommandError naming the joint and the field.
-void validate_servo_action(const ServoAction& action);
+void validate_servo_action(const ServoAction& action,
+                           ServoActionTarget target = ServoActionTarget::kSimulation);
 
 }  // namespace upkie_rl

@@ -67,16 +67,14 @@ class MsgpackObservationReader {
   template <typename Children>
   void map(std::string_view key, KeyPresence presence, Children&& children) {
     const KeyPath path{path_, key};
-    const msgpack::object* value = lookup(path, presence);
-    if (value == nullptr) return;
-    if (value->type != msgpack::type::MAP) fail(path, "is not a map");
-    MsgpackObservationReader fields(*value, &path);
-    children(fields);
+    read_map(path, lookup(path, presence), children);
   }
   template <typename Children>
   void map_if(std::string_view key, bool& flag, Children&& children) {
-    flag = find(map_, key) != nullptr;
-    if (flag) map(key, KeyPresence::kOptional, children);
+    const KeyPath path{path_, key};
+    const msgpack::object* value = find(map_, key);
+    flag = value != nullptr;
+    read_map(path, value, children);
   }
   void real(std::string_view key, double& out, KeyPresence presence) {
     const KeyPath path{path_, key};
@@ -116,6 +114,14 @@ class MsgpackObservationReader {
   void computed(std::string_view, Value&&) {}
 
  private:
+  /// Reads map `value` (at `path`; nothing when null) with `children`.
+  template <typename Children>
+  void read_map(const KeyPath& path, const msgpack::object* value, Children&& children) const {
+    if (value == nullptr) return;
+    if (value->type != msgpack::type::MAP) fail(path, "is not a map");
+    MsgpackObservationReader fields(*value, &path);
+    children(fields);
+  }
   /// The value at `path.key`, or nullptr when an optional key is absent.
   const msgpack::object* lookup(const KeyPath& path, KeyPresence presence) const {
     const msgpack::object* value = find(map_, path.key);

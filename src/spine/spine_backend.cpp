@@ -36,13 +36,6 @@ SharedMemory open_with_retries(const SpineBackendConfig& config) {
                    "); is `upkie-rl spine` running?");
 }
 
-void check_finite(double value, std::size_t servo, std::string_view field) {
-  if (!std::isfinite(value)) {
-    throw InvalidCommandError(std::string(kServoNames[servo]) + "." + std::string(field) +
-                              " must be finite, got " + std::to_string(value));
-  }
-}
-
 /// Polls for at most this long with yields before sleeping between polls.
 constexpr auto kSpinDuration = std::chrono::microseconds(200);
 constexpr auto kPollSleep = std::chrono::microseconds(20);
@@ -138,15 +131,9 @@ void SpineBackend::regulate() {
 }
 
 const Observation& SpineBackend::step(const ServoAction& action) {
-  for (std::size_t i = 0; i < kNumServos; ++i) {
-    const ServoCommand& command = action[i];
-    // The robot gets finite values only: NaN where the field allows it ("no position
-    // loop"), never the +inf maximum torque a simulation accepts.
-    for (const ServoCommandField& field : kServoCommandFields) {
-      const double value = command.*field.member;
-      if (!(field.nan_allowed && std::isnan(value))) check_finite(value, i, field.key);
-    }
-  }
+  // The robot gets finite values only: NaN where the field allows it ("no position loop"),
+  // never the +inf maximum torque a simulation accepts.
+  validate_servo_action(action, ServoActionTarget::kRobot);
   write_servo_action_msgpack(action, buffer_);
   if (config_.regulate_frequency) regulate();
   wait_for_spine();

@@ -7,33 +7,32 @@ namespace upkie_rl {
 
 namespace {
 
-// The transition of a state that is not dropped, or `state` itself when `event` does not
-// apply (refused by the caller).
-ClientState transition(ClientState state, ClientEvent event) {
-  switch (state) {
-    case ClientState::kHandshaking:
-      if (event == ClientEvent::kAccepted) return ClientState::kIdle;
-      break;
-    case ClientState::kIdle:
-      if (event == ClientEvent::kTextStarted) return ClientState::kWritingText;
-      if (event == ClientEvent::kFramesStarted) return ClientState::kWritingFrames;
-      if (event == ClientEvent::kEndStarted) return ClientState::kWritingEnd;
-      break;
-    case ClientState::kWritingText:
-    case ClientState::kWritingFrames:
-      if (event == ClientEvent::kWritten) return ClientState::kIdle;
-      break;
-    case ClientState::kWritingEnd:
-      if (event == ClientEvent::kWritten) return ClientState::kClosing;
-      break;
-    case ClientState::kClosing:
-      break;
-    case ClientState::kClosed:
-      if (event == ClientEvent::kWritten) return ClientState::kClosed;
-      break;
-  }
-  return state;
-}
+using enum ClientState;
+using enum ClientEvent;
+
+struct Transition {
+  ClientState from;
+  ClientEvent event;
+  ClientState to;
+};
+
+// Every transition of the protocol (client_state.hpp); a pair not listed is refused.
+constexpr Transition kTransitions[] = {
+    {kHandshaking, kAccepted, kIdle},
+    {kIdle, kTextStarted, kWritingText},
+    {kIdle, kFramesStarted, kWritingFrames},
+    {kIdle, kEndStarted, kWritingEnd},
+    {kWritingText, kWritten, kIdle},
+    {kWritingFrames, kWritten, kIdle},
+    {kWritingEnd, kWritten, kClosing},
+    {kIdle, kDropped, kClosed},
+    {kWritingText, kDropped, kClosed},
+    {kWritingFrames, kDropped, kClosed},
+    {kWritingEnd, kDropped, kClosed},
+    {kClosing, kDropped, kClosed},
+    // A write that completed as the client was dropped changes nothing.
+    {kClosed, kWritten, kClosed},
+};
 
 const char* event_name(ClientEvent event) {
   switch (event) {
@@ -56,14 +55,11 @@ const char* event_name(ClientEvent event) {
 }  // namespace
 
 ClientState next_client_state(ClientState state, ClientEvent event) {
-  if (event == ClientEvent::kDropped && is_open(state)) return ClientState::kClosed;
-  const ClientState next = transition(state, event);
-  const bool stays = state == ClientState::kClosed && event == ClientEvent::kWritten;
-  if (next == state && !stays) {
-    throw std::logic_error(std::string("viewer client: no transition from ") +
-                           client_state_name(state) + " on " + event_name(event));
+  for (const Transition& transition : kTransitions) {
+    if (transition.from == state && transition.event == event) return transition.to;
   }
-  return next;
+  throw std::logic_error(std::string("viewer client: no transition from ") +
+                         client_state_name(state) + " on " + event_name(event));
 }
 
 const char* client_state_name(ClientState state) {

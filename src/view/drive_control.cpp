@@ -34,19 +34,20 @@ DriveControl::Reply DriveControl::receive(ClientId client, std::string_view text
   const std::lock_guard lock(mutex_);
   auto rate = rates_.find(client);
   if (rate == rates_.end()) {
-    rate = rates_.emplace(client, RateLimiter(rate_.messages_per_second, rate_.burst)).first;
+    rate =
+        rates_.emplace(client, PageRate{RateLimiter(rate_.messages_per_second, rate_.burst)}).first;
   }
-  if (!rate->second.allow(now)) {
+  PageRate& page = rate->second;
+  if (!page.limiter.allow(now)) {
     ++statistics_.rate_limited;
     // Said once per spell, so that a flood does not get a flood of answers.
-    bool& warned = rate_warned_[client];
-    if (warned) return {};
-    warned = true;
+    if (page.warned) return {};
+    page.warned = true;
     return {refusal("too many messages: at most " + std::to_string(rate_.messages_per_second) +
                     " per second"),
             false};
   }
-  rate_warned_[client] = false;
+  page.warned = false;
   return handle(client, text, now);
 }
 
@@ -97,7 +98,6 @@ DriveControl::Reply DriveControl::handle(ClientId client, std::string_view text,
 bool DriveControl::disconnect(ClientId client) {
   const std::lock_guard lock(mutex_);
   rates_.erase(client);
-  rate_warned_.erase(client);
   if (!arbiter_.release(client)) return false;
   // Nobody holds the controls: the robot stands still, and a paused run goes on.
   pending_.forward_velocity = 0.0;

@@ -102,8 +102,12 @@ class DriveControl {
   DriveRateSettings rate_;
   mutable std::mutex mutex_;
   DriverArbiter arbiter_;
-  std::map<ClientId, RateLimiter> rates_;
-  std::map<ClientId, bool> rate_warned_;  ///< A page told it is over its rate, until it is not.
+  /// A page's rate: its bucket, and whether it was told it is over it (until it is not).
+  struct PageRate {
+    RateLimiter limiter;
+    bool warned = false;
+  };
+  std::map<ClientId, PageRate> rates_;
   DriveInputs pending_;
   std::array<double, kMaxWaitingPushes> waiting_pushes_{};  ///< Headings, oldest first.
   std::size_t waiting_push_count_ = 0;

@@ -18,9 +18,22 @@ const BUTTON_PAUSE = 9;
 const BUTTON_PUSH = 0;
 const AXIS_FORWARD = 1;  // left stick, up is -1
 const AXIS_YAW = 2;  // right stick, right is +1
+// Latencies and refusals the page keeps (the newest), and commands awaiting their "applied":
+// a page left open for hours must not grow them without bound.
+const MAX_SAMPLES = 256;
 
 const FORWARD_KEYS = { ArrowUp: 1, KeyW: 1, ArrowDown: -1, KeyS: -1 };
 const YAW_KEYS = { ArrowLeft: 1, KeyA: 1, ArrowRight: -1, KeyD: -1 };
+
+/** Appends `value` to `samples`, forgetting the oldest beyond MAX_SAMPLES. */
+function pushBounded(samples, value) {
+  samples.push(value);
+  if (samples.length > MAX_SAMPLES) samples.splice(0, samples.length - MAX_SAMPLES);
+}
+
+function sameFraction(a, b) {
+  return a.forward === b.forward && a.yaw === b.yaw;
+}
 
 function deadzone(value) {
   return Math.abs(value) < DEADZONE ? 0 : value;
@@ -49,14 +62,17 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
   const limits = session.drive.limits;
   const state = {
     role: null, paused: false, reason: '', refusals: [], sent: 0,
-    command: { forward: 0, yaw: 0 },  // fractions of the range, last sent
-    latencies: [],  // key press (or stick move) to the server's "applied" [ms]
+    command: { forward: 0, yaw: 0 },  // fractions of the range, last sent and not refused
+    latencies: [],  // key press (or stick move) to the server's "applied" [ms], the newest
     testGamepad: null,  // a gamepad-like {axes, buttons} that replaces the real ones (tests)
   };
   const held = new Set();
   let shift = false;
   let sequence = 0;
-  const pressedAt = new Map();  // sequence -> time of the input that caused it
+  // The command last sent, refused or not: a page that watches sends each change once, not
+  // again at every tick while the other page drives.
+  let attempted = { forward: 0, yaw: 0 };
+  const pressedAt = new Map();  // sequence -> time of the input that caused it, oldest first
   let lastButtons = [];
 
   function message(type, fields = {}) {
@@ -66,16 +82,19 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
   }
 
   function sendCommand(fraction, inputTime) {
-    if (fraction.forward === state.command.forward && fraction.yaw === state.command.yaw) return;
+    if (sameFraction(fraction, attempted)) return;
     sequence += 1;
     const ok = message(K.command, {
       [K.seq]: sequence,
       [K.forward_velocity]: fraction.forward * limits.max_forward_velocity,
       [K.yaw_rate]: fraction.yaw * limits.max_yaw_rate,
     });
-    if (!ok) return;
+    if (!ok) return;  // disconnected: tried again at the next tick
+    attempted = fraction;
     state.command = fraction;
     pressedAt.set(sequence, inputTime);
+    // Refused commands never get their "applied".
+    if (pressedAt.size > MAX_SAMPLES) pressedAt.delete(pressedAt.keys().next().value);
   }
 
   function gamepad() {
@@ -169,15 +188,19 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
       state.role = received[K.role];
       state.paused = Boolean(received[K.paused]);
       state.reason = String(received[K.reason] ?? '');
-      // Control was lost (the page was refused, or reconnected): resend from scratch.
-      if (state.role !== K.driver) state.command = { forward: 0, yaw: 0 };
+      // Control changed hands (or the page reconnected): the held command is sent once
+      // more, which takes the controls when they are free.
+      if (state.role !== K.driver) {
+        state.command = { forward: 0, yaw: 0 };
+        attempted = state.command;
+      }
     } else if (type === K.refused) {
-      state.refusals.push({ reason: String(received[K.reason] ?? ''), at: performance.now() });
+      pushBounded(state.refusals, { reason: String(received[K.reason] ?? ''), at: performance.now() });
       if (state.role !== K.driver) state.command = { forward: 0, yaw: 0 };
     } else if (type === K.applied) {
       const seq = received[K.seq];
       if (pressedAt.has(seq)) {
-        state.latencies.push(performance.now() - pressedAt.get(seq));
+        pushBounded(state.latencies, performance.now() - pressedAt.get(seq));
         for (const key of pressedAt.keys()) if (key <= seq) pressedAt.delete(key);
       }
     }

@@ -27,15 +27,20 @@ function chartRows(charts) {
   ]);
 }
 
-export function createHud(root, charts = []) {
-  const rows = [...ROWS, ...chartRows(charts)];
+export function createHud(root) {
+  const rows = [];
+  const cells = [];
   const title = element('div', 'hud-title', 'Upkie viewer');
   const table = element('dl', 'hud-values');
-  const cells = rows.map(([label]) => {
-    const value = element('dd', '', '–');
-    table.append(element('dt', '', label), value);
-    return value;
-  });
+  function addRows(added) {
+    for (const row of added) {
+      const value = element('dd', '', '–');
+      table.append(element('dt', '', row[0]), value);
+      rows.push(row);
+      cells.push(value);
+    }
+  }
+  addRows(ROWS);
   const status = element('div', 'hud-status', 'loading…');
   const drive = element('div', 'hud-drive');
   drive.hidden = true;
@@ -46,6 +51,10 @@ export function createHud(root, charts = []) {
   return {
     setTitle(text) {
       title.textContent = text;
+    },
+    /** Adds a row per chart of the session (command against measured velocity). */
+    addCharts(charts) {
+      addRows(chartRows(charts));
     },
     /** Shows a frame given as {name: value}. */
     show(frame) {

@@ -34,7 +34,7 @@ const viewer = {
 };
 window.upkieViewer = viewer;
 
-let hud = createHud(document.getElementById('hud'));
+const hud = createHud(document.getElementById('hud'));
 onError((message) => hud.showError(message));
 
 /** Yaw of the base [rad] in the frame row at `offset` of `data`. */
@@ -45,11 +45,7 @@ function baseYaw(layout, data, offset) {
 
 function start(session) {
   const layout = new FrameLayout(session);
-  if (layout.charts.length > 0) {
-    // Rebuilt with a row per chart (command against measured velocity).
-    document.getElementById('hud').replaceChildren();
-    hud = createHud(document.getElementById('hud'), layout.charts);
-  }
+  hud.addCharts(layout.charts);
   viewer.mode = session.mode;
   hud.setTitle(session.title ?? 'Upkie');
   document.title = `${session.title ?? 'Upkie'} · Upkie viewer`;
