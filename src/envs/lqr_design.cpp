@@ -28,10 +28,15 @@ std::size_t component(const BoxSpace& space, const char* name) {
   return index;
 }
 
-}  // namespace
+/// Transitions of the balance state x = [θ, p, θ̇, ṗ] under a command u, near upright.
+struct Transitions {
+  std::vector<Eigen::Matrix<double, 5, 1>> inputs;  ///< [x; u]
+  std::vector<Eigen::Vector4d> outputs;             ///< The next x.
+};
 
-BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int episodes,
-                                               double excitation) {
+/// Runs `episodes` episodes of `env` under a random piecewise-constant command of amplitude
+/// `excitation`, and keeps the transitions until a fall.
+Transitions collect_transitions(Env& env, std::uint64_t seed, int episodes, double excitation) {
   const BoxSpace& observation_space = env.observation_space();
   std::array<std::size_t, 4> state_index{};
   for (std::size_t k = 0; k < 4; ++k) state_index[k] = component(observation_space, kStateNames[k]);
@@ -41,8 +46,7 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
 
   std::vector<float> observation(observation_space.size());
   std::vector<float> action(env.action_space().size());
-  std::vector<Eigen::Matrix<double, 5, 1>> inputs;  // [x; u]
-  std::vector<Eigen::Vector4d> outputs;             // next x
+  Transitions transitions;
   std::mt19937_64 generator(seed);
   const auto state = [&] {
     Eigen::Vector4d x;
@@ -64,11 +68,18 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
       if (result.terminated || std::abs(x[0]) > kMaxPitch) break;
       Eigen::Matrix<double, 5, 1> input;
       input << x, static_cast<double>(action[command_index]);
-      inputs.push_back(input);
-      outputs.push_back(state());
+      transitions.inputs.push_back(input);
+      transitions.outputs.push_back(state());
       if (result.truncated) break;
     }
   }
+  return transitions;
+}
+
+/// The least-squares linear dynamics of `transitions`.
+/// @throws std::invalid_argument when they do not determine the dynamics.
+BalanceLinearization fit_dynamics(const Transitions& transitions) {
+  const std::vector<Eigen::Matrix<double, 5, 1>>& inputs = transitions.inputs;
   const auto samples = static_cast<Eigen::Index>(inputs.size());
   if (samples < 50) {
     throw std::invalid_argument("LQR design: only " + std::to_string(samples) +
@@ -83,7 +94,7 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
   for (Eigen::Index i = 0; i < samples; ++i) {
     for (int j = 0; j < 3; ++j) regressors(i, j) = inputs[i][kDynamicStates[j]];
     regressors(i, 3) = inputs[i][4];
-    targets.row(i) = outputs[i].transpose();
+    targets.row(i) = transitions.outputs[i].transpose();
     targets(i, 1) -= inputs[i][1];
   }
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(regressors);
@@ -101,6 +112,13 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
       (residual.colwise().squaredNorm() / static_cast<double>(samples)).cwiseSqrt().transpose();
   result.samples = static_cast<int>(samples);
   return result;
+}
+
+}  // namespace
+
+BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int episodes,
+                                               double excitation) {
+  return fit_dynamics(collect_transitions(env, seed, episodes, excitation));
 }
 
 Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& dynamics, const Eigen::MatrixXd& input,

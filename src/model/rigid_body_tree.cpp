@@ -66,6 +66,54 @@ Eigen::Matrix3d link_inertia(const Link& link, InertiaSource source) {
   return box_inertia(link.mass, high - low);
 }
 
+namespace {
+
+/// Sets the mass, collisions, centre of mass and principal inertia of `body` from those of
+/// its links (parallel-axis theorem); `link_in_body` places each link in its body.
+void set_composite_inertia(RigidBody& body, const std::vector<Link>& links,
+                           const std::vector<Eigen::Isometry3d>& link_in_body,
+                           InertiaSource source) {
+  Eigen::Vector3d weighted_com = Eigen::Vector3d::Zero();
+  for (int link : body.links) {
+    const Eigen::Isometry3d inertial_in_body = link_in_body[link] * links[link].inertial_pose;
+    body.mass += links[link].mass;
+    weighted_com += links[link].mass * inertial_in_body.translation();
+    for (const auto& shape : links[link].collisions) {
+      BodyCollision collision{shape, links[link].contact, link};
+      collision.shape.pose_in_link = link_in_body[link] * shape.pose_in_link;
+      body.collisions.push_back(collision);
+    }
+  }
+  const Eigen::Vector3d com =
+      body.mass > 0.0 ? Eigen::Vector3d(weighted_com / body.mass) : Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  for (int link : body.links) {
+    const Eigen::Isometry3d inertial_in_body = link_in_body[link] * links[link].inertial_pose;
+    const Eigen::Matrix3d rotation = inertial_in_body.linear();
+    const Eigen::Vector3d offset = inertial_in_body.translation() - com;
+    inertia += rotation * link_inertia(links[link], source) * rotation.transpose() +
+               links[link].mass * (offset.squaredNorm() * Eigen::Matrix3d::Identity() -
+                                   offset * offset.transpose());
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
+  Eigen::Matrix3d axes = solver.eigenvectors();
+  if (axes.determinant() < 0.0) {
+    axes.col(2) = -axes.col(2);
+  }
+  // Keep the link frame when it is already principal (single links), for readability.
+  if ((inertia - Eigen::Matrix3d(inertia.diagonal().asDiagonal())).norm() <=
+      1e-12 * std::max(1e-12, inertia.norm())) {
+    axes.setIdentity();
+    body.principal_inertia = inertia.diagonal();
+  } else {
+    body.principal_inertia = solver.eigenvalues();
+  }
+  body.principal_frame.linear() = axes;
+  body.principal_frame.translation() = com;
+}
+
+}  // namespace
+
 RigidBodyTree::RigidBodyTree(const RobotModel& model, InertiaSource source,
                              bool merge_fixed_links) {
   const auto& links = model.links();
@@ -100,45 +148,7 @@ RigidBodyTree::RigidBodyTree(const RobotModel& model, InertiaSource source,
   }
 
   // Composite mass, centre of mass and inertia of each body (parallel-axis theorem).
-  for (auto& body : bodies_) {
-    Eigen::Vector3d weighted_com = Eigen::Vector3d::Zero();
-    for (int link : body.links) {
-      const Eigen::Isometry3d inertial_in_body = link_in_body_[link] * links[link].inertial_pose;
-      body.mass += links[link].mass;
-      weighted_com += links[link].mass * inertial_in_body.translation();
-      for (const auto& shape : links[link].collisions) {
-        BodyCollision collision{shape, links[link].contact, link};
-        collision.shape.pose_in_link = link_in_body_[link] * shape.pose_in_link;
-        body.collisions.push_back(collision);
-      }
-    }
-    const Eigen::Vector3d com =
-        body.mass > 0.0 ? Eigen::Vector3d(weighted_com / body.mass) : Eigen::Vector3d::Zero();
-    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-    for (int link : body.links) {
-      const Eigen::Isometry3d inertial_in_body = link_in_body_[link] * links[link].inertial_pose;
-      const Eigen::Matrix3d rotation = inertial_in_body.linear();
-      const Eigen::Vector3d offset = inertial_in_body.translation() - com;
-      inertia += rotation * link_inertia(links[link], source) * rotation.transpose() +
-                 links[link].mass * (offset.squaredNorm() * Eigen::Matrix3d::Identity() -
-                                     offset * offset.transpose());
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
-    Eigen::Matrix3d axes = solver.eigenvectors();
-    if (axes.determinant() < 0.0) {
-      axes.col(2) = -axes.col(2);
-    }
-    // Keep the link frame when it is already principal (single links), for readability.
-    if ((inertia - Eigen::Matrix3d(inertia.diagonal().asDiagonal())).norm() <=
-        1e-12 * std::max(1e-12, inertia.norm())) {
-      axes.setIdentity();
-      body.principal_inertia = inertia.diagonal();
-    } else {
-      body.principal_inertia = solver.eigenvalues();
-    }
-    body.principal_frame.linear() = axes;
-    body.principal_frame.translation() = com;
-  }
+  for (auto& body : bodies_) set_composite_inertia(body, links, link_in_body_, source);
 
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     servo_bodies_[servo] = body_of_link_[joints[model.servo_joint(servo)].child_link];

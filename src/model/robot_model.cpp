@@ -196,6 +196,104 @@ Joint to_joint(const urdf::Joint& urdf_joint, const std::filesystem::path& path)
   return joint;
 }
 
+Link to_link(const urdf::Link& urdf_link, int parent_joint,
+             const std::map<std::string, ContactParameters>& contacts,
+             const std::filesystem::path& path) {
+  Link link;
+  link.name = urdf_link.name;
+  link.parent_joint = parent_joint;
+  if (urdf_link.inertial) {
+    const auto& inertial = *urdf_link.inertial;
+    link.mass = inertial.mass;
+    link.inertial_pose = to_isometry(inertial.origin);
+    link.urdf_inertia << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy, inertial.iyy,
+        inertial.iyz, inertial.ixz, inertial.iyz, inertial.izz;
+    if (!(link.mass >= 0.0) || !link.urdf_inertia.allFinite()) {
+      throw ModelError(path.string() + ": link '" + link.name +
+                       "': <inertial> mass must be non-negative and values finite");
+    }
+  }
+  for (const auto& collision : urdf_link.collision_array) {
+    link.collisions.push_back(to_collision_shape(*collision, link.name, path));
+  }
+  if (auto found = contacts.find(link.name); found != contacts.end()) {
+    link.contact = found->second;
+  }
+  return link;
+}
+
+/// The links and joints of the tree under `urdf_link`, appended depth-first, children in
+/// document order: a deterministic numbering.
+void add_link_tree(const urdf::ModelInterface& urdf_model,
+                   const urdf::LinkConstSharedPtr& urdf_link, int parent_joint,
+                   const std::map<std::string, ContactParameters>& contacts,
+                   const std::filesystem::path& path, std::vector<Link>& links,
+                   std::vector<Joint>& joints) {
+  const int link_index = static_cast<int>(links.size());
+  links.push_back(to_link(*urdf_link, parent_joint, contacts, path));
+  if (parent_joint >= 0) joints[parent_joint].child_link = link_index;
+  for (const auto& child_joint : urdf_link->child_joints) {
+    Joint joint = to_joint(*child_joint, path);
+    joint.parent_link = link_index;
+    const int joint_index = static_cast<int>(joints.size());
+    joints.push_back(std::move(joint));
+    add_link_tree(urdf_model, urdf_model.getLink(child_joint->child_link_name), joint_index,
+                  contacts, path, links, joints);
+  }
+}
+
+/// The joints of the six servos, in the standard order.
+std::array<int, kNumServos> find_servo_joints(const std::vector<Joint>& joints,
+                                              const std::filesystem::path& path) {
+  std::array<int, kNumServos> servo_joints{};
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    const std::string name(kServoNames[servo]);
+    auto found = std::find_if(joints.begin(), joints.end(),
+                              [&](const Joint& joint) { return joint.name == name; });
+    if (found == joints.end() || found->type == Joint::Type::kFixed) {
+      throw ModelError(path.string() + ": joint '" + name +
+                       "' is missing or not actuated; Upkie needs left_hip, left_knee, "
+                       "left_wheel, right_hip, right_knee, right_wheel");
+    }
+    servo_joints[servo] = static_cast<int>(found - joints.begin());
+  }
+  return servo_joints;
+}
+
+/// The tire of a wheel: the largest cylinder rigidly attached to its joint.
+struct Tire {
+  double radius = 0.0;
+  int link = -1;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< In the root frame, at zero.
+};
+
+Tire find_tire(const std::vector<Link>& links, const std::vector<Joint>& joints,
+               const std::vector<Eigen::Isometry3d>& poses, const Joint& wheel_joint,
+               const std::filesystem::path& path) {
+  Tire tire;
+  std::function<void(int)> visit = [&](int link_index) {
+    const Link& link = links[link_index];
+    for (const auto& shape : link.collisions) {
+      if (shape.kind == CollisionShape::Kind::kCylinder && shape.radius > tire.radius) {
+        tire.radius = shape.radius;
+        tire.link = link_index;
+        tire.centre = (poses[link_index] * shape.pose_in_link).translation();
+      }
+    }
+    for (const Joint& joint : joints) {
+      if (joint.parent_link == link_index && joint.type == Joint::Type::kFixed) {
+        visit(joint.child_link);
+      }
+    }
+  };
+  visit(wheel_joint.child_link);
+  if (tire.radius <= 0.0) {
+    throw ModelError(path.string() + ": no tire <cylinder> collision rigidly attached to joint '" +
+                     wheel_joint.name + "'");
+  }
+  return tire;
+}
+
 }  // namespace
 
 RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
@@ -205,100 +303,24 @@ RobotModel RobotModel::from_urdf_file(const std::filesystem::path& path) {
 
   RobotModel model;
   model.path_ = path;
-
-  // Depth-first from the root, children in document order: a deterministic numbering.
-  std::function<void(const urdf::LinkConstSharedPtr&, int)> add_link =
-      [&](const urdf::LinkConstSharedPtr& urdf_link, int parent_joint) {
-        Link link;
-        link.name = urdf_link->name;
-        link.parent_joint = parent_joint;
-        if (urdf_link->inertial) {
-          const auto& inertial = *urdf_link->inertial;
-          link.mass = inertial.mass;
-          link.inertial_pose = to_isometry(inertial.origin);
-          link.urdf_inertia << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy, inertial.iyy,
-              inertial.iyz, inertial.ixz, inertial.iyz, inertial.izz;
-          if (!(link.mass >= 0.0) || !link.urdf_inertia.allFinite()) {
-            throw ModelError(path.string() + ": link '" + link.name +
-                             "': <inertial> mass must be non-negative and values finite");
-          }
-        }
-        for (const auto& collision : urdf_link->collision_array) {
-          link.collisions.push_back(to_collision_shape(*collision, link.name, path));
-        }
-        if (auto found = contacts.find(link.name); found != contacts.end()) {
-          link.contact = found->second;
-        }
-        const int link_index = static_cast<int>(model.links_.size());
-        model.links_.push_back(std::move(link));
-        if (parent_joint >= 0) {
-          model.joints_[parent_joint].child_link = link_index;
-        }
-        for (const auto& child_joint : urdf_link->child_joints) {
-          Joint joint = to_joint(*child_joint, path);
-          joint.parent_link = link_index;
-          const int joint_index = static_cast<int>(model.joints_.size());
-          model.joints_.push_back(std::move(joint));
-          add_link(urdf_model->getLink(child_joint->child_link_name), joint_index);
-        }
-      };
-  add_link(urdf_model->getRoot(), -1);
+  add_link_tree(*urdf_model, urdf_model->getRoot(), -1, contacts, path, model.links_,
+                model.joints_);
   model.root_link_ = 0;
-
-  // The six servos, in the standard order.
-  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-    const std::string name(kServoNames[servo]);
-    auto found = std::find_if(model.joints_.begin(), model.joints_.end(),
-                              [&](const Joint& joint) { return joint.name == name; });
-    if (found == model.joints_.end() || found->type == Joint::Type::kFixed) {
-      throw ModelError(path.string() + ": joint '" + name +
-                       "' is missing or not actuated; Upkie needs left_hip, left_knee, "
-                       "left_wheel, right_hip, right_knee, right_wheel");
-    }
-    model.servo_joints_[servo] = static_cast<int>(found - model.joints_.begin());
-  }
+  model.servo_joints_ = find_servo_joints(model.joints_, path);
 
   const auto poses = model.link_poses_at_zero();
-
-  // Wheel radius and track from the largest cylinder rigidly attached to each wheel.
-  auto tire_centre = [&](std::size_t servo, double* radius, int* tire) {
-    const Joint& wheel_joint = model.joints_[model.servo_joints_[servo]];
-    double best_radius = 0.0;
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    std::function<void(int)> visit = [&](int link_index) {
-      const Link& link = model.links_[link_index];
-      for (const auto& shape : link.collisions) {
-        if (shape.kind == CollisionShape::Kind::kCylinder && shape.radius > best_radius) {
-          best_radius = shape.radius;
-          *tire = link_index;
-          centre = (poses[link_index] * shape.pose_in_link).translation();
-        }
-      }
-      for (const Joint& joint : model.joints_) {
-        if (joint.parent_link == link_index && joint.type == Joint::Type::kFixed) {
-          visit(joint.child_link);
-        }
-      }
-    };
-    visit(wheel_joint.child_link);
-    if (best_radius <= 0.0) {
-      throw ModelError(path.string() +
-                       ": no tire <cylinder> collision rigidly attached to joint '" +
-                       wheel_joint.name + "'");
-    }
-    *radius = best_radius;
-    return centre;
+  // Wheel radius and track from the tires.
+  const auto wheel_joint = [&model](std::size_t servo) -> const Joint& {
+    return model.joints_[model.servo_joints_[servo]];
   };
-  double left_radius = 0.0;
-  double right_radius = 0.0;
-  const Eigen::Vector3d left_centre = tire_centre(kLeftWheel, &left_radius, &model.tire_links_[0]);
-  const Eigen::Vector3d right_centre =
-      tire_centre(kRightWheel, &right_radius, &model.tire_links_[1]);
-  model.wheel_radius_ = left_radius;
-  model.track_ = (left_centre - right_centre).norm();
+  const Tire left = find_tire(model.links_, model.joints_, poses, wheel_joint(kLeftWheel), path);
+  const Tire right = find_tire(model.links_, model.joints_, poses, wheel_joint(kRightWheel), path);
+  model.tire_links_ = {left.link, right.link};
+  model.wheel_radius_ = left.radius;
+  model.track_ = (left.centre - right.centre).norm();
 
   // A positive rotation about an axis along +y (root frame) rolls a wheel forward.
-  const Joint& left_wheel = model.joints_[model.servo_joints_[kLeftWheel]];
+  const Joint& left_wheel = wheel_joint(kLeftWheel);
   const Eigen::Vector3d left_axis = poses[left_wheel.child_link].linear() * left_wheel.axis;
   model.left_wheeled_ = left_axis.y() > 0.0;
 

@@ -137,21 +137,12 @@ double mass_scale(const RigidBodyTree& tree, int body, const PhysicsVariation& v
   return variation.mass_scale[mass_scale_index(body, servo_bodies, parent_of)];
 }
 
-void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel& model,
-               const PhysicsVariation& variation) {
+/// Sets up the multibody's links: body b > 0 is link b - 1, link frames are the bodies'
+/// principal frames.
+void setup_links(btMultiBody& multibody, const RigidBodyTree& tree, const RobotModel& model,
+                 const PhysicsVariation& variation) {
   const auto& bodies = tree.bodies();
-  const RigidBody& root = bodies.front();
-  const int num_links = static_cast<int>(bodies.size()) - 1;
-  const double root_scale = mass_scale(tree, 0, variation);
-  bullet.multibody =
-      std::make_unique<btMultiBody>(num_links, root_scale * root.mass,
-                                    to_bullet(Eigen::Vector3d(root_scale * root.principal_inertia)),
-                                    /*fixedBase=*/false, /*canSleep=*/false);
-  btMultiBody& multibody = *bullet.multibody;
-  bullet.base_com_in_base = root.principal_frame;
-
-  // Body b > 0 is multibody link b - 1; link frames are the bodies' principal frames.
-  for (int b = 1; b <= num_links; ++b) {
+  for (int b = 1; b < static_cast<int>(bodies.size()); ++b) {
     const RigidBody& body = bodies[b];
     const Eigen::Isometry3d& parent_com = bodies[body.parent_body].principal_frame;
     const Eigen::Isometry3d& com = body.principal_frame;
@@ -177,39 +168,40 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
                               to_bullet(axis_in_com), parent_com_to_pivot, pivot_to_com, true);
     }
   }
-  multibody.finalizeMultiDof();
-  multibody.setHasSelfCollision(false);
-  multibody.setCanSleep(false);
-  multibody.setLinearDamping(kLinkDamping);
-  multibody.setAngularDamping(kLinkDamping);
-  multibody.useGlobalVelocities(false);
-  bullet.world.addMultiBody(&multibody);
+}
 
-  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-    bullet.servo_link[servo] = tree.servo_body(servo) - 1;
+/// The collider of body `b`: one compound of its collision shapes, placed in its principal
+/// frame, with the body's contact parameters; the world keeps the shapes.
+std::unique_ptr<btMultiBodyLinkCollider> make_collider(BulletWorld& bullet, const RigidBody& body,
+                                                       int b) {
+  auto compound = std::make_unique<btCompoundShape>();
+  for (const auto& collision : body.collisions) {
+    auto child = make_shape(collision.shape);
+    compound->addChildShape(
+        to_bullet(Eigen::Isometry3d(body.principal_frame.inverse() * collision.shape.pose_in_link)),
+        child.get());
+    bullet.shapes.push_back(std::move(child));
   }
+  auto collider = std::make_unique<btMultiBodyLinkCollider>(bullet.multibody.get(), b - 1);
+  collider->setCollisionShape(compound.get());
+  const ContactParameters contact = body_contact(body);
+  collider->setFriction(contact.lateral_friction);
+  collider->setRollingFriction(contact.rolling_friction);
+  collider->setRestitution(0.0);
+  if (contact.is_soft()) {
+    collider->setContactStiffnessAndDamping(contact.stiffness, contact.damping);
+  }
+  bullet.shapes.push_back(std::move(compound));
+  return collider;
+}
 
-  // Collision shapes: one compound per body, children placed in its principal frame.
-  for (int b = 0; b <= num_links; ++b) {
-    const RigidBody& body = bodies[b];
-    if (body.collisions.empty()) continue;
-    auto compound = std::make_unique<btCompoundShape>();
-    for (const auto& collision : body.collisions) {
-      auto child = make_shape(collision.shape);
-      compound->addChildShape(to_bullet(Eigen::Isometry3d(body.principal_frame.inverse() *
-                                                          collision.shape.pose_in_link)),
-                              child.get());
-      bullet.shapes.push_back(std::move(child));
-    }
-    auto collider = std::make_unique<btMultiBodyLinkCollider>(&multibody, b - 1);
-    collider->setCollisionShape(compound.get());
-    const ContactParameters contact = body_contact(body);
-    collider->setFriction(contact.lateral_friction);
-    collider->setRollingFriction(contact.rolling_friction);
-    collider->setRestitution(0.0);
-    if (contact.is_soft()) {
-      collider->setContactStiffnessAndDamping(contact.stiffness, contact.damping);
-    }
+/// A collider per body that has collision shapes; the tires' are remembered.
+void add_colliders(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel& model) {
+  btMultiBody& multibody = *bullet.multibody;
+  const auto& bodies = tree.bodies();
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    if (bodies[b].collisions.empty()) continue;
+    std::unique_ptr<btMultiBodyLinkCollider> collider = make_collider(bullet, bodies[b], b);
     bullet.world.addCollisionObject(collider.get(), btBroadphaseProxy::DefaultFilter,
                                     btBroadphaseProxy::AllFilter);
     if (b == 0) {
@@ -223,18 +215,45 @@ void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel&
       }
     }
     bullet.colliders.push_back(std::move(collider));
-    bullet.shapes.push_back(std::move(compound));
   }
+}
 
-  // Hip and knee position limits as joint-limit constraints; no default joint motors.
+/// Hip and knee position limits as joint-limit constraints; no default joint motors.
+void add_joint_limits(BulletWorld& bullet, const RobotModel& model) {
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     const JointLimits& limits = model.servo_limits(servo);
     if (!limits.has_position_limits()) continue;
     auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(
-        &multibody, bullet.servo_link[servo], limits.lower, limits.upper);
+        bullet.multibody.get(), bullet.servo_link[servo], limits.lower, limits.upper);
     bullet.world.addMultiBodyConstraint(limit.get());
     bullet.joint_limits.push_back(std::move(limit));
   }
+}
+
+void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel& model,
+               const PhysicsVariation& variation) {
+  const RigidBody& root = tree.bodies().front();
+  const int num_links = static_cast<int>(tree.bodies().size()) - 1;
+  const double root_scale = mass_scale(tree, 0, variation);
+  bullet.multibody =
+      std::make_unique<btMultiBody>(num_links, root_scale * root.mass,
+                                    to_bullet(Eigen::Vector3d(root_scale * root.principal_inertia)),
+                                    /*fixedBase=*/false, /*canSleep=*/false);
+  btMultiBody& multibody = *bullet.multibody;
+  bullet.base_com_in_base = root.principal_frame;
+  setup_links(multibody, tree, model, variation);
+  multibody.finalizeMultiDof();
+  multibody.setHasSelfCollision(false);
+  multibody.setCanSleep(false);
+  multibody.setLinearDamping(kLinkDamping);
+  multibody.setAngularDamping(kLinkDamping);
+  multibody.useGlobalVelocities(false);
+  bullet.world.addMultiBody(&multibody);
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    bullet.servo_link[servo] = tree.servo_body(servo) - 1;
+  }
+  add_colliders(bullet, tree, model);
+  add_joint_limits(bullet, model);
 }
 
 const BulletConfig& validated(const BulletConfig& config) {

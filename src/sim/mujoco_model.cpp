@@ -149,17 +149,8 @@ int checked_id(const mjModel* model, mjtObj type, const std::string& name) {
 
 void silence(const char* message) { spdlog::warn("MuJoCo: {}", message); }
 
-}  // namespace
-
-void route_mujoco_messages() {
-  static std::once_flag once;
-  std::call_once(once, [] { mju_user_warning = silence; });
-}
-
-std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
-                                                      const MujocoConfig& config) {
-  route_mujoco_messages();
-  const RigidBodyTree tree(robot, config.inertia_source, /*merge_fixed_links=*/true);
+/// A spec whose compiler takes the tree's values as they are, and the config's options.
+std::unique_ptr<mjSpec, SpecDeleter> make_spec(const MujocoConfig& config) {
   std::unique_ptr<mjSpec, SpecDeleter> spec(mj_makeSpec());
   mjs_setString(spec->modelname, "upkie");
   spec->compiler.inertiafromgeom = mjINERTIAFROMGEOM_FALSE;  // the tree's inertias, exactly
@@ -177,15 +168,38 @@ std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
   option.integrator = mjINT_EULER;
   // Divergence is reported as SimulationDivergedError, not silently reset.
   option.disableflags |= mjDSBL_AUTORESET;
+  return spec;
+}
 
-  mjsBody* world = mjs_findBody(spec.get(), "world");
-  add_scene(*spec, *world);
-  if (config.floor) add_floor(*world);
+/// The hinge of `joint` in `body`, with its position limits.
+void add_hinge(mjsBody& body, const Joint& joint, const Eigen::Vector3d& axis,
+               const MujocoConfig& config) {
+  mjsJoint* hinge = mjs_addJoint(&body, nullptr);
+  mjs_setName(hinge->element, joint.name.c_str());
+  hinge->type = mjJNT_HINGE;
+  for (int i = 0; i < 3; ++i) hinge->axis[i] = axis[i];
+  if (!joint.limits.has_position_limits()) {
+    hinge->limited = mjLIMITED_FALSE;
+    return;
+  }
+  hinge->limited = mjLIMITED_TRUE;
+  hinge->range[0] = joint.limits.lower;
+  hinge->range[1] = joint.limits.upper;
+  // Stiff limits: MuJoCo's default (a 20 ms time constant) lets a hip swung at full
+  // effort pass its limit by 0.5 rad; the stiffest stable one is two physics steps.
+  hinge->solref_limit[0] = 2.0 * config.physics_timestep;
+  hinge->solref_limit[1] = 1.0;
+  hinge->solimp_limit[0] = 0.99;
+  hinge->solimp_limit[1] = 0.999;
+}
 
+/// A body of `spec` per body of `tree` (the root on a free joint), with its collision geoms.
+void add_bodies(mjsBody& world, const RigidBodyTree& tree, const RobotModel& robot,
+                const MujocoConfig& config) {
   const double tire_carried_mass = robot.total_mass() / 2.0;
   std::vector<mjsBody*> bodies;
   for (const RigidBody& rigid_body : tree.bodies()) {
-    mjsBody* parent = rigid_body.parent_body < 0 ? world : bodies[rigid_body.parent_body];
+    mjsBody* parent = rigid_body.parent_body < 0 ? &world : bodies[rigid_body.parent_body];
     mjsBody* body = mjs_addBody(parent, nullptr);
     bodies.push_back(body);
     mjs_setName(body->element, rigid_body.name.c_str());
@@ -198,50 +212,57 @@ std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
       mjsJoint* free_joint = mjs_addFreeJoint(body);
       mjs_setName(free_joint->element, "base_free");
     } else {
-      const Joint& joint = robot.joints()[rigid_body.joint];
-      mjsJoint* hinge = mjs_addJoint(body, nullptr);
-      mjs_setName(hinge->element, joint.name.c_str());
-      hinge->type = mjJNT_HINGE;
-      for (int i = 0; i < 3; ++i) hinge->axis[i] = rigid_body.joint_axis[i];
-      if (joint.limits.has_position_limits()) {
-        hinge->limited = mjLIMITED_TRUE;
-        hinge->range[0] = joint.limits.lower;
-        hinge->range[1] = joint.limits.upper;
-        // Stiff limits: MuJoCo's default (a 20 ms time constant) lets a hip swung at full
-        // effort pass its limit by 0.5 rad; the stiffest stable one is two physics steps.
-        hinge->solref_limit[0] = 2.0 * config.physics_timestep;
-        hinge->solref_limit[1] = 1.0;
-        hinge->solimp_limit[0] = 0.99;
-        hinge->solimp_limit[1] = 0.999;
-      } else {
-        hinge->limited = mjLIMITED_FALSE;
-      }
+      add_hinge(*body, robot.joints()[rigid_body.joint], rigid_body.joint_axis, config);
     }
     add_collision_geoms(*body, rigid_body, robot, config, tire_carried_mass);
   }
+}
+
+/// Where the robot's bodies, joints and tires are in the compiled `model`.
+MujocoRobotIndex index_robot(const mjModel* model, const RigidBodyTree& tree,
+                             const RobotModel& robot, const MujocoConfig& config) {
+  MujocoRobotIndex index;
+  index.root_body = checked_id(model, mjOBJ_BODY, tree.bodies().front().name);
+  const int free_joint = checked_id(model, mjOBJ_JOINT, "base_free");
+  index.root_qpos = model->jnt_qposadr[free_joint];
+  index.root_dof = model->jnt_dofadr[free_joint];
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    const std::string& name = robot.joints()[robot.servo_joint(servo)].name;
+    const int joint = checked_id(model, mjOBJ_JOINT, name);
+    index.servo_qpos[servo] = model->jnt_qposadr[joint];
+    index.servo_dof[servo] = model->jnt_dofadr[joint];
+    index.servo_body[servo] = model->jnt_bodyid[joint];
+  }
+  index.tire_geoms[0] = checked_id(model, mjOBJ_GEOM, "left_tire");
+  index.tire_geoms[1] = checked_id(model, mjOBJ_GEOM, "right_tire");
+  if (config.floor) index.floor_geom = checked_id(model, mjOBJ_GEOM, kFloorName);
+  return index;
+}
+
+}  // namespace
+
+void route_mujoco_messages() {
+  static std::once_flag once;
+  std::call_once(once, [] { mju_user_warning = silence; });
+}
+
+std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
+                                                      const MujocoConfig& config) {
+  route_mujoco_messages();
+  const RigidBodyTree tree(robot, config.inertia_source, /*merge_fixed_links=*/true);
+  const std::unique_ptr<mjSpec, SpecDeleter> spec = make_spec(config);
+  mjsBody* world = mjs_findBody(spec.get(), "world");
+  add_scene(*spec, *world);
+  if (config.floor) add_floor(*world);
+  add_bodies(*world, tree, robot, config);
 
   MujocoModelPtr model(mj_compile(spec.get(), nullptr));
   if (!model) {
     throw ModelError(std::string("MuJoCo could not compile the model of ") + robot.path().string() +
                      ": " + mjs_getError(spec.get()));
   }
-
   auto result = std::make_shared<MujocoModel>();
-  MujocoRobotIndex& index = result->index;
-  index.root_body = checked_id(model.get(), mjOBJ_BODY, tree.bodies().front().name);
-  const int free_joint = checked_id(model.get(), mjOBJ_JOINT, "base_free");
-  index.root_qpos = model->jnt_qposadr[free_joint];
-  index.root_dof = model->jnt_dofadr[free_joint];
-  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-    const std::string& name = robot.joints()[robot.servo_joint(servo)].name;
-    const int joint = checked_id(model.get(), mjOBJ_JOINT, name);
-    index.servo_qpos[servo] = model->jnt_qposadr[joint];
-    index.servo_dof[servo] = model->jnt_dofadr[joint];
-    index.servo_body[servo] = model->jnt_bodyid[joint];
-  }
-  index.tire_geoms[0] = checked_id(model.get(), mjOBJ_GEOM, "left_tire");
-  index.tire_geoms[1] = checked_id(model.get(), mjOBJ_GEOM, "right_tire");
-  if (config.floor) index.floor_geom = checked_id(model.get(), mjOBJ_GEOM, kFloorName);
+  result->index = index_robot(model.get(), tree, robot, config);
   result->model = std::move(model);
   return result;
 }

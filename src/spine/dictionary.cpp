@@ -69,6 +69,67 @@ std::string_view msgpack_type_name(msgpack::type::object_type type) {
   return "unknown";
 }
 
+/// The kind `value` takes in a Dictionary.
+/// @throws SpineError for a msgpack type the spine refuses (nil, binary, extension).
+Dictionary::Kind kind_of(const msgpack::object& value, const Dictionary::Path* path) {
+  switch (value.type) {
+    case msgpack::type::MAP:
+      return Dictionary::Kind::kMap;
+    case msgpack::type::BOOLEAN:
+      return Dictionary::Kind::kBool;
+    case msgpack::type::POSITIVE_INTEGER:
+    case msgpack::type::NEGATIVE_INTEGER:
+      return Dictionary::Kind::kInt;
+    case msgpack::type::FLOAT32:
+    case msgpack::type::FLOAT64:
+      return Dictionary::Kind::kFloat;
+    case msgpack::type::STR:
+      return Dictionary::Kind::kString;
+    case msgpack::type::ARRAY:
+      return array_kind(value.via.array.size);
+    default:
+      throw SpineError(describe(path) + " has a " + std::string(msgpack_type_name(value.type)) +
+                       " value, which the spine refuses");
+  }
+}
+
+/// The int64 of an integer `value`.
+/// @throws SpineError for a positive integer beyond int64.
+std::int64_t to_int64(const msgpack::object& value, const Dictionary::Path* path) {
+  if (value.type != msgpack::type::POSITIVE_INTEGER) return value.via.i64;
+  if (value.via.u64 > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+    throw SpineError(describe(path) + " is an integer too large for int64");
+  }
+  return static_cast<std::int64_t>(value.via.u64);
+}
+
+/// Copies the numbers of array `value` into `out` (resized, no allocation when it fits).
+/// @throws SpineError for an element that is not a number.
+void copy_numbers(const msgpack::object& value, const Dictionary::Path* path,
+                  std::vector<double>& out) {
+  const msgpack::object_array& array = value.via.array;
+  out.resize(array.size);
+  for (std::uint32_t i = 0; i < array.size; ++i) {
+    const msgpack::object& element = array.ptr[i];
+    switch (element.type) {
+      case msgpack::type::FLOAT32:
+      case msgpack::type::FLOAT64:
+        out[i] = element.via.f64;
+        break;
+      case msgpack::type::POSITIVE_INTEGER:
+        out[i] = static_cast<double>(element.via.u64);
+        break;
+      case msgpack::type::NEGATIVE_INTEGER:
+        out[i] = static_cast<double>(element.via.i64);
+        break;
+      default:
+        throw SpineError(describe(path) + " holds a " +
+                         std::string(msgpack_type_name(element.type)) +
+                         " in an array, arrays must hold numbers");
+    }
+  }
+}
+
 }  // namespace
 
 std::string_view Dictionary::kind_name(Kind kind) {
@@ -132,32 +193,7 @@ void Dictionary::update_map(const msgpack::object& message, const Path* path, in
 }
 
 void Dictionary::assign(const msgpack::object& value, const Path* path, int depth, bool fresh) {
-  Kind kind = Kind::kMap;
-  switch (value.type) {
-    case msgpack::type::MAP:
-      kind = Kind::kMap;
-      break;
-    case msgpack::type::BOOLEAN:
-      kind = Kind::kBool;
-      break;
-    case msgpack::type::POSITIVE_INTEGER:
-    case msgpack::type::NEGATIVE_INTEGER:
-      kind = Kind::kInt;
-      break;
-    case msgpack::type::FLOAT32:
-    case msgpack::type::FLOAT64:
-      kind = Kind::kFloat;
-      break;
-    case msgpack::type::STR:
-      kind = Kind::kString;
-      break;
-    case msgpack::type::ARRAY:
-      kind = array_kind(value.via.array.size);
-      break;
-    default:
-      throw SpineError(describe(path) + " has a " + std::string(msgpack_type_name(value.type)) +
-                       " value, which the spine refuses");
-  }
+  const Kind kind = kind_of(value, path);
   if (!fresh && kind != kind_) {
     throw SpineError(describe(path) + " changed type from " + std::string(kind_name(kind_)) +
                      " to " + std::string(kind_name(kind)));
@@ -171,14 +207,7 @@ void Dictionary::assign(const msgpack::object& value, const Path* path, int dept
       bool_ = value.via.boolean;
       break;
     case Kind::kInt:
-      if (value.type == msgpack::type::POSITIVE_INTEGER) {
-        if (value.via.u64 > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
-          throw SpineError(describe(path) + " is an integer too large for int64");
-        }
-        int_ = static_cast<std::int64_t>(value.via.u64);
-      } else {
-        int_ = value.via.i64;
-      }
+      int_ = to_int64(value, path);
       break;
     case Kind::kFloat:
       float_ = value.via.f64;  // msgpack-cxx widens float32 into f64
@@ -186,29 +215,8 @@ void Dictionary::assign(const msgpack::object& value, const Path* path, int dept
     case Kind::kString:
       string_.assign(value.via.str.ptr, value.via.str.size);
       break;
-    default: {  // arrays
-      const msgpack::object_array& array = value.via.array;
-      array_.resize(array.size);
-      for (std::uint32_t i = 0; i < array.size; ++i) {
-        const msgpack::object& element = array.ptr[i];
-        switch (element.type) {
-          case msgpack::type::FLOAT32:
-          case msgpack::type::FLOAT64:
-            array_[i] = element.via.f64;
-            break;
-          case msgpack::type::POSITIVE_INTEGER:
-            array_[i] = static_cast<double>(element.via.u64);
-            break;
-          case msgpack::type::NEGATIVE_INTEGER:
-            array_[i] = static_cast<double>(element.via.i64);
-            break;
-          default:
-            throw SpineError(describe(path) + " holds a " +
-                             std::string(msgpack_type_name(element.type)) +
-                             " in an array, arrays must hold numbers");
-        }
-      }
-    }
+    default:  // arrays
+      copy_numbers(value, path, array_);
   }
   kind_ = kind;
 }

@@ -26,6 +26,8 @@ class Decoder {
         max_container_(max_container),
         max_depth_(max_depth) {}
 
+  // Over 60 lines on purpose: one case per msgpack marker byte, a dispatch table read side
+  // by side with the format's specification; split, the table would be scattered.
   void decode(msgpack::object& out, std::size_t depth) {
     if (depth > max_depth_) {
       throw SpineError("msgpack payload nested deeper than " + std::to_string(max_depth_));
