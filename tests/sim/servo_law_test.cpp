@@ -75,5 +75,20 @@ TEST(ValidateServoActionTest, RefusesNonFiniteValuesNamingJointAndField) {
   EXPECT_THROW(validate_servo_action(action), InvalidCommandError);
 }
 
+TEST(ValidateServoActionTest, TheRobotRefusesTheInfiniteMaximumTorqueASimulationTakes) {
+  ServoAction action{};  // maximum_torque +inf ("no clamp"), position NaN
+  EXPECT_NO_THROW(validate_servo_action(action));
+  EXPECT_NO_THROW(validate_servo_action(action, ServoActionTarget::kSimulation));
+  try {
+    validate_servo_action(action, ServoActionTarget::kRobot);
+    FAIL() << "expected InvalidCommandError";
+  } catch (const InvalidCommandError& error) {
+    EXPECT_NE(std::string(error.what()).find("left_hip"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("maximum_torque"), std::string::npos);
+  }
+  for (ServoCommand& command : action) command.maximum_torque = 1.0;
+  EXPECT_NO_THROW(validate_servo_action(action, ServoActionTarget::kRobot));  // NaN position
+}
+
 }  // namespace
 }  // namespace upkie_rl

@@ -166,6 +166,10 @@ describe('drive', () => {
     await watcher.page.waitForFunction(() => window.upkieViewer.drive.refusals.length > 0, null, { timeout: 5000 });
     const refusal = (await driveState(watcher.page)).refusals[0].reason;
     assert.match(refusal, /another page drives/);
+    // Each change is sent once (press, release), not again at every 20 ms tick while the
+    // other page drives.
+    const watcherSent = (await driveState(watcher.page)).sent;
+    assert.ok(watcherSent <= 3, `the watcher sent ${watcherSent} messages for one key press`);
     // The driving page goes away with its key still held.
     await driver.page.context().close();
     await waitForRole(watcher.page, 'free');
