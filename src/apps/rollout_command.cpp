@@ -66,36 +66,44 @@ void add_video_frame(VideoRecorder& video, const Env& env, double episode_return
   video.add(robot_pose(*full), full->time, episode_return, full->base_orientation.pitch);
 }
 
-/// Commanded and measured velocities of one episode, for --plot.
+/// Targets, commanded (acceleration-limited) and measured velocities of one episode, for
+/// --plot.
 struct VelocityTrace {
   std::vector<double> time;
-  std::vector<double> commanded_forward, measured_forward, commanded_yaw, measured_yaw;
+  std::vector<double> target_forward, commanded_forward, measured_forward;
+  std::vector<double> target_yaw, commanded_yaw, measured_yaw;
 
   void add(double t, const VelocityEnv& env) {
+    const VelocityCommand& target = env.last_step_target();
     const VelocityCommand& command = env.last_step_command();
     const BaseVelocity velocity = env.measured_velocity();
     time.push_back(t);
+    target_forward.push_back(target.forward_velocity);
     commanded_forward.push_back(command.forward_velocity);
     measured_forward.push_back(velocity.forward_velocity);
+    target_yaw.push_back(target.yaw_rate);
     commanded_yaw.push_back(command.yaw_rate);
     measured_yaw.push_back(velocity.yaw_rate);
   }
 
   /// <prefix>_forward_velocity.png and <prefix>_yaw_rate.png.
   void draw(const std::string& prefix, const std::string& title) const {
-    const auto figure = [&](const char* name, const char* label, const std::vector<double>& wanted,
+    const auto figure = [&](const char* name, const char* label, const std::vector<double>& target,
+                            const std::vector<double>& wanted,
                             const std::vector<double>& measured) {
       CurvesFigure out;
       out.output = prefix + "_" + name + ".png";
       out.title = title;
       out.x_label = "time [s]";
       out.y_label = label;
-      out.curves = {{"commanded", time, wanted}, {"measured", time, measured}};
+      out.curves = {
+          {"target", time, target}, {"commanded", time, wanted}, {"measured", time, measured}};
       draw_curves_figure(out);
       std::cout << "figure " << out.output.string() << std::endl;
     };
-    figure("forward_velocity", "forward velocity [m/s]", commanded_forward, measured_forward);
-    figure("yaw_rate", "yaw rate [rad/s]", commanded_yaw, measured_yaw);
+    figure("forward_velocity", "forward velocity [m/s]", target_forward, commanded_forward,
+           measured_forward);
+    figure("yaw_rate", "yaw rate [rad/s]", target_yaw, commanded_yaw, measured_yaw);
   }
 };
 

@@ -10,6 +10,8 @@ namespace {
 
 constexpr const char* kForwardKey = "tracking_rms_vx";
 constexpr const char* kYawKey = "tracking_rms_wz";
+constexpr const char* kForwardTargetKey = "tracking_rms_vx_target";
+constexpr const char* kYawTargetKey = "tracking_rms_wz_target";
 constexpr const char* kFallRateKey = "fall_rate";
 
 nlohmann::json number_or_null(double value) {
@@ -22,6 +24,8 @@ void add_tracking_json(nlohmann::json& json, const EpisodeSummary& summary) {
   if (!summary.has_tracking) return;
   json[kForwardKey] = number_or_null(summary.tracking.rms_forward());
   json[kYawKey] = number_or_null(summary.tracking.rms_yaw());
+  json[kForwardTargetKey] = number_or_null(summary.tracking.rms_forward_target());
+  json[kYawTargetKey] = number_or_null(summary.tracking.rms_yaw_target());
   json[kFallRateKey] = summary.fall_rate;
 }
 
@@ -30,7 +34,9 @@ std::string tracking_text(const EpisodeSummary& summary) {
   std::ostringstream text;
   text << std::setprecision(3) << kForwardKey << ' ' << summary.tracking.rms_forward() << " m/s, "
        << kYawKey << ' ' << summary.tracking.rms_yaw() << " rad/s, " << kFallRateKey << ' '
-       << summary.fall_rate << " (" << summary.tracking.steps << " steps up)";
+       << summary.fall_rate << " (" << summary.tracking.steps << " steps up); against the targets "
+       << kForwardTargetKey << ' ' << summary.tracking.rms_forward_target() << " m/s, "
+       << kYawTargetKey << ' ' << summary.tracking.rms_yaw_target() << " rad/s";
   return text.str();
 }
 

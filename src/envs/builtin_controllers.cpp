@@ -18,7 +18,8 @@ namespace {
 
 constexpr const char* kValidSpecs =
     "valid controllers: zero, linear:k1,k2,k3,k4, lqr, lqr:theta,p,theta_dot,p_dot,command, "
-    "balancer:k_theta,k_theta_dot,k_v,k_e,theta0,theta_per_v,u0,u_per_v (velocity tasks)";
+    "balancer:k_theta,k_theta_dot,k_v,k_e,theta0,theta_per_v,u0,u_per_v[,theta_per_a,u_per_a] "
+    "(velocity tasks)";
 
 /// `N` finite numbers separated by commas in `list`.
 template <std::size_t N>
@@ -48,7 +49,8 @@ std::array<float, N> parse_numbers(const std::string& spec, const std::string& l
 
 constexpr const char* kLinearExpected = "four finite gains, linear:k1,k2,k3,k4";
 constexpr const char* kBalancerExpected =
-    "eight finite numbers, balancer:k_theta,k_theta_dot,k_v,k_e,theta0,theta_per_v,u0,u_per_v";
+    "eight or ten finite numbers, "
+    "balancer:k_theta,k_theta_dot,k_v,k_e,theta0,theta_per_v,u0,u_per_v[,theta_per_a,u_per_a]";
 constexpr std::string_view kBalancerPrefix = "balancer:";
 
 /// The pendulum's law k·[θ, p, θ̇, ṗ] as a velocity balancer without feedforward (the
@@ -65,8 +67,32 @@ std::string balancer_spec(const VelocityBalancerGains& gains) {
   spec << kBalancerPrefix;
   for (const double k : gains.feedback) spec << k << ',';
   spec << gains.pitch_offset << ',' << gains.pitch_per_velocity << ',' << gains.command_offset
-       << ',' << gains.command_per_velocity;
+       << ',' << gains.command_per_velocity << ',' << gains.pitch_per_acceleration << ','
+       << gains.command_per_acceleration;
   return spec.str();
+}
+
+/// The gains of a `balancer:` spec's list: all of VelocityBalancerGains' members, or the
+/// first eight (no acceleration feedforward, the specs before it existed).
+VelocityBalancerGains parse_balancer(const std::string& spec, const std::string& list) {
+  std::array<float, VelocityBalancerGains::kNumValues> numbers{};
+  if (static_cast<std::size_t>(std::count(list.begin(), list.end(), ',')) + 1 ==
+      VelocityBalancerGains::kNumLegacyValues) {
+    const auto legacy =
+        parse_numbers<VelocityBalancerGains::kNumLegacyValues>(spec, list, kBalancerExpected);
+    std::copy(legacy.begin(), legacy.end(), numbers.begin());
+  } else {
+    numbers = parse_numbers<VelocityBalancerGains::kNumValues>(spec, list, kBalancerExpected);
+  }
+  VelocityBalancerGains gains;
+  for (std::size_t k = 0; k < 4; ++k) gains.feedback[k] = numbers[k];
+  gains.pitch_offset = numbers[4];
+  gains.pitch_per_velocity = numbers[5];
+  gains.command_offset = numbers[6];
+  gains.command_per_velocity = numbers[7];
+  gains.pitch_per_acceleration = numbers[8];
+  gains.command_per_acceleration = numbers[9];
+  return gains;
 }
 
 }  // namespace
@@ -121,15 +147,8 @@ std::unique_ptr<Controller> make_builtin_controller(const std::string& spec, con
     return std::make_unique<LinearController>(env, gains);
   }
   if (spec.rfind(kBalancerPrefix, 0) == 0) {
-    const auto numbers = parse_numbers<VelocityBalancerGains::kNumValues>(
-        spec, spec.substr(kBalancerPrefix.size()), kBalancerExpected);
-    VelocityBalancerGains gains;
-    for (std::size_t k = 0; k < 4; ++k) gains.feedback[k] = numbers[k];
-    gains.pitch_offset = numbers[4];
-    gains.pitch_per_velocity = numbers[5];
-    gains.command_offset = numbers[6];
-    gains.command_per_velocity = numbers[7];
-    return std::make_unique<VelocityBalancer>(env, gains);
+    return std::make_unique<VelocityBalancer>(
+        env, parse_balancer(spec, spec.substr(kBalancerPrefix.size())));
   }
   throw std::invalid_argument("unknown controller \"" + spec + "\"; " + kValidSpecs);
 }

@@ -97,19 +97,14 @@ BalanceLinearization fit_dynamics(const Transitions& transitions) {
     targets.row(i) = transitions.outputs[i].transpose();
     targets(i, 1) -= inputs[i][1];
   }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(regressors);
-  if (qr.rank() < 4) {
-    throw std::invalid_argument("LQR design: the excitation does not determine the dynamics");
-  }
-  const Eigen::MatrixXd solution = qr.solve(targets);  // 4 x 4: rows θ, θ̇, ṗ, u
+  const LeastSquaresFit fit = fit_least_squares(regressors, targets, "LQR design");
+  const Eigen::MatrixXd& solution = fit.solution;  // 4 x 4: rows θ, θ̇, ṗ, u
   BalanceLinearization result;
   result.A.setZero();
   for (int j = 0; j < 3; ++j) result.A.col(kDynamicStates[j]) = solution.row(j).transpose();
   result.A(1, 1) = 1.0;
   result.B = solution.row(3).transpose();
-  const Eigen::MatrixXd residual = regressors * solution - targets;
-  result.rms_error =
-      (residual.colwise().squaredNorm() / static_cast<double>(samples)).cwiseSqrt().transpose();
+  result.rms_error = fit.rms_error;
   result.samples = static_cast<int>(samples);
   return result;
 }
@@ -119,6 +114,32 @@ BalanceLinearization fit_dynamics(const Transitions& transitions) {
 BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int episodes,
                                                double excitation) {
   return fit_dynamics(collect_transitions(env, seed, episodes, excitation));
+}
+
+Eigen::MatrixXd bryson_cost(std::initializer_list<double> deviations, const std::string& context) {
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(deviations.size()),
+                                               static_cast<Eigen::Index>(deviations.size()));
+  Eigen::Index k = 0;
+  for (const double deviation : deviations) {
+    if (!(deviation > 0.0)) throw std::invalid_argument(context + ": weights must be > 0");
+    cost(k, k) = 1.0 / (deviation * deviation);
+    ++k;
+  }
+  return cost;
+}
+
+LeastSquaresFit fit_least_squares(const Eigen::MatrixXd& regressors, const Eigen::MatrixXd& targets,
+                                  const std::string& context) {
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(regressors);
+  if (qr.rank() < regressors.cols()) {
+    throw std::invalid_argument(context + ": the excitation does not determine the dynamics");
+  }
+  LeastSquaresFit fit;
+  fit.solution = qr.solve(targets);
+  const Eigen::MatrixXd residual = regressors * fit.solution - targets;
+  fit.rms_error =
+      (residual.colwise().squaredNorm() / static_cast<double>(regressors.rows())).cwiseSqrt();
+  return fit;
 }
 
 Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& dynamics, const Eigen::MatrixXd& input,
@@ -160,14 +181,9 @@ Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& dynamics, const Eigen::
 
 std::array<float, 4> design_lqr_gains(Env& env, const LqrWeights& weights, std::uint64_t seed) {
   const BalanceLinearization model = identify_balance_dynamics(env, seed);
-  Eigen::Matrix4d state_cost = Eigen::Matrix4d::Zero();
-  for (int k = 0; k < 4; ++k) {
-    if (!(weights.max_state[k] > 0.0)) throw std::invalid_argument("LQR: weights must be > 0");
-    state_cost(k, k) = 1.0 / (weights.max_state[k] * weights.max_state[k]);
-  }
-  if (!(weights.max_command > 0.0)) throw std::invalid_argument("LQR: weights must be > 0");
-  Eigen::MatrixXd input_cost(1, 1);
-  input_cost(0, 0) = 1.0 / (weights.max_command * weights.max_command);
+  const std::array<double, 4>& d = weights.max_state;
+  const Eigen::MatrixXd state_cost = bryson_cost({d[0], d[1], d[2], d[3]}, "LQR");
+  const Eigen::MatrixXd input_cost = bryson_cost({weights.max_command}, "LQR");
   const Eigen::MatrixXd gain = discrete_lqr_gain(model.A, model.B, state_cost, input_cost);
   std::array<float, 4> gains{};
   for (int k = 0; k < 4; ++k) gains[k] = static_cast<float>(-gain(0, k));

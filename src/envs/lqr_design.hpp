@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -42,6 +44,22 @@ BalanceLinearization identify_balance_dynamics(Env& env, std::uint64_t seed, int
 Eigen::MatrixXd discrete_lqr_gain(const Eigen::MatrixXd& dynamics, const Eigen::MatrixXd& input,
                                   const Eigen::MatrixXd& state_cost,
                                   const Eigen::MatrixXd& input_cost);
+
+/// Bryson's rule: the diagonal cost 1/d² of each largest acceptable deviation d.
+/// @throws std::invalid_argument "<context>: weights must be > 0" on a d that is not.
+Eigen::MatrixXd bryson_cost(std::initializer_list<double> deviations, const std::string& context);
+
+/// A least-squares fit of targets (one column each) on regressors (one row per sample).
+struct LeastSquaresFit {
+  Eigen::MatrixXd solution;   ///< regressors × solution ≈ targets.
+  Eigen::VectorXd rms_error;  ///< Root-mean-square residual of each target column.
+};
+
+/// Fits `targets` on `regressors` (column-pivoting QR).
+/// @throws std::invalid_argument "<context>: the excitation does not determine the dynamics"
+///         when the regressors do not have full column rank.
+LeastSquaresFit fit_least_squares(const Eigen::MatrixXd& regressors, const Eigen::MatrixXd& targets,
+                                  const std::string& context);
 
 /// Weights of the balance LQR, as Bryson's rule: the largest acceptable deviation of each
 /// state and of the command. Defaults: 0.1 rad, 1 m, 1 rad/s, 0.5 m/s, 1 m/s.

@@ -51,6 +51,7 @@ VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& 
 void VelocityBalancer::reset() {
   position_error_ = 0.0;
   reference_velocity_ = 0.0;
+  reference_acceleration_ = 0.0;
   filtered_velocity_ = 0.0;
   ground_velocity_ = 0.0;
   yaw_rate_error_integral_ = 0.0;
@@ -61,7 +62,10 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   // over (it tilts backward when the wheels leap forward).
   const double commanded = observation[VelocityTask::kCommandIndex];
   const double max_change = kMaxAcceleration * timestep_;
-  reference_velocity_ += std::clamp(commanded - reference_velocity_, -max_change, max_change);
+  const double change = std::clamp(commanded - reference_velocity_, -max_change, max_change);
+  reference_velocity_ += change;
+  reference_acceleration_ +=
+      kAccelerationFilterGain * (change / timestep_ - reference_acceleration_);
   const double odometry =
       0.5 * wheel_radius_ * (observation[kLeftWheelVelocity] - observation[kRightWheelVelocity]);
   filtered_velocity_ += kVelocityFilterGain * (odometry - filtered_velocity_);
@@ -69,9 +73,12 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   // Bounded, so that a command the robot cannot follow does not wind the integral up.
   position_error_ = std::clamp(position_error_ + velocity_error * timestep_, -kMaxPositionError,
                                kMaxPositionError);
-  const double steady_pitch = gains_.pitch_offset + gains_.pitch_per_velocity * reference_velocity_;
-  const double steady_command =
-      gains_.command_offset + gains_.command_per_velocity * reference_velocity_;
+  const double steady_pitch = gains_.pitch_offset +
+                              gains_.pitch_per_velocity * reference_velocity_ +
+                              gains_.pitch_per_acceleration * reference_acceleration_;
+  const double steady_command = gains_.command_offset +
+                                gains_.command_per_velocity * reference_velocity_ +
+                                gains_.command_per_acceleration * reference_acceleration_;
   const std::array<double, 4>& k = gains_.feedback;
   ground_velocity_ = steady_command + k[0] * (velocity_task_pitch(observation) - steady_pitch) +
                      k[1] * velocity_task_pitch_rate(observation) + k[2] * velocity_error +

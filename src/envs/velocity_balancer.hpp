@@ -18,24 +18,32 @@ struct VelocityBalancerGains {
   /// k of u = u_ss + k·[θ - θ_ss, θ̇, v̂ - v_ref, e] in the order pitch [m/s/rad], pitch
   /// rate [m/s/(rad/s)], velocity error [1], integral of the velocity error [1/s].
   std::array<double, 4> feedback{};
-  double pitch_offset = 0.0;          ///< θ_ss at rest [rad] (the centre of mass's offset).
-  double pitch_per_velocity = 0.0;    ///< dθ_ss/dv_ref [rad/(m/s)] (rolling losses).
-  double command_offset = 0.0;        ///< u_ss at rest [m/s].
-  double command_per_velocity = 1.0;  ///< du_ss/dv_ref [1].
+  double pitch_offset = 0.0;              ///< θ_ss at rest [rad] (the centre of mass's offset).
+  double pitch_per_velocity = 0.0;        ///< dθ_ss/dv_ref [rad/(m/s)] (rolling losses).
+  double command_offset = 0.0;            ///< u_ss at rest [m/s].
+  double command_per_velocity = 1.0;      ///< du_ss/dv_ref [1].
+  double pitch_per_acceleration = 0.0;    ///< dθ_ss/da_ref [rad/(m/s²)] (the lean).
+  double command_per_acceleration = 0.0;  ///< du_ss/da_ref [s].
 
   /// How many numbers the `balancer:` spec gives: the members in order.
-  static constexpr std::size_t kNumValues = 8;
+  static constexpr std::size_t kNumValues = 10;
+  /// A spec of the first kNumLegacyValues members leaves the acceleration feedforward at 0.
+  static constexpr std::size_t kNumLegacyValues = 8;
 };
 
 /// With θ the pitch (from the gravity vector of the observation), θ̇ the gyroscope's pitch
 /// rate, v̂ the wheel odometry velocity r(ω_left - ω_right)/2 low-pass filtered (the tire
 /// contact makes the wheel speeds jitter by several tenths of a m/s from one step to the
-/// next), v* and ψ̇* the command, v_ref a reference ramping toward v* at 1 m/s² and e the
-/// integral of v̂ - v_ref since reset (bounded to ±5 m):
+/// next), v* and ψ̇* the command, v_ref a reference ramping toward v* at most at 2 m/s²
+/// (the command's own acceleration when it ramps slower, VelocityCommandLimiter), a_ref its
+/// acceleration low-pass filtered and e the integral of v̂ - v_ref since reset (bounded to
+/// ±5 m):
 ///
 ///   ground velocity u = u_ss + k·[θ - θ_ss, θ̇, v̂ - v_ref, e],
-///   θ_ss = pitch_offset + pitch_per_velocity·v_ref, u_ss = command_offset +
-///   command_per_velocity·v_ref (the steady state of a robot driving at v_ref),
+///   θ_ss = pitch_offset + pitch_per_velocity·v_ref + pitch_per_acceleration·a_ref,
+///   u_ss = command_offset + command_per_velocity·v_ref + command_per_acceleration·a_ref
+///   (the steady state of a robot driving at v_ref and accelerating at a_ref: it leans
+///   into the acceleration),
 ///   yaw rate ω = ψ̇* + k_ψ(ψ̇* - ψ̇) + k_ψi∫(ψ̇* - ψ̇) with ψ̇ the gyroscope's yaw rate,
 ///   ω_left = u/r - (track/2)/r·ω,  ω_right = -u/r - (track/2)/r·ω
 ///
@@ -44,6 +52,9 @@ class VelocityBalancer final : public Controller {
  public:
   /// Low-pass gain of the velocity estimate per agent step.
   static constexpr double kVelocityFilterGain = 0.15;
+  /// Low-pass gain of a_ref per agent step: the lean comes in over a few steps instead
+  /// of a step of the pitch reference when the command starts to ramp.
+  static constexpr double kAccelerationFilterGain = 0.3;
   /// Proportional and integral gains of the yaw-rate loop ([1], [1/s]).
   static constexpr double kYawRateGain = 0.5;
   static constexpr double kYawRateIntegralGain = 1.0;
@@ -71,6 +82,7 @@ class VelocityBalancer final : public Controller {
   double excitation_ = 0.0;
   double position_error_ = 0.0;           ///< e = ∫(v̂ - v_ref) dt [m]
   double reference_velocity_ = 0.0;       ///< v_ref [m/s]
+  double reference_acceleration_ = 0.0;   ///< a_ref [m/s²]
   double filtered_velocity_ = 0.0;        ///< v̂ [m/s]
   double ground_velocity_ = 0.0;          ///< u [m/s]
   double yaw_rate_error_integral_ = 0.0;  ///< ∫(ψ̇* - ψ̇) dt [rad]

@@ -50,7 +50,8 @@ VelocityBalanceModel identify_velocity_balance(Env& env, const VelocityBalancerG
 
 /// The balancer for `model`: feedback gains of the discrete LQR on [θ, θ̇, v̂ - v_ref, e]
 /// (e' = e + dt·(v̂ - v_ref)), feedforward from the model's steady states at constant
-/// velocity (θ̇ = 0, v̂ = v_ref).
+/// velocity (θ̇ = 0, v̂ = v_ref) and at constant acceleration (θ̇ = 0, v̂ growing by a·dt
+/// per step).
 /// @throws std::invalid_argument on non-positive weights or an unstabilisable model.
 VelocityBalancerGains velocity_balancer_for(const VelocityBalanceModel& model, double timestep,
                                             const VelocityBalancerWeights& weights);

@@ -26,7 +26,9 @@ std::string VelocityCommandRanges::problem() const {
         std::pair{"max_yaw_rate", max_yaw_rate},
         std::pair{"zero_command_probability", zero_command_probability},
         std::pair{"command_resample_time_min", resample_time_min},
-        std::pair{"command_resample_time_max", resample_time_max}}) {
+        std::pair{"command_resample_time_max", resample_time_max},
+        std::pair{"command_max_acceleration", max_acceleration},
+        std::pair{"command_max_yaw_acceleration", max_yaw_acceleration}}) {
     std::string negative = negative_problem(option, value);
     if (!negative.empty()) return negative;
   }
@@ -54,6 +56,12 @@ void VelocityCommandRanges::declare_options(OptionTable& table) {
                  "a random command holds U(min, max) seconds [s]");
   table.add_real("command_resample_time_max", &resample_time_max, 0.0, kOptionHuge,
                  "longest hold of a random command [s], 0 for one command per episode");
+  table.add_real("command_max_acceleration", &max_acceleration, 0.0, kOptionHuge,
+                 "the followed forward velocity moves toward the drawn or set command at most "
+                 "this fast [m/s^2], 0 for steps");
+  table.add_real("command_max_yaw_acceleration", &max_yaw_acceleration, 0.0, kOptionHuge,
+                 "the followed yaw rate moves toward the drawn or set command at most this fast "
+                 "[rad/s^2], 0 for steps");
   table.add_rule([this] { return problem(); });
 }
 

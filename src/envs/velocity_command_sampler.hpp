@@ -19,6 +19,15 @@ struct VelocityCommandRanges {
   double zero_command_probability = 0.2;  ///< Share of draws that command standing still.
   double resample_time_min = 2.0;         ///< A command holds U(min, max) seconds [s].
   double resample_time_max = 5.0;         ///< 0 for min and max: one command per episode.
+  /// The command the robot follows moves toward each drawn (or set) command at most this
+  /// fast (VelocityCommandLimiter) [m/s²]; 0: at once (a step). 1 m/s² asks for a lean of
+  /// about a/g = 0.1 rad (6°) while the speed changes, a third of what the baseline's
+  /// design treats as near upright, and crosses the ±1 m/s range in 2 s, inside the
+  /// shortest hold.
+  double max_acceleration = 1.0;
+  /// The same for the yaw rate [rad/s²]; 0 (default): steps, since turning asks for no
+  /// lean (a differential wheel speed) and the controllers follow its steps.
+  double max_yaw_acceleration = 0.0;
 
   /// What is wrong, naming the option at fault: a negative or non-finite value, a
   /// probability above 1, or resample_time_min above resample_time_max; "" if nothing.
@@ -27,7 +36,8 @@ struct VelocityCommandRanges {
   void validate() const;
 
   /// Declares the options max_forward_velocity, max_yaw_rate, zero_command_probability,
-  /// command_resample_time_min and command_resample_time_max, and problem() as their rule.
+  /// command_resample_time_min, command_resample_time_max, command_max_acceleration and
+  /// command_max_yaw_acceleration, and problem() as their rule.
   void declare_options(OptionTable& table);
 };
 

@@ -21,7 +21,8 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
                          const VelocityCommandRanges& commands)
     : ServosWrapperEnv(std::move(servos), "VelocityEnv"),
       task_(servos_->model(), task),
-      sampler_(commands) {
+      sampler_(commands),
+      limiter_(commands.max_acceleration, commands.max_yaw_acceleration) {
   observation_space_ = VelocityTask::make_observation_space();
   action_space_ = VelocityTask::make_action_space();
   if (!task.base_controller.empty()) {
@@ -40,7 +41,10 @@ void VelocityEnv::set_command_override(const std::optional<VelocityCommand>& com
   override_ = command;
 }
 
-void VelocityEnv::refresh_command() { command_ = override_ ? *override_ : sampler_.command(); }
+const VelocityCommand& VelocityEnv::refresh_target() {
+  target_ = override_ ? *override_ : sampler_.command();
+  return target_;
+}
 
 BaseVelocity VelocityEnv::measured_velocity() const {
   return VelocityTask::measured_velocity(*servos_->full_observation());
@@ -54,11 +58,12 @@ void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> obse
   } else {
     sampler_.reset(nullptr);
   }
-  refresh_command();
-  held_command_ = command_;
+  limiter_.start(refresh_target());
+  held_command_ = command();
+  held_target_ = target_;
   action_.fill(0.0f);
   previous_action_.fill(0.0f);
-  task_.write_observation(full, action_, command_, observation);
+  task_.write_observation(full, action_, command(), observation);
   if (base_) {
     base_->reset();
     std::copy(observation.begin(), observation.end(), last_observation_.begin());
@@ -78,11 +83,12 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   }
   task_.servo_action(action_, servo_action_);
   const Observation& full = servos_->step_servos(servo_action_);
-  held_command_ = command_;
-  const StepResult result = task_.evaluate(full, command_, action_, previous_action_);
+  held_command_ = command();
+  held_target_ = target_;
+  const StepResult result = task_.evaluate(full, held_command_, action_, previous_action_);
   sampler_.advance(servos_->timestep());
-  refresh_command();
-  task_.write_observation(full, action_, command_, observation);
+  limiter_.advance(refresh_target(), servos_->timestep());
+  task_.write_observation(full, action_, command(), observation);
   if (base_) std::copy(observation.begin(), observation.end(), last_observation_.begin());
   return result;
 }

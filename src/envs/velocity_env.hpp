@@ -10,13 +10,17 @@
 
 #include "envs/controller.hpp"
 #include "envs/servos_wrapper_env.hpp"
+#include "envs/velocity_command_limiter.hpp"
 #include "envs/velocity_command_sampler.hpp"
 #include "envs/velocity_task.hpp"
 
 namespace upkie_rl {
 
 /// The task (VelocityTask: actions, observation, reward terms, terminations) with the
-/// command of each step: the sampler's random one, or the override when one is set.
+/// command of each step. The target is the sampler's random command, or the override when
+/// one is set; the command the robot follows (observation, reward, tracking) moves toward
+/// it within the acceleration limits of the ranges (VelocityCommandLimiter), from 0 at
+/// reset.
 ///
 /// Residual mode (option `base_controller`, e.g. the classical baseline's "balancer:..."
 /// spec): the servo action is clamp(base + residual_scale·a) with `base` the built-in
@@ -30,18 +34,23 @@ class VelocityEnv final : public ServosWrapperEnv {
   VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskConfig& task,
               const VelocityCommandRanges& commands);
 
-  /// Replaces the random commands by `command` from the next observation on (that of the
-  /// next reset or step: the step under way is still rewarded against the command its
-  /// observation showed); for a script, a runner or a browser. std::nullopt goes back to
+  /// Replaces the random commands by `command` as the target from the next observation on
+  /// (that of the next reset or step: the step under way is still rewarded against the
+  /// command its observation showed; the followed command ramps toward it within the
+  /// acceleration limits); for a script, a runner or a browser. std::nullopt goes back to
   /// the random ones.
   /// @throws std::invalid_argument on a non-finite component.
   void set_command_override(const std::optional<VelocityCommand>& command);
   const std::optional<VelocityCommand>& command_override() const { return override_; }
 
   /// The command the robot follows now (in the last observation).
-  const VelocityCommand& command() const { return command_; }
+  const VelocityCommand& command() const { return limiter_.command(); }
+  /// The target the followed command moves toward (random draw or override).
+  const VelocityCommand& target() const { return target_; }
   /// The command the last step was rewarded against (the one before the step).
   const VelocityCommand& last_step_command() const { return held_command_; }
+  /// The target while the last step was taken.
+  const VelocityCommand& last_step_target() const { return held_target_; }
   /// The base velocity measured after the last reset or step.
   BaseVelocity measured_velocity() const;
 
@@ -59,13 +68,16 @@ class VelocityEnv final : public ServosWrapperEnv {
   std::span<const double> reward_terms() const override { return task_.reward().terms(); }
 
  private:
-  void refresh_command();
+  /// The target of the next observation: the override, or the sampler's command.
+  const VelocityCommand& refresh_target();
 
   VelocityTask task_;
   VelocityCommandSampler sampler_;
+  VelocityCommandLimiter limiter_;
   std::optional<VelocityCommand> override_;
-  VelocityCommand command_;
+  VelocityCommand target_;
   VelocityCommand held_command_;
+  VelocityCommand held_target_;
   std::array<float, VelocityTask::kActionSize> action_{};
   std::array<float, VelocityTask::kActionSize> previous_action_{};
   std::unique_ptr<Controller> base_;  ///< Residual mode's controller, or null.

@@ -9,10 +9,14 @@
 namespace upkie_rl {
 
 /// Sums of squared errors between command and measured base velocity over the steps where
-/// the robot is up (steps that did not end in a termination).
+/// the robot is up (steps that did not end in a termination): against the command the robot
+/// followed (ramped within the acceleration limits, VelocityCommandLimiter) and against the
+/// target it ramped toward (the random draw or the scripted row).
 struct VelocityTracking {
-  double squared_forward_error = 0.0;  ///< [m²/s²]
-  double squared_yaw_error = 0.0;      ///< [rad²/s²]
+  double squared_forward_error = 0.0;         ///< Against the followed command [m²/s²]
+  double squared_yaw_error = 0.0;             ///< [rad²/s²]
+  double squared_forward_target_error = 0.0;  ///< Against the target [m²/s²]
+  double squared_yaw_target_error = 0.0;      ///< [rad²/s²]
   int steps = 0;
   bool active = false;  ///< Whether a velocity task's step was offered (even a terminated one).
 
@@ -20,17 +24,22 @@ struct VelocityTracking {
   void add(const VelocityEnv& env, bool terminated) {
     active = true;
     if (terminated) return;
-    const VelocityCommand& command = env.last_step_command();
-    const BaseVelocity velocity = env.measured_velocity();
-    add(command, velocity);
+    add(env.last_step_command(), env.last_step_target(), env.measured_velocity());
   }
 
-  /// Adds one step's command and measured velocity.
+  /// Adds one step's command (its own target: no ramp) and measured velocity.
   void add(const VelocityCommand& command, const BaseVelocity& velocity) {
-    const double forward_error = command.forward_velocity - velocity.forward_velocity;
-    const double yaw_error = command.yaw_rate - velocity.yaw_rate;
-    squared_forward_error += forward_error * forward_error;
-    squared_yaw_error += yaw_error * yaw_error;
+    add(command, command, velocity);
+  }
+
+  /// Adds one step's followed command, its target and the measured velocity.
+  void add(const VelocityCommand& command, const VelocityCommand& target,
+           const BaseVelocity& velocity) {
+    const auto square = [](double error) { return error * error; };
+    squared_forward_error += square(command.forward_velocity - velocity.forward_velocity);
+    squared_yaw_error += square(command.yaw_rate - velocity.yaw_rate);
+    squared_forward_target_error += square(target.forward_velocity - velocity.forward_velocity);
+    squared_yaw_target_error += square(target.yaw_rate - velocity.yaw_rate);
     ++steps;
     active = true;
   }
@@ -38,17 +47,26 @@ struct VelocityTracking {
   VelocityTracking& operator+=(const VelocityTracking& other) {
     squared_forward_error += other.squared_forward_error;
     squared_yaw_error += other.squared_yaw_error;
+    squared_forward_target_error += other.squared_forward_target_error;
+    squared_yaw_target_error += other.squared_yaw_target_error;
     steps += other.steps;
     active = active || other.active;
     return *this;
   }
 
-  /// RMS forward velocity error [m/s] (NaN without steps).
-  double rms_forward() const {
-    return steps > 0 ? std::sqrt(squared_forward_error / steps) : std::nan("");
+  /// RMS forward velocity error against the followed command [m/s] (NaN without steps).
+  double rms_forward() const { return rms(squared_forward_error); }
+  /// RMS yaw rate error against the followed command [rad/s] (NaN without steps).
+  double rms_yaw() const { return rms(squared_yaw_error); }
+  /// RMS forward velocity error against the target [m/s] (NaN without steps).
+  double rms_forward_target() const { return rms(squared_forward_target_error); }
+  /// RMS yaw rate error against the target [rad/s] (NaN without steps).
+  double rms_yaw_target() const { return rms(squared_yaw_target_error); }
+
+ private:
+  double rms(double sum_of_squares) const {
+    return steps > 0 ? std::sqrt(sum_of_squares / steps) : std::nan("");
   }
-  /// RMS yaw rate error [rad/s] (NaN without steps).
-  double rms_yaw() const { return steps > 0 ? std::sqrt(squared_yaw_error / steps) : std::nan(""); }
 };
 
 }  // namespace upkie_rl

@@ -15,6 +15,7 @@
 #include "agent/record_columns.hpp"
 #include "apps/cli_runner.hpp"
 #include "common/temp_files.hpp"
+#include "envs/velocity_command_limiter.hpp"
 #include "envs/velocity_command_schedule.hpp"
 #include "policy/deployed_policy.hpp"
 
@@ -115,12 +116,22 @@ TEST_F(VelocityRunner, FileCommandsHoldFromTheirTimeAsInRolloutAndTheRecordRepla
   const std::vector<VelocityCommand> seen = recorded_commands(table);
   ASSERT_GT(seen.size(), 20u) << output;  // past the last row's time (0.3 s: 15 cycles)
   const std::size_t step = table.column("step");
+  // Row k holds the observation of cycle k, which shows the command at k / frequency: the
+  // rows are targets, followed within velocity.yaml's acceleration limits (the defaults:
+  // 1 m/s² forward, yaw steps) from 0 at reset, as in rollout.
+  VelocityCommandLimiter limiter(1.0, 0.0);
+  limiter.start(schedule.at(0.0));
+  int cycle = 0;
   for (std::size_t row = 0; row < seen.size(); ++row) {
-    // Row k holds the observation of cycle k, which shows the command at k / frequency.
-    const VelocityCommand& wanted = schedule.at(std::stoi(table.rows[row].at(step)) / kFrequency);
+    const int row_cycle = std::stoi(table.rows[row].at(step));
+    for (; cycle < row_cycle; ++cycle) {
+      limiter.advance(schedule.at((cycle + 1) / kFrequency), 1.0 / kFrequency);
+    }
+    const VelocityCommand& wanted = limiter.command();
     EXPECT_TRUE(same_float(seen[row].forward_velocity, wanted.forward_velocity) &&
                 same_float(seen[row].yaw_rate, wanted.yaw_rate))
-        << "row " << row;
+        << "row " << row << ": " << seen[row].forward_velocity << " against "
+        << wanted.forward_velocity;
   }
   EXPECT_GT(expect_checkpoint_actions(table, model_), 20u);
   const auto html = temp_path("agent_velocity_replay.html");

@@ -212,7 +212,8 @@ TEST(VelocityEnv, ActionMappingAroundTheDefaultPose) {
 }
 
 TEST(VelocityEnv, OverrideReplacesTheRandomCommandsFromTheNextObservation) {
-  auto env = make_env("Upkie-Mock-Velocity");
+  // Steps, so that the command is the target at once (velocity_command_limiter_test ramps).
+  auto env = make_env("Upkie-Mock-Velocity", {{"command_max_acceleration", "0"}});
   VelocityEnv* velocity = find_velocity_env(*env);
   ASSERT_NE(velocity, nullptr);
   Obs observation{};
@@ -296,7 +297,8 @@ TEST(VelocityEnv, RegisteredWithTheTaskRateAndTimeLimit) {
 TEST(VelocityEnv, BadOptionsNameTheOption) {
   const std::string id = "Upkie-Mock-Velocity";
   for (const char* option : {"max_forward_velocity", "max_yaw_rate", "zero_command_probability",
-                             "command_resample_time_min", "fall_tilt"}) {
+                             "command_resample_time_min", "command_max_acceleration",
+                             "command_max_yaw_acceleration", "fall_tilt"}) {
     EXPECT_NE(error_of([&] {
                 make_env(id, {{option, "-1"}});
               }).find(option),

@@ -21,6 +21,26 @@ TEST(VelocityTracking, RmsOfAHandBuiltTrajectory) {
   EXPECT_EQ(tracking.steps, 2);
   EXPECT_NEAR(tracking.rms_forward(), std::sqrt((0.01 + 0.09) / 2), 1e-12);
   EXPECT_NEAR(tracking.rms_yaw(), std::sqrt(0.04 / 2), 1e-12);
+  // Without a ramp the target is the command: the same figures both ways.
+  EXPECT_DOUBLE_EQ(tracking.rms_forward_target(), tracking.rms_forward());
+  EXPECT_DOUBLE_EQ(tracking.rms_yaw_target(), tracking.rms_yaw());
+}
+
+TEST(VelocityTracking, AgainstTheFollowedCommandAndAgainstTheTarget) {
+  // A ramp toward 1 m/s: followed commands 0.2 and 0.4, measured 0.1 and 0.4; yaw target
+  // 1 rad/s reached.
+  VelocityTracking tracking;
+  tracking.add({0.2, 1.0}, {1.0, 1.0}, {0.1, 0.9});
+  tracking.add({0.4, 1.0}, {1.0, 1.0}, {0.4, 1.0});
+  EXPECT_NEAR(tracking.rms_forward(), std::sqrt(0.01 / 2), 1e-12);
+  EXPECT_NEAR(tracking.rms_forward_target(), std::sqrt((0.81 + 0.36) / 2), 1e-12);
+  EXPECT_NEAR(tracking.rms_yaw(), std::sqrt(0.01 / 2), 1e-12);
+  EXPECT_NEAR(tracking.rms_yaw_target(), tracking.rms_yaw(), 1e-12);
+  VelocityTracking pooled;
+  pooled += tracking;
+  pooled += tracking;
+  EXPECT_NEAR(pooled.rms_forward_target(), tracking.rms_forward_target(), 1e-12);
+  EXPECT_EQ(pooled.steps, 4);
 }
 
 TEST(VelocityTracking, SummaryPoolsStepsAndCountsFalls) {

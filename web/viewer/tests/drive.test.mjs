@@ -173,7 +173,8 @@ describe('drive', () => {
     // The driving page goes away with its key still held.
     await driver.page.context().close();
     await waitForRole(watcher.page, 'free');
-    await watcher.page.waitForTimeout(300);
+    // The followed command ramps down at the task's 1 m/s² (command_max_acceleration): 0.5 s.
+    await watcher.page.waitForTimeout(900);
     assert.deepEqual(watcher.errors, []);
     await watcher.page.context().close();
     const { rows, output } = await stopDrive(drive);
@@ -181,8 +182,12 @@ describe('drive', () => {
     const lastDriven = rows.findLastIndex((row) => row['command.forward_velocity'] === 0.5);
     assert.ok(lastDriven > 0, 'the driver drove');
     const after = rows.slice(lastDriven + 1);
-    assert.ok(after.length > 5 && after.every((row) => row['command.forward_velocity'] === 0
-      && row['command.yaw_rate'] === 0), 'zero after the driver closed');
+    const falling = after.every((row, i) => row['command.yaw_rate'] === 0
+      && row['command.forward_velocity'] < 0.5
+      && (i === 0 || row['command.forward_velocity'] <= after[i - 1]['command.forward_velocity']));
+    assert.ok(falling && after.length > 30
+      && after.slice(-5).every((row) => row['command.forward_velocity'] === 0),
+      'zero after the driver closed (ramped down)');
     assert.match(output, /commands: \d+ accepted, [1-9]\d* refused/);
   });
 

@@ -1,0 +1,93 @@
+#include "envs/velocity_command_limiter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "envs/registry.hpp"
+#include "envs/velocity_env.hpp"
+#include "envs/velocity_task.hpp"
+
+namespace upkie_rl {
+namespace {
+
+constexpr double kDt = 0.02;
+
+TEST(VelocityCommandLimiter, RampsToTheTargetAtTheStatedRates) {
+  VelocityCommandLimiter limiter(1.0, 3.0);
+  const VelocityCommand target{0.5, -0.9};
+  limiter.start(target);
+  EXPECT_EQ(limiter.command(), (VelocityCommand{0.0, 0.0}));  // from rest
+  // 0.5 m/s at 1 m/s²: 25 steps of 0.02 m/s; -0.9 rad/s at 3 rad/s²: 15 steps of 0.06.
+  for (int step = 1; step <= 30; ++step) {
+    const VelocityCommand& command = limiter.advance(target, kDt);
+    EXPECT_NEAR(command.forward_velocity, std::min(0.02 * step, 0.5), 1e-12) << step;
+    EXPECT_NEAR(command.yaw_rate, -std::min(0.06 * step, 0.9), 1e-12) << step;
+  }
+  EXPECT_EQ(limiter.command(), target);
+  // A new target down the other way: the same rate, no overshoot.
+  const VelocityCommand back{-0.5, 0.0};
+  for (int step = 1; step <= 49; ++step) limiter.advance(back, kDt);
+  EXPECT_NEAR(limiter.command().forward_velocity, 0.5 - 0.98, 1e-12);
+  limiter.advance(back, kDt);
+  limiter.advance(back, kDt);
+  EXPECT_EQ(limiter.command(), back);
+}
+
+TEST(VelocityCommandLimiter, ZeroIsAStep) {
+  VelocityCommandLimiter limiter(0.0, 0.0);
+  limiter.start({0.7, 1.2});
+  EXPECT_EQ(limiter.command(), (VelocityCommand{0.7, 1.2}));
+  EXPECT_EQ(limiter.advance({-1.0, -1.5}, kDt), (VelocityCommand{-1.0, -1.5}));
+  // One limited component, the other a step.
+  VelocityCommandLimiter forward_only(2.0, 0.0);
+  forward_only.start({1.0, 1.0});
+  EXPECT_EQ(forward_only.command(), (VelocityCommand{0.0, 1.0}));
+  EXPECT_NEAR(forward_only.advance({1.0, -1.0}, kDt).forward_velocity, 0.04, 1e-12);
+  EXPECT_EQ(forward_only.command().yaw_rate, -1.0);
+}
+
+TEST(VelocityEnv, FollowedCommandRampsTowardTheTarget) {
+  auto env = make_env("Upkie-Mock-Velocity",
+                      {{"command_max_acceleration", "0.5"}, {"command_max_yaw_acceleration", "2"}});
+  VelocityEnv* velocity = find_velocity_env(*env);
+  ASSERT_NE(velocity, nullptr);
+  velocity->set_command_override(VelocityCommand{0.3, 1.0});
+  std::array<float, VelocityTask::kObservationSize> observation{};
+  env->reset(0, observation);
+  EXPECT_EQ(velocity->target(), (VelocityCommand{0.3, 1.0}));
+  EXPECT_EQ(velocity->command(), (VelocityCommand{0.0, 0.0}));
+  EXPECT_FLOAT_EQ(observation[VelocityTask::kCommandIndex], 0.0f);
+  const std::array<float, VelocityTask::kActionSize> action{};
+  for (int step = 1; step <= 40; ++step) {
+    env->step(action, observation);
+    // The observation, the reward's command of the next step and the tracking: ramped.
+    EXPECT_NEAR(observation[VelocityTask::kCommandIndex], std::min(0.01 * step, 0.3), 1e-6);
+    EXPECT_NEAR(observation[VelocityTask::kCommandIndex + 1], std::min(0.04 * step, 1.0), 1e-6);
+    EXPECT_NEAR(velocity->last_step_command().forward_velocity, std::min(0.01 * (step - 1), 0.3),
+                1e-9);
+    EXPECT_EQ(velocity->last_step_target(), (VelocityCommand{0.3, 1.0}));
+  }
+}
+
+TEST(VelocityEnv, BadAccelerationLimitsNameTheOption) {
+  for (const char* option : {"command_max_acceleration", "command_max_yaw_acceleration"}) {
+    for (const char* value : {"-1", "nan", "inf"}) {
+      std::string error;
+      try {
+        make_env("Upkie-Mock-Velocity", {{option, value}});
+      } catch (const std::invalid_argument& caught) {
+        error = caught.what();
+      }
+      EXPECT_NE(error.find(option), std::string::npos) << option << '=' << value << ": " << error;
+    }
+  }
+  VelocityCommandRanges ranges;
+  ranges.max_yaw_acceleration = -2.0;
+  EXPECT_NE(ranges.problem().find("command_max_yaw_acceleration"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace upkie_rl
