@@ -121,23 +121,18 @@ sanitize-thread: deps
 	  -E '^(Communicator|DistributedTrain)\.'
 
 # libFuzzer + ASan on the spine's message decoding, server cycle and shared-memory segment,
-# the checkpoint gate past the CRC, record files, the viewer's messages and environment
-# options (the training configuration and --set: see below): FUZZ_RUNS inputs each, or
-# FUZZ_SECONDS each when set (`make fuzz-long`: an hour each); FUZZ_TARGETS picks some. The
-# corpora also run as ctests of every ordinary build (FuzzRegression.*).
+# the checkpoint gate past the CRC, record files, the viewer's messages, environment
+# options and the training configuration with --set: FUZZ_RUNS inputs each, or FUZZ_SECONDS
+# each when set (`make fuzz-long`: an hour each); FUZZ_TARGETS names some (all by
+# default). The targets, their corpora and maximum input lengths are declared once, in
+# fuzz/CMakeLists.txt, which lists them in $(FUZZ_DIR)/fuzz/targets.txt. The corpora also
+# run as ctests of every ordinary build (FuzzRegression.*), and a few seconds of mutations
+# per target too (FuzzBounded.*, GCC's objects on the same libFuzzer).
 FUZZ_DIR ?= build-fuzz
 FUZZ_RUNS ?= 1000000
 FUZZ_SECONDS ?=
 FUZZ_LIMIT = $(if $(FUZZ_SECONDS),-max_total_time=$(FUZZ_SECONDS),-runs=$(FUZZ_RUNS))
-# training_config_fuzzer is not in the default list: it links the rl layer, whose libtorch
-# headers clang 14 does not compile against GCC 12's library (actor_critic.cpp: "arithmetic
-# on a pointer to an incomplete type 'c10::IValue'"), so the whole `make fuzz` stopped at
-# its build. Its corpus runs in every ordinary build (FuzzRegression.training_config_fuzzer);
-# FUZZ_TARGETS=training_config_fuzzer:config_corpus:16384 asks for it (fails to build here).
-FUZZ_TARGETS ?= spine_message_fuzzer:corpus:65536 spine_server_fuzzer:server_corpus:8192 \
-  checkpoint_fuzzer:checkpoint_corpus:262144 record_file_fuzzer:record_corpus:65536 \
-  view_message_fuzzer:view_corpus:4096 env_options_fuzzer:env_options_corpus:4096 \
-  spine_segment_fuzzer:segment_corpus:65541
+FUZZ_TARGETS ?=
 # A fuzzer's stdout (the spine's error log, one line per refused message) is dropped;
 # libFuzzer reports on stderr.
 fuzz:
@@ -146,14 +141,14 @@ fuzz:
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DUPKIE_RL_BUILD_FUZZ=ON \
 	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF \
 	  -DPython_EXECUTABLE=$(PYTHON)
-	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(foreach t,$(FUZZ_TARGETS),$(word 1,$(subst :, ,$(t))))
-	set -e; for entry in $(FUZZ_TARGETS); do \
-	  name=$${entry%%:*}; rest=$${entry#*:}; corpus=$${rest%%:*}; max_len=$${rest#*:}; \
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(or $(FUZZ_TARGETS),fuzzers)
+	set -e; while read -r name corpus max_len; do \
+	  case " $(or $(FUZZ_TARGETS),$$name) " in *" $$name "*) ;; *) continue ;; esac; \
 	  mkdir -p $(FUZZ_DIR)/corpus_$$name; \
 	  echo "fuzzing $$name"; \
 	  $(FUZZ_DIR)/fuzz/$$name $(FUZZ_LIMIT) -max_len=$$max_len -timeout=10 -rss_limit_mb=4096 \
 	    -print_final_stats=1 $(FUZZ_DIR)/corpus_$$name fuzz/$$corpus >/dev/null; \
-	done
+	done < $(FUZZ_DIR)/fuzz/targets.txt
 
 fuzz-long:
 	$(MAKE) fuzz FUZZ_SECONDS=3600

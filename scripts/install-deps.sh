@@ -21,6 +21,9 @@ DEBIAN_PACKAGES=(
   # the robot runner for the robot's Raspberry Pi (aarch64): cross compiler, and qemu-user
   # to test it here (`make pi`, tests/agent)
   g++-aarch64-linux-gnu qemu-user
+  # libFuzzer's runtime (built against libstdc++): `make test` links the fuzz targets built
+  # by GCC with it for bounded mutation fuzzing (FuzzBounded.*, fuzz/CMakeLists.txt)
+  libclang-rt-14-dev
 )
 # The compiled libraries the aarch64 runner links, Debian's arm64 builds (multiarch): their
 # headers are the native -dev packages above.
@@ -53,9 +56,10 @@ PYTHON_PACKAGES=(
 # itself 1.13.0a0, a pre-release that SB3's "torch>=1.13" refuses, so pip would fetch
 # PyPI's torch instead.
 PYTHON_PACKAGES_NO_DEPS=("stable_baselines3:stable-baselines3==2.4.1")
-# Fuzzing (`make fuzz` sets UPKIE_RL_FUZZ=1): clang and its libFuzzer runtime.
+# Long fuzzing (`make fuzz` sets UPKIE_RL_FUZZ=1): clang, for libFuzzer's own coverage
+# instrumentation of every library (its runtime is in the list above).
 if [ "${UPKIE_RL_FUZZ:-0}" = "1" ]; then
-  DEBIAN_PACKAGES+=(clang-14 libclang-rt-14-dev)
+  DEBIAN_PACKAGES+=(clang-14)
 fi
 
 if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi

@@ -12,6 +12,7 @@
 #endif
 
 #include "policy/diagonal_gaussian.hpp"
+#include "rl/hand_gradient_activations.hpp"
 
 namespace upkie_rl {
 
@@ -391,9 +392,7 @@ PpoMinibatchView view_minibatch(const PpoMinibatch& batch) {
   return view;
 }
 
-bool PpoGradient::covers(Activation activation) {
-  return activation == Activation::kReLU || activation == Activation::kTanh;
-}
+bool PpoGradient::covers(Activation activation) { return hand_gradient_covers(activation); }
 
 PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
                          PpoGradientKernel kernel)

@@ -11,7 +11,7 @@
 
 #include "model/setting_bounds.hpp"
 #include "policy/network_limits.hpp"
-#include "rl/ppo_gradient.hpp"
+#include "rl/hand_gradient_activations.hpp"
 #include "vec/make_vector_env.hpp"
 #include "vec/vec_normalize.hpp"
 
@@ -138,7 +138,7 @@ const char* gradient_method_name(GradientMethod method) {
 bool uses_hand_gradient(const TrainingConfig& config) {
   return config.ppo.gradient == GradientMethod::kHand ||
          (config.ppo.gradient == GradientMethod::kAuto &&
-          PpoGradient::covers(config.policy.activation));
+          hand_gradient_covers(config.policy.activation));
 }
 
 std::int64_t TrainingConfig::steps_per_env() const {
@@ -233,7 +233,7 @@ void PpoConfig::declare_options(OptionTable& table, const std::int64_t& num_envs
   table.add_choice("ppo.gradient", &gradient, gradient_choices(),
                    "how the gradient is computed (auto: hand when it covers the activation)",
                    [this, &activation] {
-                     if (gradient != GradientMethod::kHand || PpoGradient::covers(activation)) {
+                     if (gradient != GradientMethod::kHand || hand_gradient_covers(activation)) {
                        return std::string();
                      }
                      return std::string("hand covers the relu and tanh activations, not ") +
