@@ -49,6 +49,15 @@ bool same(const msgpack::object& a, const msgpack::object& b) {
         }
       }
       return true;
+    // msgpack-cxx's operator== compares strings with memcmp even when they are empty, and
+    // its own decoder leaves an empty string's pointer null: UBSan's nonnull-attribute
+    // report on (0xa0). std::string_view compares nothing when the size is zero.
+    case msgpack::type::STR:
+      return std::string_view(a.via.str.ptr, a.via.str.size) ==
+             std::string_view(b.via.str.ptr, b.via.str.size);
+    case msgpack::type::BIN:
+      return std::string_view(a.via.bin.ptr, a.via.bin.size) ==
+             std::string_view(b.via.bin.ptr, b.via.bin.size);
     default:
       return a == b;
   }
