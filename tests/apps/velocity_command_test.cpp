@@ -86,7 +86,7 @@ TEST(VelocityCommand, BaselineTracksConstantCommands) {
 }
 
 // The checked-in policy of the README (tests/data/policies/README.md) on the scripted
-// commands: no fall, the README's figures (0.174 m/s, 0.136 rad/s; 0.210 m/s against the
+// commands: no fall, the README's figures (0.163 m/s, 0.117 rad/s; 0.199 m/s against the
 // targets), and the metrics both ways.
 TEST(VelocityCommand, CheckedInPolicyFollowsTheScriptedCommands) {
   const auto result = run_cli(
