@@ -140,6 +140,38 @@ TEST(VelocityBalancer, TracksARampedCommandWithItsAccelerationFeedforward) {
   EXPECT_LT(with_feedforward, 0.85 * without);
 }
 
+TEST(VelocityBalancer, SpecsOfEightOrTenNumbers) {
+  auto env = make_env("Upkie-Mock-Velocity");
+  EXPECT_NO_THROW(make_builtin_controller("balancer:10,1,2,0.5,0.01,0.1,0,1", *env));
+  EXPECT_NO_THROW(make_builtin_controller("balancer:10,1,2,0.5,0.01,0.1,0,1,0.03,0.1", *env));
+  for (const char* spec :
+       {"balancer:10,1,2,0.5,0.01,0.1,0,1,0.03", "balancer:10,1,2,0.5,0.01,0.1,0,1,0.03,0.1,7",
+        "balancer:10,1,2,0.5,0.01,0.1,0,1,nan,0.1"}) {
+    try {
+      make_builtin_controller(spec, *env);
+      ADD_FAILURE() << spec << " was accepted";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find("eight or ten finite numbers"), std::string::npos)
+          << error.what();
+    }
+  }
+  // The acceleration feedforward of a ten-number spec acts: the same upright observation,
+  // the reference accelerating, leans the reference (θ_a) and leads the wheels (u_a).
+  Act with_feedforward{};
+  Act without{};
+  Obs ramping = upright(1.0f, 0.0f);
+  auto leaning = make_builtin_controller("balancer:10,0,0,0,0,0,0,1,0.1,0.2", *env);
+  auto plain = make_builtin_controller("balancer:10,0,0,0,0,0,0,1", *env);
+  leaning->act(ramping, with_feedforward);
+  plain->act(ramping, without);
+  // a_ref after one step: 0.3 · (0.04 m/s / 0.02 s) = 0.6 m/s²: u differs by
+  // (0.2 - 10·0.1)·0.6 = -0.48 m/s.
+  const double wheel_radius = find_velocity_env(*env)->servos().model().wheel_radius();
+  const double scale = find_velocity_env(*env)->task().config().wheel_velocity_scale;
+  EXPECT_NEAR(with_feedforward[kLeftWheel] - without[kLeftWheel], -0.48 / wheel_radius / scale,
+              1e-5);
+}
+
 TEST(VelocityEnv, ResidualModeAddsTheScaledActionToTheBase) {
   const std::string base = "balancer:10,1,2,0.5,0.01,0,0,1";
   auto residual =
