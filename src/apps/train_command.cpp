@@ -176,9 +176,11 @@ void announce_training(const DistributedLaunch& launch, const TrainingRun& run) 
   }
 }
 
-/// The summary of the run on stdout: speed, where the time went, the files written.
+/// The summary of the run on stdout: speed, where the time went, the files written. The
+/// time in all-reduces is shown for a world of several ranks: alone, the collectives do
+/// nothing and their timer would only measure itself.
 void report_training(const TrainingRun& run, const TrainingProgress& last,
-                     const std::filesystem::path& model) {
+                     const std::filesystem::path& model, bool distributed) {
   const PpoTimings& timings = run.ppo().timings();
   const double accounted = timings.env_seconds + timings.inference_seconds + timings.update_seconds;
   std::cout << "trained " << with_thousands(last.timesteps) << " steps in "
@@ -187,9 +189,9 @@ void report_training(const TrainingRun& run, const TrainingProgress& last,
             << " steps/s); mean return of the last 100 episodes " << last.mean_return
             << ", mean length " << last.mean_length << std::endl;
   std::cout << "time: environments " << timings.env_seconds << " s, policy inference "
-            << timings.inference_seconds << " s, updates " << timings.update_seconds
-            << " s (of which all-reduces " << timings.communication_seconds << " s), other "
-            << std::max(0.0, last.elapsed_seconds - accounted) << " s" << std::endl;
+            << timings.inference_seconds << " s, updates " << timings.update_seconds << " s";
+  if (distributed) std::cout << " (of which all-reduces " << timings.communication_seconds << " s)";
+  std::cout << ", other " << std::max(0.0, last.elapsed_seconds - accounted) << " s" << std::endl;
   std::cout << "run directory: " << run.run_dir().string() << std::endl;
   std::cout << "final model: " << model.string() << std::endl;
   std::cout << "TorchScript policy: " << run.torchscript_path().string() << std::endl;
@@ -219,7 +221,7 @@ void run_train(const TrainOptions& options) {
     std::cout << "rank " << launch.rank << ": weights checksum " << weights_checksum(*run)
               << std::endl;
   }
-  if (writer) report_training(*run, last, model);
+  if (writer) report_training(*run, last, model, launch.distributed());
 }
 
 }  // namespace

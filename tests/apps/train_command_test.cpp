@@ -84,6 +84,8 @@ TEST(TrainCommand, TrainsEvaluatesAndResumesFromTheCommandLine) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("final model: "), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("time: environments"), std::string::npos) << result.output;
+  // One process: no all-reduces to time (a distributed run prints them).
+  EXPECT_EQ(result.output.find("all-reduces"), std::string::npos) << result.output;
   EXPECT_TRUE(std::filesystem::exists(run_dir / "config.yaml"));
   EXPECT_TRUE(std::filesystem::exists(run_dir / "progress.csv"));
   const auto checkpoint = run_dir / "checkpoints" / "checkpoint_000000128_steps.ckpt";
