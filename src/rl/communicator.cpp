@@ -95,9 +95,9 @@ class GlooCommunicator final : public Communicator {
               "upkie_rl/health",
               c10::make_intrusive<c10d::TCPStore>(launch.master_addr, health_options)),
           RankWatchdogOptions{options.heartbeat_period, options.abort_grace, options.on_abandoned});
-    } catch (const std::invalid_argument&) {
-      throw;
     } catch (const std::exception& error) {
+      // (RankWatchdog's own std::invalid_argument, a missing on_abandoned, cannot happen:
+      // connect_communicator refuses options without it before any store is made.)
       throw DistributedError(who() + ": cannot write heartbeats to the store at " + where + ": " +
                              first_line(error));
     }
