@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "model/trim.hpp"
+
 namespace upkie_rl {
 
 /// key=value options, in the order given.
@@ -80,7 +82,8 @@ class OptionTable {
                    Rule rule = {});
   /// A free-form text option (read non-empty, spaces around removed).
   void add_text(std::string name, std::string* target, std::string help, Rule rule = {});
-  /// An option taking one of `choices` (spelling, value), written into `target`.
+  /// An option taking one of `choices` (spelling, value; spaces around it removed), written
+  /// into `target` and written back as the first spelling of its value.
   template <class Value>
   void add_choice(std::string name, Value* target,
                   std::vector<std::pair<std::string, Value>> choices, std::string help,
@@ -192,8 +195,9 @@ void OptionTable::add_choice(std::string name, Value* target,
   entry.info.type = OptionInfo::Type::kChoice;
   entry.info.help = std::move(help) + " (" + listed + ")";
   entry.read = [target, choices](const std::string& text) {
+    const std::string_view trimmed = trim(text);
     for (const auto& [spelling, value] : choices) {
-      if (text == spelling) {
+      if (trimmed == spelling) {
         *target = value;
         return true;
       }

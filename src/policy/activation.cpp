@@ -56,6 +56,16 @@ const char* activation_name(Activation activation) {
   return names != nullptr ? names->name : "unknown";
 }
 
+std::vector<std::pair<std::string, Activation>> activation_spellings() {
+  std::vector<std::pair<std::string, Activation>> spellings;
+  for (const ActivationNames& entry : kActivations)
+    spellings.emplace_back(entry.name, entry.activation);
+  for (const ActivationNames& entry : kActivations) {
+    spellings.emplace_back(entry.torch_name, entry.activation);
+  }
+  return spellings;
+}
+
 std::vector<Activation> all_activations() {
   std::vector<Activation> activations;
   for (const ActivationNames& entry : kActivations) activations.push_back(entry.activation);

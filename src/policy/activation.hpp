@@ -6,6 +6,7 @@
 /// (policy/deployed_policy.hpp), and export (rl/torchscript_export.hpp, onnx/).
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace upkie_rl {
@@ -30,6 +31,10 @@ enum class Activation {
 Activation parse_activation(const std::string& name);
 /// The lower-case name parse_activation reads back.
 const char* activation_name(Activation activation);
+/// Every spelling parse_activation reads, with its activation: the lower-case names in the
+/// order of the enumeration, then PyTorch's class names (for option tables' accepted
+/// values, which list and write back the first spelling of a value).
+std::vector<std::pair<std::string, Activation>> activation_spellings();
 /// Every activation, in the order of the enumeration.
 std::vector<Activation> all_activations();
 /// The accepted lower-case names, for messages: "relu, tanh, elu, ...".

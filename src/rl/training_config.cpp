@@ -47,14 +47,6 @@ std::vector<std::pair<std::string, GradientMethod>> gradient_choices() {
   return choices;
 }
 
-std::vector<std::pair<std::string, Activation>> activation_choices() {
-  std::vector<std::pair<std::string, Activation>> choices;
-  for (Activation activation : all_activations()) {
-    choices.emplace_back(activation_name(activation), activation);
-  }
-  return choices;
-}
-
 constexpr const char* kEnvOptionsPrefix = "env.options.";
 
 // The env.options mapping, in the env section of to_yaml.
@@ -187,7 +179,8 @@ void PolicyConfig::declare_options(OptionTable& table) {
                          "hidden layer widths of the actor", check_hidden_sizes);
   table.add_integer_list("policy.critic_hidden_sizes", &critic_hidden_sizes,
                          "hidden layer widths of the critic", check_hidden_sizes);
-  table.add_choice("policy.activation", &activation, activation_choices(),
+  // Every spelling parse_activation reads (checkpoint headers and SB3's class names too).
+  table.add_choice("policy.activation", &activation, activation_spellings(),
                    "activation of the hidden layers");
   table.add_real("policy.log_std_init", &log_std_init, -20, 5,
                  "initial log standard deviation of the actions");

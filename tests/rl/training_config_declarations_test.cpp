@@ -31,7 +31,10 @@ std::string changed_value(const OptionInfo& option) {
     case OptionInfo::Type::kBoolean:
       return option.default_value == "true" ? "false" : "true";
     case OptionInfo::Type::kChoice:
-      return option.choices[option.choices[0] == option.default_value ? 1 : 0];
+      // The last: a choice may list other spellings of its values after them
+      // (policy.activation: relu, ..., selu, then ReLU, ..., SELU).
+      return option
+          .choices[option.choices.back() == option.default_value ? 0 : option.choices.size() - 1];
     case OptionInfo::Type::kIntegerList:
       return "[3, 5]";
     case OptionInfo::Type::kText:

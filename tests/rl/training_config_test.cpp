@@ -92,6 +92,23 @@ TEST(TrainingConfig, GradientMethodFollowsTheActivation) {
   expect_error_mentions([&] { apply_overrides(config, {"ppo.gradient=fast"}); }, "ppo.gradient");
 }
 
+TEST(TrainingConfig, ActivationAcceptsEverySpellingTheParserKnows) {
+  // PyTorch's class names (as Stable-Baselines3 and checkpoint converters write them) load
+  // as well as the lower-case names, in YAML and in overrides; to_yaml writes the latter.
+  const TrainingConfig relu = parse_training_config("policy:\n  activation: ReLU\n");
+  EXPECT_EQ(relu.policy.activation, Activation::kReLU);
+  const TrainingConfig tanh = parse_training_config("policy:\n  activation: Tanh\n");
+  EXPECT_EQ(tanh.policy.activation, Activation::kTanh);
+  EXPECT_NE(to_yaml(tanh).find("activation: tanh"), std::string::npos) << to_yaml(tanh);
+  TrainingConfig config;
+  apply_overrides(config, {"policy.activation=LeakyReLU"});
+  EXPECT_EQ(config.policy.activation, Activation::kLeakyReLU);
+  apply_overrides(config, {"policy.activation= Tanh"});
+  EXPECT_EQ(config.policy.activation, Activation::kTanh);
+  expect_error_mentions([] { parse_training_config("policy:\n  activation: RELU\n"); },
+                        "policy.activation");
+}
+
 TEST(TrainingConfig, UnknownKeysAreRefusedByName) {
   expect_error_mentions([] { parse_training_config("ppo:\n  batch_sise: 64\n"); },
                         "ppo.batch_sise");
