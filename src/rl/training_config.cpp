@@ -93,17 +93,26 @@ std::string node_text(const YAML::Node& node, const std::string& key) {
   bad_value(key, "a mapping", "a value");
 }
 
+/// A mapping key as text. YAML allows any node as a key (`? {a: 1}`, `? [x]`, `~`), which
+/// as<std::string>() would throw YAML::TypedBadConversion for (found by the fuzzer).
+std::string key_name(const YAML::Node& key, const std::string& prefix) {
+  if (key.IsScalar()) return key.Scalar();
+  throw std::invalid_argument("config: line " + std::to_string(key.Mark().line + 1) + ": a key " +
+                              (prefix.empty() ? "at the top level" : "under '" + prefix + "'") +
+                              " is not a plain name");
+}
+
 void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& config,
           const OptionTable& table) {
   for (const auto& item : node) {
-    const std::string name = item.first.as<std::string>();
+    const std::string name = key_name(item.first, prefix);
     const std::string key = prefix.empty() ? name : prefix + "." + name;
     const YAML::Node& value = item.second;
     if (key == "env.options") {
       if (value.IsNull()) continue;
       if (!value.IsMap()) bad_value(key, "not a mapping", "a mapping of option names to values");
       for (const auto& option : value) {
-        const std::string option_name = option.first.as<std::string>();
+        const std::string option_name = key_name(option.first, key);
         set_env_option(config, option_name, node_text(option.second, key + "." + option_name));
       }
     } else if (value.IsMap()) {

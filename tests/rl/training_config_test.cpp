@@ -119,6 +119,17 @@ TEST(TrainingConfig, UnknownKeysAreRefusedByName) {
   expect_error_mentions([&] { apply_overrides(config, {"no_equal_sign"}); }, "key=value");
 }
 
+// YAML allows any node as a mapping key; the parser threw yaml-cpp's TypedBadConversion
+// (not std::invalid_argument) on them, found by the training configuration's fuzz target.
+TEST(TrainingConfig, KeysThatAreNotNamesAreRefusedWithTheirLine) {
+  expect_error_mentions([] { parse_training_config("seed: 1\n? options:\n    a: 1\n"); },
+                        "line 2: a key at the top level is not a plain name");
+  expect_error_mentions([] { parse_training_config("ppo:\n  ? [n_steps]\n  : 64\n"); },
+                        "a key under 'ppo' is not a plain name");
+  expect_error_mentions([] { parse_training_config("env:\n  options:\n    ~: 1\n"); },
+                        "a key under 'env.options' is not a plain name");
+}
+
 TEST(TrainingConfig, MalformedValuesNameTheirKey) {
   expect_error_mentions([] { parse_training_config("ppo:\n  batch_size: many\n"); },
                         "ppo.batch_size");
