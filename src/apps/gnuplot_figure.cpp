@@ -58,8 +58,12 @@ void run_gnuplot(const std::string& gnuplot, const std::string& text) {
   }
 }
 
-/// Axis settings shared by the line figures: the x axis ends at the first and last data.
-constexpr const char* kLineAxes = "set autoscale xfix\n";
+/// Axis settings shared by the line figures: the x axis ends at the first and last data, and
+/// the key sits above the plot area in one row, where it cannot hide a curve (inside, at a
+/// corner, it covered the ends of the curves: a velocity figure's last seconds, a rising
+/// return).
+constexpr const char* kLineAxes =
+    "set autoscale xfix\nset key outside top center horizontal reverse Left samplen 2 width 2\n";
 
 }  // namespace
 
@@ -100,8 +104,7 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
   std::ostringstream script;
   script << terminal_line(gnuplot, 900, 540);
-  script << "set grid\nset key top right\nset datafile missing 'NaN'\nset format x '%.1s%c'\n"
-         << kLineAxes;
+  script << "set grid\nset datafile missing 'NaN'\nset format x '%.1s%c'\n" << kLineAxes;
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const TrendFigure& figure = figures[f];
     const std::string block = "$data" + std::to_string(f);
@@ -138,8 +141,7 @@ void draw_curves_figure(const CurvesFigure& figure) {
   for (const CurvesFigure::Curve& curve : figure.curves) all_y.push_back(curve.y);
   std::ostringstream script;
   script << terminal_line(gnuplot, 1000, 600);
-  script << "set grid\nset key bottom right\nset termoption noenhanced\nset format x '%.1s%c'\n"
-         << kLineAxes;
+  script << "set grid\nset termoption noenhanced\nset format x '%.1s%c'\n" << kLineAxes;
   std::ostringstream plots;
   for (std::size_t c = 0; c < figure.curves.size(); ++c) {
     const CurvesFigure::Curve& curve = figure.curves[c];
