@@ -151,10 +151,13 @@ void ViewServer::Impl::accept() {
     if (error == net::error::operation_aborted) return;
     if (error) {
       // Out of descriptors (EMFILE, ENFILE) or the like: refuse for now, retry later; said
-      // once per spell of failures.
+      // once per spell of failures, in one write: the line stays whole among the
+      // publisher's own output, and no stream member function runs while descriptors are
+      // out (UBSan's vptr check on one reports a false "invalid vptr" then: its runtime
+      // probes the object's memory through a pipe() that fails with EMFILE).
       if (!accept_failing) {
-        std::cerr << "viewer: cannot accept connections (" << error.message()
-                  << "); retrying every " << kAcceptRetryDelay.count() << " ms" << std::endl;
+        std::cerr << "viewer: cannot accept connections (" + error.message() +
+                         "); retrying every " + std::to_string(kAcceptRetryDelay.count()) + " ms\n";
       }
       accept_failing = true;
       accept_retry.expires_after(kAcceptRetryDelay);
