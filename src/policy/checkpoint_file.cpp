@@ -132,7 +132,10 @@ CheckpointFile parse_checkpoint_bytes(std::string_view bytes, const std::string&
         throw CheckpointError(where + ": tensor '" + name + "' exceeds the file");
       }
       tensor.values.resize(numel);
-      std::memcpy(tensor.values.data(), bytes.data() + position, numel * sizeof(float));
+      // An empty tensor's vector has no storage: memcpy takes no null pointer, even for 0 bytes.
+      if (numel != 0) {
+        std::memcpy(tensor.values.data(), bytes.data() + position, numel * sizeof(float));
+      }
       position += numel * sizeof(float);
       file.tensors[name] = std::move(tensor);
     }
