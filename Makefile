@@ -117,7 +117,9 @@ sanitize-thread: deps
 	# not built with TSan, which then reports their own threads' handovers (a work's condition
 	# variable notified while its waiter frees it, tensors sent by Gloo's I/O thread, mutexes
 	# unlocked from another thread). They run in `make test` and `make sanitize` (ASan).
-	cd $(TSAN_DIR) && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS) \
+	# tests/tsan_suppressions.txt: the other uninstrumented libraries TSan misreads (Mesa).
+	cd $(TSAN_DIR) && TSAN_OPTIONS="halt_on_error=1 suppressions=$(abspath tests/tsan_suppressions.txt)" \
+	  ctest --output-on-failure -j $(JOBS) \
 	  -E '^(Communicator|DistributedTrain)\.'
 
 # libFuzzer + ASan on the spine's message decoding, server cycle and shared-memory segment,
