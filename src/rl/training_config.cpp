@@ -49,11 +49,45 @@ std::vector<std::pair<std::string, GradientMethod>> gradient_choices() {
 
 constexpr const char* kEnvOptionsPrefix = "env.options.";
 
+/// Where a scalar goes in the YAML to_yaml writes.
+enum class ScalarPlace { kKey, kValue };
+
+/// Whether `yaml`, written as a key or a value of a block mapping and followed by another
+/// line as in to_yaml's output (a carriage return before the newline reads as CRLF),
+/// reads back as `text`.
+bool reads_back(const std::string& yaml, const std::string& text, ScalarPlace place) {
+  try {
+    const std::string line = place == ScalarPlace::kKey ? yaml + ": 0" : "k: " + yaml;
+    const YAML::Node map = YAML::Load(line + "\n# the next line\n");
+    if (!map.IsMap() || map.size() != 1) return false;
+    const YAML::Node node = place == ScalarPlace::kKey ? map.begin()->first : map.begin()->second;
+    return node.IsScalar() && node.Scalar() == text;
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
+/// `text` as a one-line YAML scalar that parse_training_config reads back exactly: plain
+/// when that reads back, else double-quoted with escapes. YAML::Dump alone writes some
+/// control characters raw (a carriage return in a value came back one shorter; found by
+/// the fuzz target). Throws std::invalid_argument naming `key` when neither form reads back.
+std::string yaml_scalar(const std::string& text, const std::string& key,
+                        ScalarPlace place = ScalarPlace::kValue) {
+  std::string plain = YAML::Dump(YAML::Node(text));
+  if (plain.find('\n') == std::string::npos && reads_back(plain, text, place)) return plain;
+  YAML::Emitter quoted;
+  quoted << YAML::DoubleQuoted << text;
+  if (quoted.good() && reads_back(quoted.c_str(), text, place)) return quoted.c_str();
+  throw std::invalid_argument(config_key(key) + ": the value cannot be written back as YAML");
+}
+
 // The env.options mapping, in the env section of to_yaml.
 std::string env_options_yaml(const std::vector<std::pair<std::string, std::string>>& options) {
   std::string out = "  options:" + std::string(options.empty() ? " {}" : "") + "\n";
-  for (const auto& [key, value] : options) {
-    out += "    " + key + ": " + YAML::Dump(YAML::Node(value)) + "\n";
+  for (const auto& [name, value] : options) {
+    const std::string key = kEnvOptionsPrefix + name;
+    out +=
+        "    " + yaml_scalar(name, key, ScalarPlace::kKey) + ": " + yaml_scalar(value, key) + "\n";
   }
   return out;
 }
@@ -249,6 +283,9 @@ void TrainingConfig::validate() const {
   OptionTable table;
   copy.declare_options(table);
   table.check(config_key, "config");
+  // What is accepted must be saved faithfully (the run directory's config.yaml reproduces
+  // the run): to_yaml throws naming a value it cannot write.
+  to_yaml(copy);
 }
 
 void TrainingConfig::check_allocations(std::int64_t observation_size,
@@ -331,7 +368,7 @@ std::string to_yaml(const TrainingConfig& const_config) {
       if (!section.empty()) out += section + ":\n";
     }
     std::string value = table.value_text(option.name);
-    if (option.type == OptionInfo::Type::kText) value = YAML::Dump(YAML::Node(value));
+    if (option.type == OptionInfo::Type::kText) value = yaml_scalar(value, option.name);
     // Keep a real a YAML float ("1" would read back fine, but "1.0" says what it is).
     if (option.type == OptionInfo::Type::kReal &&
         value.find_first_of(".einn") == std::string::npos) {

@@ -120,7 +120,8 @@ struct TrainingConfig {
   void declare_run_options(OptionTable& table);
 
   /// Throws std::invalid_argument naming the key of the first inconsistent or out-of-range
-  /// value, its value and the range (one line). Every number must be finite.
+  /// value, its value and the range (one line). Every number must be finite, and every
+  /// value must be one to_yaml can write back exactly.
   void validate() const;
 
   /// Throws std::invalid_argument naming the key when the network or the rollout buffer
@@ -144,7 +145,9 @@ void apply_overrides(TrainingConfig& config, const std::vector<std::string>& ove
 /// an activation it covers) rather than autograd.
 bool uses_hand_gradient(const TrainingConfig& config);
 
-/// The full, resolved configuration as YAML, readable by parse_training_config.
+/// The full, resolved configuration as YAML, readable by parse_training_config, which
+/// reads every value back exactly (text with control characters is written double-quoted,
+/// with escapes). Throws std::invalid_argument naming the key of a value YAML cannot hold.
 std::string to_yaml(const TrainingConfig& config);
 
 }  // namespace upkie_rl
