@@ -3,7 +3,9 @@
 /// without its last four bytes; the target appends the CRC32C of the input, so that every
 /// mutation reaches the header parser, the tensor table and the content checks instead of
 /// stopping at the checksum. Whatever the gate accepts must load as a deployed policy and
-/// act without a non-finite action. Refusing with CheckpointError is the expected outcome.
+/// act, on an observation inside the range the gate checks, with a finite action (a
+/// PolicyOutputError there is a bug: the gate let through weights that overflow).
+/// Refusing with CheckpointError is the expected outcome.
 
 #include <cmath>
 #include <cstddef>

@@ -12,6 +12,7 @@
 #include "model/robot_model.hpp"
 #include "onnx/onnx_error.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/policy_output_error.hpp"
 #include "render/render_error.hpp"
 #include "sim/servo_command.hpp"
 #include "sim/simulation.hpp"
@@ -66,6 +67,8 @@ const std::array kErrorClasses = {
                &is<CheckpointError>, 0, &PyExc_ValueError},
     ErrorClass{"OnnxError", "A model that cannot be exported, or an unreadable ONNX file.",
                &is<OnnxError>, 0, &PyExc_ValueError},
+    ErrorClass{"PolicyOutputError", "A policy's action is not finite for the observation given.",
+               &is<PolicyOutputError>, 0, &PyExc_RuntimeError},
 };
 
 std::array<PyObject*, kErrorClasses.size()> python_classes{};

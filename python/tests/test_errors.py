@@ -13,6 +13,7 @@ ERRORS = {
     "SpineTimeoutError": RuntimeError,
     "CheckpointError": ValueError,
     "OnnxError": ValueError,
+    "PolicyOutputError": RuntimeError,
 }
 
 

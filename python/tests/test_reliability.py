@@ -51,6 +51,33 @@ def test_nan_weights_are_refused_not_acted_on(tmp_path):
         upkie_rl.load_policy(path)
 
 
+def test_finite_weights_that_overflow_are_refused(tmp_path):
+    def huge_first_parameter(tensors):
+        offset = 2 * len(tensors) // 3
+        tensors[offset:offset + 4] = struct.pack("<f", 1e36)
+    path = crafted(tmp_path, "huge.ckpt", change_tensors=huge_first_parameter)
+    with pytest.raises(upkie_rl.CheckpointError,
+                       match=r"actor layer 0 can reach 1e\+37 \(limit 1e\+30\): "
+                             r"tensor 'policy.parameters' value 0 is 1e\+36"):
+        upkie_rl.load_policy(path)
+
+
+def test_an_action_that_overflows_is_refused_not_returned(tmp_path):
+    """Without normalisation the gate checks raw observations up to 1e6; beyond, weights
+    it accepts can overflow, and the policy raises instead of returning NaN."""
+    def overflowing_actor(tensors):
+        offset = 2 * len(tensors) // 3  # policy.parameters: 4-64-64-1 actor first
+        values = [1e18] * 256 + [0.0] * 64 + [1.0] * 4096 + [0.0] * 64 + \
+            [1.0, -1.0] * 32 + [0.0]
+        tensors[offset:offset + 4 * len(values)] = struct.pack(f"<{len(values)}f", *values)
+    path = crafted(tmp_path, "overflow.ckpt", change_header=lambda h: h.pop("normalization"),
+                   change_tensors=overflowing_actor)
+    policy = upkie_rl.load_policy(path)
+    assert np.isfinite(policy(np.array([0.0, 1e6, 0.0, 0.0], dtype=np.float32))).all()
+    with pytest.raises(upkie_rl.PolicyOutputError, match=r"component 0 \(ground_velocity\) is nan"):
+        policy(np.array([0.0, 1e30, 0.0, 0.0], dtype=np.float32))
+
+
 def test_other_versions_are_refused_as_on_the_command_line(tmp_path):
     path = crafted(tmp_path, "v2.ckpt", change_header=lambda h: h.update(version=2))
     with pytest.raises(upkie_rl.CheckpointError, match="version 2 is not the version 1"):

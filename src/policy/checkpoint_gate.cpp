@@ -6,6 +6,7 @@
 #include "model/setting_bounds.hpp"
 #include "policy/model_header.hpp"
 #include "policy/network_limits.hpp"
+#include "policy/network_output_bound.hpp"
 #include "policy/observation_normalizer.hpp"
 #include "policy/parameter_layout.hpp"
 #include "policy/space_json.hpp"
@@ -20,8 +21,7 @@ void check_format(const nlohmann::json& header) {
   const auto format = header.find("format");
   if (format == header.end() || *format != kCheckpointFormat) {
     throw CheckpointError("not an upkie-rl checkpoint (format " +
-                          (format == header.end() ? std::string("missing") : format->dump()) +
-                          ")");
+                          (format == header.end() ? std::string("missing") : format->dump()) + ")");
   }
   const auto version = header.find("version");
   if (version == header.end() || !version->is_number_integer() || *version != kCheckpointVersion) {
@@ -60,13 +60,16 @@ void check_tensors(const CheckpointFile& file, std::int64_t parameter_count) {
   }
 }
 
-void check_normalization(const nlohmann::json& state, std::size_t observation_size) {
-  if (state.is_null()) return;
+/// The observation normaliser the state makes (the identity for a null state).
+ObservationNormalizer check_normalization(const nlohmann::json& state,
+                                          std::size_t observation_size) {
+  if (state.is_null()) return ObservationNormalizer(observation_size);
   try {
-    ObservationNormalizer::from_state(state, observation_size);
+    ObservationNormalizer normalizer = ObservationNormalizer::from_state(state, observation_size);
     RunningMeanStd returns(1);
     returns.from_json(state.at("returns"), "normalization.returns");
     normalize_config_from_json(state.at("config"));
+    return normalizer;
   } catch (const std::invalid_argument& error) {
     throw CheckpointError(std::string("normalization: ") + error.what());
   } catch (const nlohmann::json::exception& error) {
@@ -89,11 +92,10 @@ void check_counter(const nlohmann::json& object, const char* section, const char
 /// may lack some, but what is there must be in range. Resuming needs them all
 /// (restore_ppo_checkpoint says which is missing).
 void check_counters(const nlohmann::json& header) {
-  for (const auto& [section, keys] :
-       {std::pair<const char*, std::vector<const char*>>{
-            "counters", {"num_timesteps", "iterations", "n_updates"}},
-        {"optimizer", {"step_count"}},
-        {"run", {"checkpoints_saved"}}}) {
+  for (const auto& [section, keys] : {std::pair<const char*, std::vector<const char*>>{
+                                          "counters", {"num_timesteps", "iterations", "n_updates"}},
+                                      {"optimizer", {"step_count"}},
+                                      {"run", {"checkpoints_saved"}}}) {
     const auto found = header.find(section);
     if (found == header.end()) continue;
     if (!found->is_object()) throw CheckpointError(std::string(section) + " is not an object");
@@ -115,12 +117,19 @@ void check_contents(const CheckpointFile& file) {
       shape.action_size != static_cast<std::int64_t>(action_space.size())) {
     throw CheckpointError("policy sizes do not match the stored spaces");
   }
-  const std::int64_t count =
+  const ActorCriticLayout layout =
       actor_critic_layout(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
-                          shape.critic_hidden_sizes)
-          .size;
-  check_tensors(file, count);
-  check_normalization(header.value("normalization", nlohmann::json()), observation_space.size());
+                          shape.critic_hidden_sizes);
+  check_tensors(file, layout.size);
+  const ObservationNormalizer normalizer = check_normalization(
+      header.value("normalization", nlohmann::json()), observation_space.size());
+  // Finite weights can still overflow (the fuzz target's weights of 1e36 gave a NaN action):
+  // both networks must stay finite for every input in range, and σ = exp(log σ) too.
+  const std::vector<float>& parameters = file.tensor("policy.parameters").values;
+  const std::vector<double> inputs = network_input_bounds(observation_space, normalizer);
+  check_network_bound(parameters, layout.actor, inputs, "actor");
+  check_network_bound(parameters, layout.critic, inputs, "critic");
+  check_log_std(parameters, layout.log_std, shape.action_size);
   check_counters(header);
 }
 

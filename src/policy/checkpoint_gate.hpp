@@ -10,9 +10,11 @@
 /// nesting depth) it checks the contents: the known format and version, a readable
 /// configuration, a network within policy/network_limits.hpp whose sizes match the stored
 /// spaces, spaces with ordered bounds (finite for actions), tensors of the network's size,
-/// every weight, moment and statistic finite, normalisation settings in range and counters
-/// in [0, kMaxCheckpointCounter]. Header keys it does not know are left alone (later
-/// versions of the writer may add optional ones, such as provenance).
+/// every weight, moment and statistic finite, normalisation settings in range, actor and
+/// critic outputs proven finite for every input in range and log σ in [-20, 20]
+/// (policy/network_output_bound.hpp), and counters in [0, kMaxCheckpointCounter]. Header keys it
+/// does not know are left alone (later versions of the writer may add optional ones, such as
+/// provenance).
 
 #include <cstdint>
 #include <filesystem>

@@ -46,13 +46,18 @@ class DeployedPolicy {
   /// Throws CheckpointError saying how the environment's spaces differ from the model's.
   void check_spaces(const BoxSpace& observation_space, const BoxSpace& action_space) const;
 
-  /// Writes the deterministic action for one raw observation. Allocation-free.
-  /// @throws std::invalid_argument on wrong sizes.
+  /// Writes the deterministic action for one raw observation. Allocation-free (unless it
+  /// throws). Never writes a non-finite action: the checkpoint gate proves the network
+  /// finite for observations in range (policy/network_output_bound.hpp), and beyond that
+  /// a non-finite output is refused.
+  /// @throws std::invalid_argument on wrong sizes or a non-finite observation component.
+  /// @throws PolicyOutputError naming the action component when the output is not finite.
   void act(std::span<const float> observation, std::span<float> action);
 
   /// act() for each row of `observations` (n x observation size) into `actions`
   /// (n x action size). Allocation-free.
-  /// @throws std::invalid_argument unless both are n rows of their size.
+  /// @throws std::invalid_argument unless both are n rows of their size, and what act()
+  ///         throws.
   void act_batch(std::span<const float> observations, std::span<float> actions);
 
  private:

@@ -1,6 +1,10 @@
-// upkie-rl-agent with a policy whose weights are finite (the checkpoint gate refuses
-// non-finite ones at load) but whose output is NaN: the supervisor stops the run before
-// anything is sent, with the stop commands and a clear message.
+// upkie-rl-agent with a policy whose weights are finite but overflow to a NaN output: the
+// checkpoint gate proves the network's output finite for every observation in range
+// (policy/network_output_bound.hpp), so it refuses this policy at load, before anything is
+// sent, naming the weight; the runner sends the Stop request and exits with status 2.
+// Earlier the gate let it through and the supervisor's check of the policy output stopped
+// the run (that check stays, behind DeployedPolicy::act's own refusal of a non-finite
+// action: tests/policy/deployed_policy_test.cpp, tests/agent/supervisor_test.cpp).
 
 #include <gtest/gtest.h>
 
@@ -12,6 +16,7 @@
 #include "agent/agent_spine.hpp"
 #include "common/temp_files.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/checkpoint_gate.hpp"
 #include "policy/deployed_policy.hpp"
 #include "policy/model_header.hpp"
 #include "policy/parameter_layout.hpp"
@@ -19,16 +24,15 @@
 namespace upkie_rl {
 namespace {
 
-using testing::expect_supervised_stop;
 using testing::kPendulum;
 using testing::Spine;
 using testing::start_agent;
 using testing::temp_path;
 
-/// The pendulum policy made to output NaN with finite weights (the checkpoint gate refuses
-/// non-finite ones): normalisation means of -1000 put every normalised observation at the
-/// clip, +10; first-layer weights of 1e38 overflow to +inf, which ReLU and all-positive
-/// second-layer weights carry; output weights of alternating sign add +inf and -inf.
+/// The pendulum policy made to output NaN with finite weights (the gate refuses non-finite
+/// ones): normalisation means of -1000 put every normalised observation at the clip, +10;
+/// first-layer weights of 1e38 overflow to +inf, which ReLU and all-positive second-layer
+/// weights carry; output weights of alternating sign add +inf and -inf.
 CheckpointFile nan_output_policy() {
   CheckpointFile file = read_checkpoint_file(kPendulum);
   nlohmann::json& mean = file.header["normalization"]["observations"]["mean"];
@@ -55,7 +59,7 @@ CheckpointFile nan_output_policy() {
   return file;
 }
 
-TEST(AgentRunnerNan, FinitePolicyOutputtingNanStops) {
+TEST(AgentRunnerNan, AFinitePolicyThatCanOutputNanIsRefusedBeforeAnythingStarts) {
   const CheckpointFile file = nan_output_policy();
   const auto crafted = temp_path("agent_nan_policy.ckpt");
   write_checkpoint_file(file, crafted);
@@ -63,17 +67,21 @@ TEST(AgentRunnerNan, FinitePolicyOutputtingNanStops) {
   auto agent = start_agent(spine, crafted.string(), "nan", {"--duration", "5"});
   EXPECT_EQ(agent->wait(), 2);
   const std::string output = agent->output();
-  expect_supervised_stop(output, "policy output: ground_velocity is not finite");
-  EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
+  EXPECT_NE(
+      output.find("idle -> stopping: checkpoint " + crafted.string() + ": actor layer 0 can reach"),
+      std::string::npos)
+      << output;
+  EXPECT_NE(output.find("tensor 'policy.parameters' value 0 is 1e+38"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("Stop request sent to the spine"), std::string::npos) << output;
+  EXPECT_EQ(output.find("-> running"), std::string::npos) << output;
 }
 
-TEST(AgentRunnerNan, TheCraftedPolicyPassesTheGateAndOutputsNan) {
+TEST(AgentRunnerNan, TheGateRefusesTheCraftedPolicyEverywhere) {
   const auto crafted = temp_path("nan_output_policy.ckpt");
   write_checkpoint_file(nan_output_policy(), crafted);
-  DeployedPolicy policy = DeployedPolicy::load(crafted);  // finite weights: the gate accepts
-  std::vector<float> action(1);
-  policy.act(std::vector<float>{0.01f, -0.02f, 0.3f, -0.1f}, action);
-  EXPECT_TRUE(std::isnan(action[0])) << action[0];
+  EXPECT_THROW(DeployedPolicy::load(crafted), CheckpointError);
+  EXPECT_THROW(read_checked_checkpoint(crafted), CheckpointError);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // upkie-rl-agent against `upkie-rl spine` in real time: it balances the test policies, and
-// every supervisor path (spine killed, spine frozen, robot pushed over, NaN policy output in
-// nan_policy_test.cpp, corrupted checkpoint, SIGTERM) ends in stopping with the stop commands sent
-// and a clear message, never a crash.
+// every supervisor path (spine killed, spine frozen, robot pushed over, a policy that can
+// output NaN in nan_policy_test.cpp, corrupted checkpoint, SIGTERM) ends in stopping with the
+// stop commands sent and a clear message, never a crash.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -96,7 +96,7 @@ TEST(AgentRunner, PushedOverRobotTripsTheAttitudeLimit) {
   EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
 }
 
-// A policy whose output is NaN: nan_policy_test.cpp.
+// A policy whose output can be NaN, refused at load: nan_policy_test.cpp.
 
 TEST(AgentRunner, CorruptedCheckpointIsRefusedBeforeAnythingStarts) {
   std::string bytes = testing::read_bytes(kPendulum);

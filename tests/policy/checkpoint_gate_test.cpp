@@ -13,6 +13,8 @@
 #include "common/temp_files.hpp"
 #include "policy/crc32c.hpp"
 #include "policy/deployed_policy.hpp"
+#include "policy/model_header.hpp"
+#include "policy/parameter_layout.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -112,6 +114,45 @@ TEST(CheckpointGate, NanOrInfiniteWeightsAreRefused) {
                            moment[0] = std::numeric_limits<float>::infinity();
                          }),
                  "tensor 'optimizer.exp_avg_sq'");
+}
+
+/// Index in policy.parameters of weight `index` of layer `layer` of the stored model's
+/// critic.
+std::size_t critic_weight_index(std::size_t layer, std::int64_t index) {
+  const CheckpointFile file = read_checkpoint_file(kModel);
+  const PolicyShape shape = policy_shape_from_json(file.header.at("policy"));
+  const ActorCriticLayout layout =
+      actor_critic_layout(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
+                          shape.critic_hidden_sizes);
+  return static_cast<std::size_t>(layout.critic.at(layer).weight + index);
+}
+
+// Finite weights of 1e31 to 5e36 passed the gate and the deployed policy's action was NaN
+// (found by the long clang run of checkpoint_fuzzer after 552,032 inputs; that input is
+// fuzz/checkpoint_corpus/huge_weights). The gate now proves both networks finite for every
+// input in range, and names the layer and its largest weight.
+TEST(CheckpointGate, FiniteWeightsThatCanOverflowAreRefusedNamingTheWeight) {
+  expect_refused(
+      crafted("huge_actor_weight",
+              [](CheckpointFile& file) { file.tensors["policy.parameters"].values[5] = 1e36f; }),
+      "actor layer 0 can reach 1e+37 (limit 1e+30): tensor 'policy.parameters' "
+      "value 5 is 1e+36");
+  const std::size_t critic_output = critic_weight_index(2, 3);
+  const auto huge_critic = crafted("huge_critic_weight", [critic_output](CheckpointFile& file) {
+    file.tensors["policy.parameters"].values[critic_output] = 3e38f;
+  });
+  expect_refused(huge_critic, "critic layer 2 can reach");
+  expect_refused(huge_critic,
+                 "tensor 'policy.parameters' value " + std::to_string(critic_output) + " is 3e+38");
+}
+
+TEST(CheckpointGate, LogStdOutsideItsRangeIsRefused) {
+  // The pendulum's one log σ is the last parameter (9090).
+  expect_refused(crafted("log_std",
+                         [](CheckpointFile& file) {
+                           file.tensors["policy.parameters"].values.back() = 25.0f;
+                         }),
+                 "log std 0 (tensor 'policy.parameters' value 9090) is 25, outside [-20, 20]");
 }
 
 TEST(CheckpointGate, HugeCountersAreRefused) {

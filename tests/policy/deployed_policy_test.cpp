@@ -5,12 +5,15 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <string>
 
 #include "common/allocation_counter.hpp"
 #include "common/normalization_state.hpp"
 #include "common/temp_files.hpp"
 #include "policy/parameter_layout.hpp"
+#include "policy/policy_output_error.hpp"
 #include "policy/space_json.hpp"
 
 namespace upkie_rl {
@@ -154,6 +157,58 @@ TEST(DeployedPolicy, ActAllocatesNothing) {
   const std::size_t before = testing::this_thread_allocations;
   for (int i = 0; i < 100; ++i) policy.act(observation, action);
   EXPECT_EQ(testing::this_thread_allocations, before);
+}
+
+TEST(DeployedPolicy, NonFiniteObservationsAreRefusedNamingTheComponent) {
+  ModelFixture model;
+  DeployedPolicy policy = DeployedPolicy::from_checkpoint(model.file(), "fixture");
+  std::vector<float> action(2);
+  try {
+    policy.act(std::vector<float>{0.1f, std::nanf(""), 0.3f}, action);
+    ADD_FAILURE() << "a NaN observation was acted on";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("observation component 1 (o1) is nan"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+// Without normalisation, an unbounded observation component is checked up to
+// kMaxCheckedObservation: beyond it, weights the gate accepts can overflow, and act()
+// refuses the NaN instead of passing it on (clamping does not remove a NaN).
+TEST(DeployedPolicy, AnOverflowBeyondTheCheckedRangeIsRefusedNotPassedOn) {
+  ModelFixture model;
+  model.activation = "relu";
+  const float infinity = std::numeric_limits<float>::infinity();
+  model.observation_space = BoxSpace();
+  for (const char* name : {"o0", "o1", "o2"})
+    model.observation_space.add(name, -infinity, infinity);
+  CheckpointFile file = model.file();
+  file.header["normalization"] = nullptr;
+  std::vector<float>& parameters = file.tensors["policy.parameters"].values;
+  const ActorCriticLayout layout =
+      actor_critic_layout(3, 2, model.actor_hidden, model.critic_hidden);
+  const auto fill = [&parameters](const DenseLayerLayout& layer, auto value_of) {
+    for (std::int64_t i = 0; i < layer.out * layer.in; ++i)
+      parameters[layer.weight + i] = value_of(i);
+    for (std::int64_t i = 0; i < layer.out; ++i) parameters[layer.bias + i] = 0.0f;
+  };
+  // The bound for inputs within 1e6: about 7e25 (the gate accepts); an input of 1e30
+  // overflows the first layer to +inf, and the output layer adds +inf and -inf.
+  fill(layout.actor[0], [](std::int64_t) { return 1e18f; });
+  fill(layout.actor[1], [](std::int64_t) { return 1.0f; });
+  fill(layout.actor[2], [](std::int64_t i) { return i % 2 == 0 ? 1.0f : -1.0f; });
+  DeployedPolicy policy = DeployedPolicy::from_checkpoint(file, "crafted");
+  std::vector<float> action(2);
+  EXPECT_NO_THROW(policy.act(std::vector<float>{0.0f, 1e6f, 0.0f}, action));
+  EXPECT_TRUE(std::isfinite(action[0]) && std::isfinite(action[1]));
+  try {
+    policy.act(std::vector<float>{0.0f, 1e30f, 0.0f}, action);
+    ADD_FAILURE() << "a NaN action was passed on: " << action[0];
+  } catch (const PolicyOutputError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("policy action component 0 (a0) is nan", 0), 0u)
+        << error.what();
+  }
 }
 
 TEST(DeployedPolicy, ForeignOrInconsistentModelsNameTheProblem) {
