@@ -14,6 +14,7 @@
 #include "onnx/onnx_error.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/deployed_policy.hpp"
+#include "policy/policy_output_error.hpp"
 #include "render/render_error.hpp"
 #include "rl/communicator.hpp"
 #include "sim/servo_command.hpp"
@@ -34,7 +35,7 @@ TEST(ErrorHierarchy, EveryDomainErrorHasTheOneRoot) {
   static_assert(all_derive_from_error<ModelError, CheckpointError, SimulationDivergedError,
                                       InvalidCommandError, RenderError, DistributedError, ViewError,
                                       SpineError, SpineTimeoutError, OnnxError, AgentError,
-                                      SupervisorTrip, apps::RecordFileError>());
+                                      SupervisorTrip, apps::RecordFileError, PolicyOutputError>());
   // Not an option mistake: those stay std::invalid_argument.
   static_assert(!std::is_base_of_v<std::invalid_argument, InvalidCommandError>);
 }
