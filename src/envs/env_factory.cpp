@@ -29,9 +29,13 @@ MujocoConfig mujoco_config(const EnvId& id, const EnvSettings& settings) {
   MujocoConfig config;
   set_physics(settings, config);
   // The velocity task drives on its wheels' speed loop, which chatters when its damping is
-  // explicit (MujocoConfig::implicit_wheel_damping); the other tasks keep the physics
-  // their checkpoints were trained with.
-  config.implicit_wheel_damping = id.kind == EnvKind::kVelocity;
+  // explicit (MujocoConfig::implicit_wheel_damping), and on tires that must roll without
+  // slipping: MuJoCo's rolling friction (contact dimension 6) shares the friction cone with
+  // the sliding friction, and the driven tires slipped by a third (MujocoConfig::
+  // tire_condim). The other tasks keep the physics their checkpoints were trained with.
+  const bool velocity = id.kind == EnvKind::kVelocity;
+  config.implicit_wheel_damping = velocity;
+  if (velocity) config.tire_condim = 3;
   return config;
 }
 

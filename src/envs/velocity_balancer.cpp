@@ -46,9 +46,11 @@ VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& 
   yaw_factor_ = 0.5 * model.track() / wheel_radius_;
   wheel_velocity_scale_ = velocity.task().config().wheel_velocity_scale;
   timestep_ = env.timestep();
+  touchdown_steps_ = static_cast<int>(std::lround(kTouchdownTime / timestep_));
 }
 
 void VelocityBalancer::reset() {
+  steps_since_reset_ = 0;
   position_error_ = 0.0;
   reference_velocity_ = 0.0;
   reference_acceleration_ = 0.0;
@@ -58,6 +60,11 @@ void VelocityBalancer::reset() {
 }
 
 void VelocityBalancer::act(std::span<const float> observation, std::span<float> action) {
+  if (steps_since_reset_ < touchdown_steps_) {
+    ++steps_since_reset_;
+    std::fill(action.begin(), action.end(), 0.0f);
+    return;
+  }
   // The reference ramps toward the command: a step of the wheel speed would kick the body
   // over (it tilts backward when the wheels leap forward).
   const double commanded = observation[VelocityTask::kCommandIndex];

@@ -138,9 +138,9 @@ VelocityBalancerGains velocity_balancer_for(const VelocityBalanceModel& model, d
   gains.command_offset = at_rest[1];
   gains.pitch_per_velocity = per_velocity[0];
   gains.command_per_velocity = per_velocity[1];
-  // Half the model's lean: the whole of it (0.055 rad per m/s² on MuJoCo) followed ramps
-  // closer but fell under pushes in 3 of the 20 evaluation episodes against 1 of 20 for
-  // half of it (README, "Drive anywhere").
+  // Half the model's lean: the whole of it (0.055 rad per m/s² on MuJoCo when its tires
+  // slipped, 0.116 since) followed ramps closer but fell under pushes in 3 of the 20
+  // evaluation episodes against 1 of 20 for half of it (README, "Drive anywhere").
   gains.pitch_per_acceleration = kLeanShare * per_acceleration[0];
   gains.command_per_acceleration = per_acceleration[1];
   return gains;
