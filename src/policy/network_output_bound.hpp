@@ -27,7 +27,7 @@ namespace upkie_rl {
 
 /// Largest magnitude a layer of the actor or critic may reach for an input in range: 1e30,
 /// far inside float32's 3.4e38 (so that no sum overflows), far beyond trained policies
-/// (the bounds of the checked-in policies, tests/data/policies, are 284 to 3,487).
+/// (the bounds of the checked-in policies, tests/data/policies, are 284 to 3,461).
 inline constexpr double kMaxNetworkValue = 1e30;
 /// Largest magnitude of a raw observation component the bound covers (positions in m,
 /// angles in rad, velocities in m/s or rad/s: no measurement comes near).
