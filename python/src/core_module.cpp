@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "envs/registry.hpp"
+#include "sim/observation_dict.hpp"
 
 namespace py = pybind11;
 
@@ -14,6 +15,17 @@ namespace upkie_rl::python {
 
 void bind_registry(py::module_& module) {
   module.def("registered_env_ids", &registered_env_ids, "Canonical environment ids.");
+  module.def(
+      "observation_keys",
+      [] {
+        std::vector<std::string> leaves;
+        for (const ObservationKey& key : observation_keys()) {
+          if (!key.is_map) leaves.push_back(key.path);
+        }
+        return leaves;
+      },
+      "Dotted paths of every value of the spine observation dictionary "
+      "(info['spine_observation']), from its one declaration, the `sim` subtree included.");
   module.def(
       "env_options",
       [](const std::string& id) {

@@ -82,6 +82,27 @@ def test_pendulum_spaces_types_and_seed_result():
     assert isinstance(spine["floor_contact"]["contact"], bool)
 
 
+def _leaf_paths(tree, prefix=""):
+    paths = set()
+    for key, value in tree.items():
+        if isinstance(value, dict):
+            paths |= _leaf_paths(value, prefix + key + ".")
+        else:
+            paths.add(prefix + key)
+    return paths
+
+
+def test_spine_observation_has_exactly_the_declared_keys():
+    # The dictionary and the C++ declaration (sim/observation_fields.hpp) the spine's writer
+    # and reader walk: a key added there reaches Python, and no key comes from elsewhere.
+    env = gym.make("Upkie-Bullet-Pendulum")
+    _, info = env.reset(seed=0)
+    declared = set(upkie_rl._core.observation_keys())
+    assert "base_orientation.rotation_base_to_world" in declared
+    assert _leaf_paths(info["spine_observation"]) == declared
+    env.close()
+
+
 def test_info_can_be_left_out():
     env = gym.make("Upkie-Bullet-Pendulum", spine_observation=False)
     _, info = env.reset(seed=0)

@@ -1,14 +1,12 @@
 #include "apps/record_file.hpp"
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <fstream>
-#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 #include "sim/base_observer.hpp"
 
@@ -42,73 +40,74 @@ double parse_number(const std::string& text, const std::string& path, long line,
 }
 
 /// The columns the reader takes, in the order of a row's values, each with its position in
-/// the header; and where each group of them starts among the values.
+/// the header; and which optional groups of envs/record_columns.hpp the file has.
 struct RecordLayout {
   struct Column {
     std::string name;
     std::size_t position = 0;  ///< In the header (and every row).
   };
   std::vector<Column> columns;
-  std::size_t ground_truth = 0;         ///< kGroundTruthColumns (base position, then orientation).
-  std::size_t servos = 0;               ///< kServoNames.
-  std::optional<std::size_t> measured;  ///< kMeasuredColumns, when the file has them.
-  std::optional<std::size_t> velocity;  ///< kCommandColumns then kMeasuredVelocityColumns.
-  std::size_t actions = 0;              ///< The "action." columns, to the end.
+  bool measured = false;    ///< visit_measurement_columns' columns, when the file has them.
+  bool velocity = false;    ///< visit_command_columns' then visit_measured_velocity_columns'.
+  std::size_t actions = 0;  ///< The kActionColumnPrefix columns, to the end.
 };
 
-/// Appends the columns `names` to `layout`; returns where they start among the values.
-/// @throws RecordFileError when the header lacks one of them.
-template <typename Names>
-std::size_t add_columns(RecordLayout& layout, const Names& names,
-                        const std::unordered_map<std::string, std::size_t>& column_of,
-                        const std::string& path) {
-  const std::size_t first = layout.columns.size();
-  for (const auto& name : names) {
-    const auto found = column_of.find(std::string(name));
-    if (found == column_of.end()) {
-      throw RecordFileError(path + ": no column \"" + std::string(name) +
-                            "\" in its header; is it a file of `upkie-rl rollout --record`?");
-    }
-    layout.columns.push_back({std::string(name), found->second});
-  }
-  return first;
-}
+using ColumnIndex = std::unordered_map<std::string, std::size_t>;
 
-/// Whether the header has every one of `names`.
-template <typename Names>
-bool has_columns(const Names& names,
-                 const std::unordered_map<std::string, std::size_t>& column_of) {
-  return std::all_of(names.begin(), names.end(),
-                     [&column_of](const char* name) { return column_of.count(name) > 0; });
+/// Appends the column `name` to `layout`.
+/// @throws RecordFileError when the header lacks it.
+void add_column(RecordLayout& layout, const std::string& name, const ColumnIndex& column_of,
+                const std::string& path) {
+  const auto found = column_of.find(name);
+  if (found == column_of.end()) {
+    throw RecordFileError(path + ": no column \"" + name +
+                          "\" in its header; is it a file of `upkie-rl rollout --record`?");
+  }
+  layout.columns.push_back({name, found->second});
 }
 
 /// The layout of a file whose header is `header`; its action names go to `action_names`.
+/// The columns and their order are those the visitors of envs/record_columns.hpp name, the
+/// ones EpisodeRecorder writes with.
 RecordLayout record_layout(const std::vector<std::string>& header, const std::string& path,
                            std::vector<std::string>& action_names) {
-  std::unordered_map<std::string, std::size_t> column_of;
+  ColumnIndex column_of;
   for (std::size_t i = 0; i < header.size(); ++i) column_of[header[i]] = i;
   RecordLayout layout;
-  add_columns(layout, std::array{"episode", "step", "t", "reward"}, column_of, path);
-  layout.ground_truth = add_columns(layout, kGroundTruthColumns, column_of, path);
-  layout.servos = add_columns(layout, kServoNames, column_of, path);
-  if (has_columns(kMeasuredColumns, column_of)) {
-    layout.measured = add_columns(layout, kMeasuredColumns, column_of, path);
+  const auto add = [&](const auto& column, auto&) {
+    add_column(layout, std::string(column), column_of, path);
+  };
+  bool found = true;
+  const auto check = [&](const auto& column, auto&) {
+    found = found && column_of.count(std::string(column)) > 0;
+  };
+  for (const char* column : {kEpisodeColumn, kStepColumn, kTimeColumn, kRewardColumn}) {
+    add_column(layout, column, column_of, path);
   }
+  RecordedStep fields;  // Only the names of its members' columns are visited here.
+  visit_pose_columns(fields.pose, add);
+  visit_measurement_columns(fields, check);
+  layout.measured = std::exchange(found, true);
+  if (layout.measured) visit_measurement_columns(fields, add);
   // Velocity tasks: the command (observation columns) and the measured velocity, both or
   // neither; files of other tasks, or written before the measured columns, have neither.
-  if (has_columns(kCommandColumns, column_of) && has_columns(kMeasuredVelocityColumns, column_of)) {
-    layout.velocity = add_columns(layout, kCommandColumns, column_of, path);
-    add_columns(layout, kMeasuredVelocityColumns, column_of, path);
+  VelocityCommand command;
+  BaseVelocity measured;
+  visit_command_columns(command, check);
+  visit_measured_velocity_columns(measured, check);
+  layout.velocity = found;
+  if (layout.velocity) {
+    visit_command_columns(command, add);
+    visit_measured_velocity_columns(measured, add);
   }
-  const std::string action_prefix = "action.";
-  std::vector<std::string> actions;
+  layout.actions = layout.columns.size();
+  const std::string action_prefix = kActionColumnPrefix;
   for (const std::string& column : header) {
     if (column.rfind(action_prefix, 0) == 0) {
       action_names.push_back(column.substr(action_prefix.size()));
-      actions.push_back(column);
+      add_column(layout, column, column_of, path);
     }
   }
-  layout.actions = add_columns(layout, actions, column_of, path);
   return layout;
 }
 
@@ -116,40 +115,39 @@ RecordLayout record_layout(const std::vector<std::string>& header, const std::st
 /// @throws RecordFileError on a row that is not a step of a simulated episode.
 RecordedStep recorded_step(const std::vector<double>& values, const RecordLayout& layout,
                            const std::string& at) {
-  const double* truth = values.data() + layout.ground_truth;
-  if (std::isnan(truth[0])) {
+  std::size_t next = 0;
+  const auto take = [&](const auto&, double& value) { value = values[next++]; };
+  RecordedStep step;
+  double episode = 0.0;
+  double step_index = 0.0;
+  take(kEpisodeColumn, episode);
+  take(kStepColumn, step_index);
+  take(kTimeColumn, step.time);
+  take(kRewardColumn, step.reward);
+  visit_pose_columns(step.pose, take);
+  if (std::isnan(step.pose.base_position.x())) {
     throw RecordFileError(at + "no ground truth (a spine run has no simulator pose to draw)");
   }
-  RecordedStep step;
-  if (!(values[0] >= 0.0 && values[0] < 1e9 && values[1] >= 0.0 && values[1] < 1e9) ||
-      values[0] != std::floor(values[0]) || values[1] != std::floor(values[1])) {
+  if (!(episode >= 0.0 && episode < 1e9 && step_index >= 0.0 && step_index < 1e9) ||
+      episode != std::floor(episode) || step_index != std::floor(step_index)) {
     throw RecordFileError(at + "episode and step must be whole numbers >= 0");
   }
-  step.episode = static_cast<int>(values[0]);
-  step.step = static_cast<int>(values[1]);
-  step.time = values[2];
-  step.reward = values[3];
-  step.pose.base_position = Eigen::Vector3d(truth[0], truth[1], truth[2]);
-  step.pose.base_orientation = Eigen::Quaterniond(truth[3], truth[4], truth[5], truth[6]);
-  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-    step.pose.joint_angles[servo] = values[layout.servos + servo];
-  }
+  step.episode = static_cast<int>(episode);
+  step.step = static_cast<int>(step_index);
   if (!std::isfinite(step.time) || !step.pose.base_position.allFinite() ||
       !step.pose.base_orientation.coeffs().allFinite() ||
       step.pose.base_orientation.norm() < 1e-9) {
     throw RecordFileError(at + "the time or the base pose is not finite");
   }
   if (layout.measured) {
-    step.pitch = values[*layout.measured];
-    step.ground_position = values[*layout.measured + 1];
+    visit_measurement_columns(step, take);
   } else {
     step.pitch = base_pitch(step.pose.base_orientation.normalized());
     step.ground_position = step.pose.base_position.x();
   }
   if (layout.velocity) {
-    const double* velocity = values.data() + *layout.velocity;
-    step.command = VelocityCommand{velocity[0], velocity[1]};
-    step.measured = BaseVelocity{velocity[2], velocity[3]};
+    visit_command_columns(step.command.emplace(), take);
+    visit_measured_velocity_columns(step.measured.emplace(), take);
   }
   step.action.assign(values.begin() + static_cast<std::ptrdiff_t>(layout.actions), values.end());
   return step;
@@ -169,7 +167,7 @@ RecordFile read_record_file(std::istream& in, const std::string& path) {
   const std::vector<std::string> header = split_fields(line);
   RecordFile file;
   const RecordLayout layout = record_layout(header, path, file.action_names);
-  file.has_velocity = layout.velocity.has_value();
+  file.has_velocity = layout.velocity;
   long line_number = 1;
   std::vector<double> values(layout.columns.size());
   while (std::getline(in, line)) {

@@ -14,17 +14,17 @@ EpisodeRecorder::EpisodeRecorder(const std::filesystem::path& path)
 }
 
 void EpisodeRecorder::write_header(const Env& env, std::span<const std::string> extra_columns) {
-  out_ << "episode,step,t";
+  out_ << kEpisodeColumn << ',' << kStepColumn << ',' << kTimeColumn;
   for (const std::string& name : env.observation_space().names) out_ << ',' << name;
-  for (const std::string& name : env.action_space().names) out_ << ",action." << name;
-  out_ << ",reward,terminated,truncated";
-  for (const char* column : kGroundTruthColumns) out_ << ',' << column;
-  for (const auto& joint : kServoNames) out_ << ',' << joint;
-  for (const char* column : kMeasuredColumns) out_ << ',' << column;
-  velocity_task_ = find_velocity_env(env) != nullptr;
-  if (velocity_task_) {
-    for (const char* column : kMeasuredVelocityColumns) out_ << ',' << column;
+  for (const std::string& name : env.action_space().names) {
+    out_ << ',' << kActionColumnPrefix << name;
   }
+  out_ << ',' << kRewardColumn << ',' << kTerminatedColumn << ',' << kTruncatedColumn;
+  const auto column_name = [&](auto column, auto&) { out_ << ',' << column; };
+  visit_pose_columns(pose_, column_name);
+  visit_measurement_columns(measurement_, column_name);
+  velocity_task_ = find_velocity_env(env) != nullptr;
+  if (velocity_task_) visit_measured_velocity_columns(measured_velocity_, column_name);
   for (const std::string& column : extra_columns) out_ << ',' << column;
   out_ << '\n';
   num_extra_columns_ = extra_columns.size();
@@ -36,24 +36,24 @@ void EpisodeRecorder::before_step(const Env& env, std::span<const float> observa
   std::copy(observation.begin(), observation.end(), observation_.begin());
   const Observation* full = env.full_observation();
   time_ = full ? full->time : std::numeric_limits<double>::quiet_NaN();
+  const auto set_nan = [](auto, double& value) {
+    value = std::numeric_limits<double>::quiet_NaN();
+  };
   if (full && full->has_sim) {
-    const SimBaseObservation& base = full->sim_base;
-    ground_truth_ = {base.position.x(),    base.position.y(),    base.position.z(),
-                     base.orientation.w(), base.orientation.x(), base.orientation.y(),
-                     base.orientation.z()};
-    for (std::size_t i = 0; i < kNumServos; ++i) ground_truth_[7 + i] = full->servo[i].position;
+    pose_.base_position = full->sim_base.position;
+    pose_.base_orientation = full->sim_base.orientation;
+    for (std::size_t i = 0; i < kNumServos; ++i) pose_.joint_angles[i] = full->servo[i].position;
   } else {
-    ground_truth_.fill(std::numeric_limits<double>::quiet_NaN());
+    visit_pose_columns(pose_, set_nan);
   }
   if (full) {
-    ground_truth_[7 + kNumServos] = full->base_orientation.pitch;
-    ground_truth_[8 + kNumServos] = full->wheel_odometry.position;
+    measurement_.pitch = full->base_orientation.pitch;
+    measurement_.ground_position = full->wheel_odometry.position;
+  } else {
+    visit_measurement_columns(measurement_, set_nan);
   }
   const VelocityEnv* velocity = velocity_task_ ? find_velocity_env(env) : nullptr;
-  if (velocity != nullptr) {
-    const BaseVelocity measured = velocity->measured_velocity();
-    measured_velocity_ = {measured.forward_velocity, measured.yaw_rate};
-  }
+  if (velocity != nullptr) measured_velocity_ = velocity->measured_velocity();
 }
 
 void EpisodeRecorder::after_step(int episode, int step, std::span<const float> action,
@@ -67,10 +67,10 @@ void EpisodeRecorder::after_step(int episode, int step, std::span<const float> a
   for (float value : observation_) out_ << ',' << value;
   for (float value : action) out_ << ',' << value;
   out_ << ',' << result.reward << ',' << int(result.terminated) << ',' << int(result.truncated);
-  for (double value : ground_truth_) out_ << ',' << value;
-  if (velocity_task_) {
-    for (double value : measured_velocity_) out_ << ',' << value;
-  }
+  const auto column_value = [&](auto, double value) { out_ << ',' << value; };
+  visit_pose_columns(pose_, column_value);
+  visit_measurement_columns(measurement_, column_value);
+  if (velocity_task_) visit_measured_velocity_columns(measured_velocity_, column_value);
   for (double value : extra) out_ << ',' << value;
   out_ << '\n';
 }

@@ -11,25 +11,20 @@
 #include <vector>
 
 #include "envs/env.hpp"
+#include "envs/record_columns.hpp"
+#include "envs/velocity_command.hpp"
 
 namespace upkie_rl {
 
-/// Columns of the simulator's ground truth, before the six joint angles (kServoNames).
-inline constexpr std::array<const char*, 7> kGroundTruthColumns = {
-    "base_x", "base_y", "base_z", "base_qw", "base_qx", "base_qy", "base_qz"};
-
-/// Columns after the joint angles: the pitch and ground position the robot measures.
-inline constexpr std::array<const char*, 2> kMeasuredColumns = {"pitch", "ground_position"};
-
-/// One row per step: episode, step, t, each observation component by name, each action
-/// component by name ("action.<name>"), reward, terminated, truncated, then the simulator's
-/// ground truth base_x, base_y, base_z, base_qw, base_qx, base_qy, base_qz and the six joint
-/// angles by joint name (NaN when the backend has no ground truth), then the base pitch and
-/// the wheel odometry's ground position, then for a velocity task the measured base
-/// velocity (kMeasuredVelocityColumns; the command is in the observation's columns), then
-/// the caller's extra columns if any. A row holds the
-/// observation the controller saw at time t, the ground truth at that time, the action it chose,
-/// and the reward and flags of the step that action made.
+/// One row per step (columns declared in envs/record_columns.hpp): episode, step, t, each
+/// observation component by name, each action component by name ("action.<name>"), reward,
+/// terminated, truncated, then the simulator's ground truth base_x, base_y, base_z, base_qw,
+/// base_qx, base_qy, base_qz and the six joint angles by joint name (NaN when the backend has no
+/// ground truth), then the base pitch and the wheel odometry's ground position, then for a velocity
+/// task the measured base velocity (kMeasuredVelocityColumns; the command is in the observation's
+/// columns), then the caller's extra columns if any. A row holds the observation the controller saw
+/// at time t, the ground truth at that time, the action it chose, and the reward and flags of the
+/// step that action made.
 class EpisodeRecorder {
  public:
   /// Opens (truncates) `path`, so that a bad path is refused before anything runs.
@@ -56,9 +51,10 @@ class EpisodeRecorder {
   std::ofstream out_;
   std::vector<float> observation_;
   double time_ = 0.0;
-  std::array<double, 7 + 6 + 2> ground_truth_{};
+  RecordedPose pose_;
+  RecordedMeasurement measurement_;
   bool velocity_task_ = false;  ///< Whether the header has the measured velocity columns.
-  std::array<double, 2> measured_velocity_{};
+  BaseVelocity measured_velocity_;
   std::size_t num_extra_columns_ = 0;
 };
 

@@ -7,7 +7,9 @@
 #include <utility>
 
 #include "sim/base_observer.hpp"
+#include "sim/observation_fields.hpp"
 #include "sim/random_draws.hpp"
+#include "sim/servo_command_fields.hpp"
 
 namespace upkie_rl {
 

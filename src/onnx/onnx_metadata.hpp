@@ -3,6 +3,8 @@
 /// The names an exported ONNX policy uses, written by onnx_export.cpp and read back by
 /// onnx_model_info.cpp, the tests and users' deployment code.
 
+#include "policy/checkpoint_header.hpp"
+
 namespace upkie_rl::onnx_names {
 
 /// The graph's one input: raw observations, float32, shape (batch, observation size).
@@ -15,10 +17,10 @@ inline constexpr const char* kBatch = "batch";
 /// Metadata properties (ModelProto.metadata_props). Spaces, options and provenance are JSON.
 inline constexpr const char* kEnvId = "env_id";
 inline constexpr const char* kEnvOptions = "env_options";
-inline constexpr const char* kObservationSpace = "observation_space";
-inline constexpr const char* kActionSpace = "action_space";
+inline constexpr const char* kObservationSpace = checkpoint_header::kObservationSpace;
+inline constexpr const char* kActionSpace = checkpoint_header::kActionSpace;
 /// Control frequency in Hz (text), "unknown" when the environment does not say.
 inline constexpr const char* kFrequency = "frequency";
-inline constexpr const char* kProvenance = "provenance";
+inline constexpr const char* kProvenance = checkpoint_header::kProvenance;
 
 }  // namespace upkie_rl::onnx_names

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "model/setting_bounds.hpp"
+#include "policy/checkpoint_header.hpp"
 #include "policy/model_header.hpp"
 #include "policy/network_limits.hpp"
 #include "policy/network_output_bound.hpp"
@@ -18,12 +19,12 @@ namespace upkie_rl {
 namespace {
 
 void check_format(const nlohmann::json& header) {
-  const auto format = header.find("format");
+  const auto format = header.find(checkpoint_header::kFormat);
   if (format == header.end() || *format != kCheckpointFormat) {
     throw CheckpointError("not an upkie-rl checkpoint (format " +
                           (format == header.end() ? std::string("missing") : format->dump()) + ")");
   }
-  const auto version = header.find("version");
+  const auto version = header.find(checkpoint_header::kVersion);
   if (version == header.end() || !version->is_number_integer() || *version != kCheckpointVersion) {
     throw CheckpointError("checkpoint version " +
                           (version == header.end() ? std::string("missing") : version->dump()) +
@@ -46,8 +47,9 @@ void check_space(const BoxSpace& space, const char* what, bool finite) {
 }
 
 void check_tensors(const CheckpointFile& file, std::int64_t parameter_count) {
-  file.tensor("policy.parameters", parameter_count);
-  for (const char* moment : {"optimizer.exp_avg", "optimizer.exp_avg_sq"}) {
+  file.tensor(checkpoint_header::kPolicyParameters, parameter_count);
+  for (const char* moment :
+       {checkpoint_header::kOptimizerExpAvg, checkpoint_header::kOptimizerExpAvgSq}) {
     if (file.tensors.contains(moment)) file.tensor(moment, parameter_count);
   }
   for (const auto& [name, tensor] : file.tensors) {
@@ -92,10 +94,13 @@ void check_counter(const nlohmann::json& object, const char* section, const char
 /// may lack some, but what is there must be in range. Resuming needs them all
 /// (restore_ppo_checkpoint says which is missing).
 void check_counters(const nlohmann::json& header) {
-  for (const auto& [section, keys] : {std::pair<const char*, std::vector<const char*>>{
-                                          "counters", {"num_timesteps", "iterations", "n_updates"}},
-                                      {"optimizer", {"step_count"}},
-                                      {"run", {"checkpoints_saved"}}}) {
+  for (const auto& [section, keys] :
+       {std::pair<const char*, std::vector<const char*>>{
+            checkpoint_header::kCounters,
+            {checkpoint_header::kNumTimesteps, checkpoint_header::kIterations,
+             checkpoint_header::kNUpdates}},
+        {checkpoint_header::kOptimizer, {checkpoint_header::kStepCount}},
+        {checkpoint_header::kRun, {checkpoint_header::kCheckpointsSaved}}}) {
     const auto found = header.find(section);
     if (found == header.end()) continue;
     if (!found->is_object()) throw CheckpointError(std::string(section) + " is not an object");
@@ -108,11 +113,12 @@ void check_contents(const CheckpointFile& file) {
   check_format(header);
   checkpoint_env_id(header);
   checkpoint_env_options(header);
-  const BoxSpace observation_space = space_from_json(header.at("observation_space"));
-  const BoxSpace action_space = space_from_json(header.at("action_space"));
+  const BoxSpace observation_space =
+      space_from_json(header.at(checkpoint_header::kObservationSpace));
+  const BoxSpace action_space = space_from_json(header.at(checkpoint_header::kActionSpace));
   check_space(observation_space, "observation space", false);
   check_space(action_space, "action space", true);
-  const PolicyShape shape = policy_shape_from_json(header.at("policy"));
+  const PolicyShape shape = policy_shape_from_json(header.at(checkpoint_header::kPolicy));
   if (shape.observation_size != static_cast<std::int64_t>(observation_space.size()) ||
       shape.action_size != static_cast<std::int64_t>(action_space.size())) {
     throw CheckpointError("policy sizes do not match the stored spaces");
@@ -122,10 +128,10 @@ void check_contents(const CheckpointFile& file) {
                           shape.critic_hidden_sizes);
   check_tensors(file, layout.size);
   const ObservationNormalizer normalizer = check_normalization(
-      header.value("normalization", nlohmann::json()), observation_space.size());
+      header.value(checkpoint_header::kNormalization, nlohmann::json()), observation_space.size());
   // Finite weights can still overflow (the fuzz target's weights of 1e36 gave a NaN action):
   // both networks must stay finite for every input in range, and σ = exp(log σ) too.
-  const std::vector<float>& parameters = file.tensor("policy.parameters").values;
+  const std::vector<float>& parameters = file.tensor(checkpoint_header::kPolicyParameters).values;
   const std::vector<double> inputs = network_input_bounds(observation_space, normalizer);
   check_network_bound(parameters, layout.actor, inputs, "actor");
   check_network_bound(parameters, layout.critic, inputs, "critic");

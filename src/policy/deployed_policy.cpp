@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "policy/checkpoint_gate.hpp"
+#include "policy/checkpoint_header.hpp"
 #include "policy/policy_output_error.hpp"
 #include "policy/space_json.hpp"
 
@@ -43,14 +44,14 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
   DeployedPolicy policy;
   try {
     const nlohmann::json& header = file.header;
-    if (header.value("format", "") != kCheckpointFormat) {
+    if (header.value(checkpoint_header::kFormat, "") != kCheckpointFormat) {
       throw CheckpointError("not an upkie-rl model");
     }
     policy.env_id_ = checkpoint_env_id(header);
     policy.env_options_ = checkpoint_env_options(header);
-    policy.observation_space_ = space_from_json(header.at("observation_space"));
-    policy.action_space_ = space_from_json(header.at("action_space"));
-    policy.shape_ = policy_shape_from_json(header.at("policy"));
+    policy.observation_space_ = space_from_json(header.at(checkpoint_header::kObservationSpace));
+    policy.action_space_ = space_from_json(header.at(checkpoint_header::kActionSpace));
+    policy.shape_ = policy_shape_from_json(header.at(checkpoint_header::kPolicy));
     const PolicyShape& shape = policy.shape_;
     if (shape.observation_size != static_cast<std::int64_t>(policy.observation_space_.size()) ||
         shape.action_size != static_cast<std::int64_t>(policy.action_space_.size())) {
@@ -59,10 +60,11 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
     const ActorCriticNetworks networks =
         actor_critic_networks(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
                               shape.critic_hidden_sizes, shape.activation);
-    policy.parameters_ = file.tensor("policy.parameters", networks.size).values;
+    policy.parameters_ = file.tensor(checkpoint_header::kPolicyParameters, networks.size).values;
     policy.actor_ = networks.actor;
     policy.normalizer_ = ObservationNormalizer::from_state(
-        header.value("normalization", nlohmann::json()), policy.observation_space_.size());
+        header.value(checkpoint_header::kNormalization, nlohmann::json()),
+        policy.observation_space_.size());
   } catch (const CheckpointError& error) {
     throw CheckpointError(where + ": " + error.what());
   } catch (const std::invalid_argument& error) {

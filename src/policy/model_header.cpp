@@ -3,27 +3,50 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <type_traits>
 
 #include "policy/checkpoint_file.hpp"
+#include "policy/checkpoint_header.hpp"
 #include "policy/network_limits.hpp"
 
 namespace upkie_rl {
 
+namespace {
+
+/// The keys of the header's "policy" entry, each once, for the writer and the reader.
+template <typename Shape, typename Visitor>
+void visit_policy_shape_fields(Shape& shape, Visitor&& visit) {
+  visit("observation_size", shape.observation_size);
+  visit("action_size", shape.action_size);
+  visit("actor_hidden_sizes", shape.actor_hidden_sizes);
+  visit("critic_hidden_sizes", shape.critic_hidden_sizes);
+  visit("activation", shape.activation);
+}
+
+}  // namespace
+
 nlohmann::json policy_shape_to_json(const PolicyShape& shape) {
-  return {{"observation_size", shape.observation_size},
-          {"action_size", shape.action_size},
-          {"actor_hidden_sizes", shape.actor_hidden_sizes},
-          {"critic_hidden_sizes", shape.critic_hidden_sizes},
-          {"activation", activation_name(shape.activation)}};
+  nlohmann::json json = nlohmann::json::object();
+  visit_policy_shape_fields(shape, [&](const char* key, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, Activation>) {
+      json[key] = activation_name(value);
+    } else {
+      json[key] = value;
+    }
+  });
+  return json;
 }
 
 PolicyShape policy_shape_from_json(const nlohmann::json& json) {
   PolicyShape shape;
-  shape.observation_size = json.at("observation_size").get<std::int64_t>();
-  shape.action_size = json.at("action_size").get<std::int64_t>();
-  shape.actor_hidden_sizes = json.at("actor_hidden_sizes").get<std::vector<std::int64_t>>();
-  shape.critic_hidden_sizes = json.at("critic_hidden_sizes").get<std::vector<std::int64_t>>();
-  shape.activation = parse_activation(json.at("activation").get<std::string>());
+  visit_policy_shape_fields(shape, [&](const char* key, auto& value) {
+    using Value = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<Value, Activation>) {
+      value = parse_activation(json.at(key).get<std::string>());
+    } else {
+      value = json.at(key).get<Value>();
+    }
+  });
   // Bounded so that a damaged header cannot ask for an absurd allocation.
   try {
     check_network_size(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
@@ -36,7 +59,7 @@ PolicyShape policy_shape_from_json(const nlohmann::json& json) {
 }
 
 std::string checkpoint_config_yaml(const nlohmann::json& header) {
-  const auto found = header.find("config");
+  const auto found = header.find(checkpoint_header::kConfig);
   if (found == header.end() || !found->is_string()) {
     throw CheckpointError("checkpoint has no configuration");
   }

@@ -26,8 +26,13 @@ struct PolicyShape {
   std::vector<std::int64_t> actor_hidden_sizes;
   std::vector<std::int64_t> critic_hidden_sizes;
   Activation activation = Activation::kReLU;
+
+  bool operator==(const PolicyShape&) const = default;
 };
 
+/// The header's "policy" entry: {observation_size, action_size, actor_hidden_sizes,
+/// critic_hidden_sizes, activation (its name)}, keys declared once in
+/// visit_policy_shape_fields.
 nlohmann::json policy_shape_to_json(const PolicyShape& shape);
 
 /// Inverse of policy_shape_to_json. Throws CheckpointError on sizes outside

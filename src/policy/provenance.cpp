@@ -7,6 +7,7 @@
 
 #include "policy/build_info.hpp"
 #include "policy/checkpoint_file.hpp"
+#include "policy/checkpoint_header.hpp"
 #include "policy/model_header.hpp"
 
 namespace upkie_rl {
@@ -37,9 +38,9 @@ void complete_from_header(const nlohmann::json& header, nlohmann::json& provenan
     // A header without (readable) configuration: those fields stay unknown.
   } catch (const YAML::Exception&) {
   }
-  const auto counters = header.find("counters");
+  const auto counters = header.find(checkpoint_header::kCounters);
   if (counters != header.end() && counters->is_object()) {
-    const auto timesteps = counters->find("num_timesteps");
+    const auto timesteps = counters->find(checkpoint_header::kNumTimesteps);
     if (timesteps != counters->end() && timesteps->is_number_integer()) {
       provenance["timesteps"] = timesteps->get<std::int64_t>();
     }
@@ -57,7 +58,7 @@ nlohmann::json new_provenance(const std::string& source) {
 
 nlohmann::json model_provenance(const nlohmann::json& header) {
   nlohmann::json provenance = nlohmann::json::object();
-  const auto stored = header.find("provenance");
+  const auto stored = header.find(checkpoint_header::kProvenance);
   if (stored != header.end() && stored->is_object()) provenance = *stored;
   // What the stored entry says wins (an import records the original's seed and steps).
   nlohmann::json from_header = nlohmann::json::object();

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "policy/checkpoint_header.hpp"
 #include "policy/diagonal_gaussian.hpp"
 #include "rl/autograd_ppo_gradient.hpp"
 #include "rl/ppo_gradient.hpp"
@@ -305,18 +306,18 @@ PpoUpdateStatistics Ppo::iterate() {
 nlohmann::json Ppo::counters_state() const {
   std::ostringstream random_state;
   random_state << rng_ << ' ' << normal_;
-  return {{"num_timesteps", num_timesteps_},
-          {"iterations", iterations_},
-          {"n_updates", n_updates_},
+  return {{checkpoint_header::kNumTimesteps, num_timesteps_},
+          {checkpoint_header::kIterations, iterations_},
+          {checkpoint_header::kNUpdates, n_updates_},
           {"random_state", random_state.str()},
           {"episodes", episodes_.state()}};
 }
 
 void Ppo::load_counters_state(const nlohmann::json& state) {
   try {
-    const auto num_timesteps = state.at("num_timesteps").get<std::int64_t>();
-    const auto iterations = state.at("iterations").get<std::int64_t>();
-    const auto n_updates = state.at("n_updates").get<std::int64_t>();
+    const auto num_timesteps = state.at(checkpoint_header::kNumTimesteps).get<std::int64_t>();
+    const auto iterations = state.at(checkpoint_header::kIterations).get<std::int64_t>();
+    const auto n_updates = state.at(checkpoint_header::kNUpdates).get<std::int64_t>();
     std::istringstream random_state(state.at("random_state").get<std::string>());
     std::mt19937_64 rng;
     std::normal_distribution<double> normal;

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <stdexcept>
 
+#include "policy/checkpoint_header.hpp"
 #include "rl/ppo_checkpoint.hpp"
 
 namespace upkie_rl {
@@ -65,11 +66,12 @@ void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& 
   source += "    return torch.max(torch.min(x, self.action_high), self.action_low)\n";
   module.define(source);
 
-  const nlohmann::json metadata = {{"env_id", env_id},
-                                   {"observation_space", space_to_json(observation_space)},
-                                   {"action_space", space_to_json(action_space)},
-                                   {"deterministic", true},
-                                   {"provenance", provenance}};
+  const nlohmann::json metadata = {
+      {"env_id", env_id},
+      {checkpoint_header::kObservationSpace, space_to_json(observation_space)},
+      {checkpoint_header::kActionSpace, space_to_json(action_space)},
+      {"deterministic", true},
+      {checkpoint_header::kProvenance, provenance}};
   torch::jit::ExtraFilesMap extra_files{{"metadata.json", metadata.dump()}};
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   try {

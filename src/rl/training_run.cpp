@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "policy/checkpoint_header.hpp"
 #include "policy/observation_normalizer.hpp"
 #include "policy/provenance.hpp"
 #include "rl/checkpoint.hpp"
@@ -27,6 +28,12 @@ using Clock = std::chrono::steady_clock;
 
 // The provenance "source" of the models a training writes.
 constexpr const char* kTrainingSource = "upkie-rl train";
+
+/// The header entries of a training run besides the trainer's (make_ppo_checkpoint).
+nlohmann::json run_header_entries(std::int64_t checkpoints_saved) {
+  return {{checkpoint_header::kRun, {{checkpoint_header::kCheckpointsSaved, checkpoints_saved}}},
+          {checkpoint_header::kProvenance, new_provenance(kTrainingSource)}};
+}
 
 double wall_time() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
@@ -267,9 +274,10 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
   const std::string where = "checkpoint " + checkpoint_path.string() + ": ";
   try {
     restore_ppo_checkpoint(*run->ppo_, checkpoint);
-    run->normalize_->load_state(checkpoint.header.at("normalization"));
+    namespace key = checkpoint_header;
+    run->normalize_->load_state(checkpoint.header.at(key::kNormalization));
     run->checkpoints_saved_ =
-        checkpoint.header.at("run").at("checkpoints_saved").get<std::int64_t>();
+        checkpoint.header.at(key::kRun).at(key::kCheckpointsSaved).get<std::int64_t>();
   } catch (const CheckpointError& error) {
     throw CheckpointError(where + error.what());
   } catch (const std::invalid_argument& error) {
@@ -299,8 +307,7 @@ void TrainingRun::start_segment() {
 void TrainingRun::save_checkpoint_now() {
   ++checkpoints_saved_;
   if (!writes_outputs()) return;
-  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}},
-                                {"provenance", new_provenance(kTrainingSource)}};
+  const nlohmann::json extra = run_header_entries(checkpoints_saved_);
   const std::filesystem::path path =
       run_dir_ / "checkpoints" / checkpoint_name(ppo_->num_timesteps());
   save_checkpoint(make_ppo_checkpoint(*ppo_, normalize_->state(), extra), path);
@@ -309,8 +316,7 @@ void TrainingRun::save_checkpoint_now() {
 
 std::filesystem::path TrainingRun::save_final_model() {
   if (!writes_outputs()) return {};
-  const nlohmann::json extra = {{"run", {{"checkpoints_saved", checkpoints_saved_}}},
-                                {"provenance", new_provenance(kTrainingSource)}};
+  const nlohmann::json extra = run_header_entries(checkpoints_saved_);
   const std::string stem = "model_" + local_timestamp();
   std::filesystem::path path = run_dir_ / (stem + ".ckpt");
   const Checkpoint checkpoint = make_ppo_checkpoint(*ppo_, normalize_->state(), extra);

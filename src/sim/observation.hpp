@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
-#include <string_view>
 
 #include "model/joint_order.hpp"
 
@@ -21,26 +20,6 @@ struct ServoObservation {
   double temperature = 0.0;  ///< Servo temperature [deg C].
   double voltage = 0.0;      ///< Power bus voltage [V].
 };
-
-/// One measured field of a ServoObservation and its key (`servo.<joint>.<key>` in the
-/// spine's dictionary, `<joint>.<key>` in the servos environment's flat observation).
-struct ServoObservationField {
-  std::string_view key;
-  double ServoObservation::*member;
-  /// A spine observation without this key is refused (the others keep their value).
-  bool required;
-};
-
-/// The measured fields of a ServoObservation, declared once, in the servos environment's
-/// flat order; the observation dictionary (sim/observation_fields.hpp) takes its servo
-/// measurements from this table.
-inline constexpr std::array<ServoObservationField, 5> kServoObservationFields = {{
-    {"position", &ServoObservation::position, true},
-    {"velocity", &ServoObservation::velocity, true},
-    {"torque", &ServoObservation::torque, true},
-    {"temperature", &ServoObservation::temperature, false},
-    {"voltage", &ServoObservation::voltage, false},
-}};
 
 /// `imu.*`: the inertial measurement unit, in its own frame (x backward, y left, z down).
 struct ImuObservation {

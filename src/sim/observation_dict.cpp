@@ -1,6 +1,8 @@
 #include "sim/observation_dict.hpp"
 
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "sim/msgpack_float64.hpp"
@@ -59,7 +61,64 @@ class JsonWriter {
   std::string_view key_;
 };
 
+/// Lists the declaration's keys with their dotted paths.
+class KeyLister {
+ public:
+  KeyLister(std::vector<ObservationKey>& keys, std::string prefix)
+      : keys_(keys), prefix_(std::move(prefix)) {}
+  template <typename Children>
+  void map(std::string_view key, KeyPresence presence, Children&& children) {
+    add(key, true, false, presence);
+    KeyLister fields(keys_, prefix_ + std::string(key) + ".");
+    children(fields);
+  }
+  template <typename Children>
+  void map_if(std::string_view key, bool&, Children&& children) {
+    map(key, KeyPresence::kOptional, children);
+  }
+  template <typename Field>
+  void real(std::string_view key, Field&, KeyPresence presence) {
+    add(key, false, false, presence);
+  }
+  template <typename Field>
+  void boolean(std::string_view key, Field&, KeyPresence presence) {
+    add(key, false, false, presence);
+  }
+  template <typename Field>
+  void vector3(std::string_view key, Field&, KeyPresence presence) {
+    add(key, false, false, presence);
+  }
+  template <typename Field>
+  void quaternion(std::string_view key, Field&, KeyPresence presence) {
+    add(key, false, false, presence);
+  }
+  template <typename Field>
+  void matrix3(std::string_view key, Field&, KeyPresence presence) {
+    add(key, false, false, presence);
+  }
+  template <typename Value>
+  void computed(std::string_view key, Value&&) {
+    add(key, false, true, KeyPresence::kOptional);
+  }
+
+ private:
+  void add(std::string_view key, bool is_map, bool computed, KeyPresence presence) {
+    keys_.push_back(
+        {prefix_ + std::string(key), is_map, computed, presence == KeyPresence::kRequired});
+  }
+  std::vector<ObservationKey>& keys_;
+  std::string prefix_;
+};
+
 }  // namespace
+
+std::vector<ObservationKey> observation_keys() {
+  std::vector<ObservationKey> keys;
+  Observation observation;
+  KeyLister lister(keys, "");
+  visit_observation_fields(observation, lister);
+  return keys;
+}
 
 nlohmann::json observation_to_json(const Observation& observation) {
   JsonWriter writer;

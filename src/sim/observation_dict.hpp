@@ -27,11 +27,25 @@
 
 #include <msgpack.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "sim/observation.hpp"
 #include "sim/observation_fields.hpp"
 
 namespace upkie_rl {
+
+/// One key of the observation dictionary, as declared in sim/observation_fields.hpp.
+struct ObservationKey {
+  std::string path;  ///< Dotted, e.g. "servo.left_hip.position".
+  bool is_map;       ///< A nested map (its keys follow it, with its path as prefix).
+  bool computed;     ///< Written only: the typed Observation does not carry it.
+  bool required;     ///< A reader refuses a message without it when its map is there.
+};
+
+/// Every key of the declaration, maps and leaves, in walk order (the `sim` subtree
+/// included). Allocates: for tests, documentation and the Python binding.
+std::vector<ObservationKey> observation_keys();
 
 /// The observation as a nested JSON object (allocates; for logs and `info`).
 nlohmann::json observation_to_json(const Observation& observation);

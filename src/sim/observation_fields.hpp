@@ -28,6 +28,26 @@
 
 namespace upkie_rl {
 
+/// One measured field of a ServoObservation and its key (`servo.<joint>.<key>` in the
+/// spine's dictionary, `<joint>.<key>` in the servos environment's flat observation).
+struct ServoObservationField {
+  std::string_view key;
+  double ServoObservation::*member;
+  /// A spine observation without this key is refused (the others keep their value).
+  bool required;
+};
+
+/// The measured fields of a ServoObservation, declared once, in the servos environment's
+/// flat order; the observation dictionary (below) takes its servo
+/// measurements from this table.
+inline constexpr std::array<ServoObservationField, 5> kServoObservationFields = {{
+    {"position", &ServoObservation::position, true},
+    {"velocity", &ServoObservation::velocity, true},
+    {"torque", &ServoObservation::torque, true},
+    {"temperature", &ServoObservation::temperature, false},
+    {"voltage", &ServoObservation::voltage, false},
+}};
+
 /// moteus' mode number for position control, written as `servo.<joint>.mode`.
 inline constexpr int kServoModePosition = 10;
 

@@ -1,4 +1,5 @@
 #include "sim/servo_command.hpp"
+#include "sim/servo_command_fields.hpp"
 
 #include <cmath>
 #include <string>

@@ -34,6 +34,32 @@ class ConfigPacker {
   msgpack::packer<msgpack::sbuffer> packer_;
 };
 
+// Keys both the writer and the readers of the Start configuration use.
+constexpr std::string_view kBullet = "bullet";
+constexpr std::string_view kReset = "reset";
+constexpr std::string_view kTorqueControl = "torque_control";
+constexpr std::string_view kOrientation = "orientation_base_in_world";
+
+/// bullet.reset.* (the public Bullet spine's reset state), each key once for the writer and
+/// the reader, in key order: `visit(key, numbers, size)`; the orientation is [w, x, y, z]
+/// in `wxyz`, which the caller fills (writer) or converts (reader).
+template <typename State, typename Visitor>
+void visit_reset_fields(State& state, double* wxyz, Visitor&& visit) {
+  visit("angular_velocity_base_in_base", state.angular_velocity_base_in_base.data(), 3);
+  visit("joint_configuration", state.joint_configuration.data(), kNumServos);
+  visit("linear_velocity_base_to_world_in_world",
+        state.linear_velocity_base_to_world_in_world.data(), 3);
+  visit(kOrientation, wxyz, 4);
+  visit("position_base_in_world", state.position_base_in_world.data(), 3);
+}
+
+/// bullet.torque_control.*, in key order: `visit(key, gain)`.
+template <typename Gains, typename Visitor>
+void visit_torque_control_fields(Gains& gains, Visitor&& visit) {
+  visit("kd", gains.kd);
+  visit("kp", gains.kp);
+}
+
 /// Reads an array of `size` finite numbers at key `key` of the map at `prefix`.
 void read_array(const Dictionary& map, std::string_view key, double* out, std::size_t size,
                 std::string_view prefix = "bullet.reset.") {
@@ -86,22 +112,19 @@ void write_start_config_msgpack(const ResetState& state, const SpineStartParamet
   }
   packer.reals("rotation_base_to_imu", row_major, 9);
 
-  packer.key("bullet");
+  packer.key(kBullet);
   packer.map(2);
-  packer.key("reset");
+  packer.key(kReset);
   packer.map(5);
-  packer.reals("angular_velocity_base_in_base", state.angular_velocity_base_in_base.data(), 3);
-  packer.reals("joint_configuration", state.joint_configuration.data(), kNumServos);
-  packer.reals("linear_velocity_base_to_world_in_world",
-               state.linear_velocity_base_to_world_in_world.data(), 3);
   const Eigen::Quaterniond& q = state.orientation_base_in_world;
-  const double wxyz[4] = {q.w(), q.x(), q.y(), q.z()};
-  packer.reals("orientation_base_in_world", wxyz, 4);
-  packer.reals("position_base_in_world", state.position_base_in_world.data(), 3);
-  packer.key("torque_control");
+  double wxyz[4] = {q.w(), q.x(), q.y(), q.z()};
+  visit_reset_fields(state, wxyz, [&](std::string_view key, const double* values, int size) {
+    packer.reals(key, values, static_cast<std::uint32_t>(size));
+  });
+  packer.key(kTorqueControl);
   packer.map(2);
-  packer.real("kd", parameters.kd);
-  packer.real("kp", parameters.kp);
+  visit_torque_control_fields(parameters,
+                              [&](std::string_view key, double gain) { packer.real(key, gain); });
 
   packer.key("floor_contact");
   packer.map(1);
@@ -125,17 +148,14 @@ void write_start_config_msgpack(const ResetState& state, const SpineStartParamet
 
 ResetState reset_state_from_config(const Dictionary& config) {
   ResetState state;
-  if (!config.has("bullet") || !config.at("bullet").has("reset")) return state;
-  const Dictionary& reset = config.at("bullet").at("reset");
+  if (!config.has(kBullet) || !config.at(kBullet).has(kReset)) return state;
+  const Dictionary& reset = config.at(kBullet).at(kReset);
   if (!reset.is_map()) throw SpineError("spine configuration 'bullet.reset' is not a map");
-  read_array(reset, "position_base_in_world", state.position_base_in_world.data(), 3);
-  read_array(reset, "linear_velocity_base_to_world_in_world",
-             state.linear_velocity_base_to_world_in_world.data(), 3);
-  read_array(reset, "angular_velocity_base_in_base", state.angular_velocity_base_in_base.data(), 3);
-  read_array(reset, "joint_configuration", state.joint_configuration.data(), kNumServos);
-  if (reset.has("orientation_base_in_world")) {
-    double wxyz[4];
-    read_array(reset, "orientation_base_in_world", wxyz, 4);
+  double wxyz[4];
+  visit_reset_fields(state, wxyz, [&](std::string_view key, double* values, int size) {
+    read_array(reset, key, values, static_cast<std::size_t>(size));
+  });
+  if (reset.has(kOrientation)) {
     Eigen::Quaterniond q(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
     if (!(q.norm() > 1e-6)) {
       throw SpineError("spine configuration 'bullet.reset.orientation_base_in_world' is zero");
@@ -147,21 +167,22 @@ ResetState reset_state_from_config(const Dictionary& config) {
 
 ServoGains servo_gains_from_config(const Dictionary& config, const ServoGains& defaults) {
   ServoGains gains = defaults;
-  if (!config.has("bullet") || !config.at("bullet").has("torque_control")) return gains;
-  const Dictionary& torque_control = config.at("bullet").at("torque_control");
+  if (!config.has(kBullet) || !config.at(kBullet).has(kTorqueControl)) return gains;
+  const Dictionary& torque_control = config.at(kBullet).at(kTorqueControl);
   if (!torque_control.is_map()) {
     throw SpineError("spine configuration 'bullet.torque_control' is not a map");
   }
-  read_non_negative(torque_control, "kp", gains.kp, "bullet.torque_control.");
-  read_non_negative(torque_control, "kd", gains.kd, "bullet.torque_control.");
+  visit_torque_control_fields(gains, [&](std::string_view key, double& gain) {
+    read_non_negative(torque_control, key, gain, "bullet.torque_control.");
+  });
   return gains;
 }
 
 ImuUncertainty imu_uncertainty_from_config(const Dictionary& config) {
   ImuUncertainty uncertainty;
-  if (!config.has("bullet") || !config.at("bullet").has("imu_uncertainty")) return uncertainty;
+  if (!config.has(kBullet) || !config.at(kBullet).has("imu_uncertainty")) return uncertainty;
   constexpr std::string_view kPrefix = "bullet.imu_uncertainty.";
-  const Dictionary& imu = config.at("bullet").at("imu_uncertainty");
+  const Dictionary& imu = config.at(kBullet).at("imu_uncertainty");
   if (!imu.is_map()) throw SpineError("spine configuration 'bullet.imu_uncertainty' is not a map");
   read_array(imu, "accelerometer_bias", uncertainty.accelerometer_bias.data(), 3, kPrefix);
   read_array(imu, "gyroscope_bias", uncertainty.gyroscope_bias.data(), 3, kPrefix);

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "sim/msgpack_float64.hpp"
+#include "sim/servo_command_fields.hpp"
 #include "spine/spine_error.hpp"
 
 namespace upkie_rl {

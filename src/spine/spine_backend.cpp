@@ -8,6 +8,7 @@
 #include <string_view>
 #include <thread>
 
+#include "sim/servo_command_fields.hpp"
 #include "spine/observation_reader.hpp"
 #include "spine/servo_action_message.hpp"
 #include "spine/spine_error.hpp"

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "common/observation_key_paths.hpp"
+#include "common/distinct_observation.hpp"
 #include "message_builder.hpp"
 #include "sim/observation_dict.hpp"
 #include "spine/spine_error.hpp"
@@ -157,29 +157,26 @@ TEST(ObservationReader, EveryDeclaredFieldRoundTrips) {
 TEST(ObservationReader, RefusesEachMissingRequiredKeyAndAcceptsEachMissingOptionalOne) {
   const Observation written = distinct_observation();
   int required = 0;
-  const testing::KeyPathCollector declaration = testing::observation_key_paths();
-  std::vector<testing::ObservationKeyPath> entries = declaration.leaves;
-  entries.insert(entries.end(), declaration.maps.begin(), declaration.maps.end());
-  for (const auto& leaf : entries) {
-    const msgpack::object_handle message = without_key(written, leaf.path);
+  for (const ObservationKey& key : observation_keys()) {
+    const msgpack::object_handle message = without_key(written, key.path);
     Observation read = written;
-    if (leaf.required) {
+    if (key.required) {
       ++required;
       try {
         read_observation(message.get(), read);
-        ADD_FAILURE() << leaf.path << " is required but a message without it was read";
+        ADD_FAILURE() << key.path << " is required but a message without it was read";
       } catch (const SpineError& error) {
-        EXPECT_NE(std::string(error.what()).find("'" + leaf.path + "' is missing"),
+        EXPECT_NE(std::string(error.what()).find("'" + key.path + "' is missing"),
                   std::string::npos)
             << error.what();
       }
     } else {
       // An absent optional key leaves its field as it was; without `sim`, has_sim is false.
-      EXPECT_NO_THROW(read_observation(message.get(), read)) << leaf.path;
-      if (leaf.path == "sim") {
+      EXPECT_NO_THROW(read_observation(message.get(), read)) << key.path;
+      if (key.path == "sim") {
         EXPECT_FALSE(read.has_sim);
       } else {
-        EXPECT_EQ(observation_to_json(read), observation_to_json(written)) << leaf.path;
+        EXPECT_EQ(observation_to_json(read), observation_to_json(written)) << key.path;
       }
     }
   }
