@@ -25,6 +25,7 @@
 #include <string_view>
 
 #include "sim/observation.hpp"
+#include "sim/servo_command_fields.hpp"
 
 namespace upkie_rl {
 
@@ -89,7 +90,7 @@ void visit_servo(Servo& servo, Visitor& visitor) {
 
 template <typename ObservationT, typename Visitor>
 void visit_servos(ObservationT& observation, Visitor& visitor) {
-  visitor.map("servo", KeyPresence::kRequired, [&](auto& servos) {
+  visitor.map(kServoMapKey, KeyPresence::kRequired, [&](auto& servos) {
     for (std::size_t servo = 0; servo < kNumServos; ++servo) {
       // kServoNames is already in sorted order (left_* before right_*, hip < knee < wheel).
       servos.map(kServoNames[servo], KeyPresence::kRequired,

@@ -11,6 +11,9 @@
 
 namespace upkie_rl {
 
+/// The key of the per-joint servo maps in the spine's action and observation dictionaries.
+inline constexpr std::string_view kServoMapKey = "servo";
+
 /// One field of a ServoCommand as every wire format spells it (the spine's action
 /// dictionary `servo.<joint>.<key>`, the servos environment's flat action `<joint>.<key>`,
 /// error messages).

@@ -23,7 +23,7 @@ void write_servo_action_msgpack(const ServoAction& action, msgpack::sbuffer& buf
   buffer.clear();
   msgpack::packer<msgpack::sbuffer> packer(buffer);
   packer.pack_map(1);
-  pack_key(packer, "servo");
+  pack_key(packer, kServoMapKey);
   packer.pack_map(kNumServos);
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const ServoCommand& command = action[i];
@@ -46,8 +46,8 @@ ServoAction spine_default_servo_action() {
 
 void read_servo_action(const Dictionary& dictionary, ServoAction& action,
                        const std::array<double, kNumServos>* maximum_torques) {
-  if (!dictionary.has("servo")) return;
-  const Dictionary& servos = dictionary.at("servo");
+  if (!dictionary.has(kServoMapKey)) return;
+  const Dictionary& servos = dictionary.at(kServoMapKey);
   if (!servos.is_map()) throw SpineError("action key 'servo' is not a map");
   for (std::size_t i = 0; i < kNumServos; ++i) {
     if (!servos.has(kServoNames[i])) continue;
