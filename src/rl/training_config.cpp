@@ -176,8 +176,12 @@ bool uses_hand_gradient(const TrainingConfig& config) {
           hand_gradient_covers(config.policy.activation));
 }
 
+std::int64_t steps_per_env(std::int64_t n_steps, std::int64_t num_envs) {
+  return std::max<std::int64_t>(1, n_steps / std::max<std::int64_t>(1, num_envs));
+}
+
 std::int64_t TrainingConfig::steps_per_env() const {
-  return std::max<std::int64_t>(1, ppo.n_steps / std::max<std::int64_t>(1, num_envs));
+  return upkie_rl::steps_per_env(ppo.n_steps, num_envs);
 }
 
 void TrainingConfig::declare_options(OptionTable& table) {
@@ -247,8 +251,9 @@ void PpoConfig::declare_options(OptionTable& table, const std::int64_t& num_envs
   table.add_integer<I>("ppo.batch_size", &batch_size, std::numeric_limits<I>::min(),
                        std::numeric_limits<I>::max(), "minibatch size", [this, &num_envs] {
                          if (batch_size < 1) return std::string("must be at least 1");
-                         const I steps = std::max<I>(1, n_steps / std::max<I>(1, num_envs));
-                         if (batch_size <= steps * num_envs) return std::string();
+                         if (batch_size <= steps_per_env(n_steps, num_envs) * num_envs) {
+                           return std::string();
+                         }
                          return std::string("must not exceed the steps per update");
                        });
   table.add_integer<I>("ppo.n_epochs", &n_epochs, 1, 10'000, "passes over each rollout");

@@ -45,6 +45,11 @@ enum class GradientMethod {
 /// "auto", "hand" or "autograd".
 const char* gradient_method_name(GradientMethod method);
 
+/// Steps each of `num_envs` environments collects per update of `n_steps` (all
+/// environments together): n_steps / num_envs, at least 1. The rollout's length and the
+/// bound of ppo.batch_size.
+std::int64_t steps_per_env(std::int64_t n_steps, std::int64_t num_envs);
+
 /// PPO hyperparameters with SB3 names and defaults of the seed.
 struct PpoConfig {
   std::int64_t total_timesteps = 1'000'000;
@@ -109,7 +114,7 @@ struct TrainingConfig {
   /// curriculum_steps), or 1 without a curriculum.
   double randomization_scale(std::int64_t timesteps) const;
 
-  /// Steps each environment collects per update: n_steps / num_envs (at least 1).
+  /// Steps each environment collects per update: steps_per_env(ppo.n_steps, num_envs).
   std::int64_t steps_per_env() const;
 
   /// Declares every key (dotted, in YAML order) with its range, rules and help: the one
