@@ -306,10 +306,12 @@ bool cpu_has_avx2_fma() { return false; }
 
 #endif
 
-std::int64_t widest_layer(const ActorCriticLayout& layout) {
+std::int64_t widest_layer(const ActorCriticNetworks& networks) {
   std::int64_t width = 1;
-  for (const auto* network : {&layout.actor, &layout.critic}) {
-    for (const DenseLayerLayout& layer : *network) width = std::max({width, layer.in, layer.out});
+  for (const Mlp* network : {&networks.actor, &networks.critic}) {
+    for (const DenseLayerLayout& layer : network->layers()) {
+      width = std::max({width, layer.in, layer.out});
+    }
   }
   return width;
 }
@@ -397,54 +399,44 @@ bool PpoGradient::covers(Activation activation) { return hand_gradient_covers(ac
 PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
                          PpoGradientKernel kernel)
     : avx2_(kernel == PpoGradientKernel::kFastest && cpu_has_avx2_fma()),
-      activation_(policy.config().activation),
-      observation_size_(policy.observation_size()),
-      action_size_(policy.action_size()),
       max_batch_size_(max_batch_size),
-      layout_(actor_critic_layout(policy.observation_size(), policy.action_size(),
-                                  policy.config().actor_hidden_sizes,
-                                  policy.config().critic_hidden_sizes)) {
+      networks_(actor_critic_networks(
+          policy.observation_size(), policy.action_size(), policy.config().actor_hidden_sizes,
+          policy.config().critic_hidden_sizes, policy.config().activation)) {
   if (max_batch_size < 1) throw std::invalid_argument("PpoGradient: max_batch_size must be >= 1");
-  if (!covers(activation_)) {
+  if (!covers(policy.config().activation)) {
     throw std::invalid_argument(std::string("PpoGradient: the hand-written gradient covers relu "
                                             "and tanh, not ") +
-                                activation_name(activation_) +
+                                activation_name(policy.config().activation) +
                                 " (train with ppo.gradient: " + "autograd)");
   }
   const auto rows = static_cast<std::size_t>(max_batch_size);
-  const auto allocate = [rows, this](Network& network,
-                                     const std::vector<DenseLayerLayout>& layout) {
-    network.mlp = Mlp(layout, activation_);
-    for (const DenseLayerLayout& layer : layout) {
-      network.outputs.emplace_back(rows * static_cast<std::size_t>(layer.out));
-    }
-  };
-  allocate(actor_, layout_.actor);
-  allocate(critic_, layout_.critic);
-  const std::size_t widest = rows * static_cast<std::size_t>(widest_layer(layout_));
-  output_gradient_.resize(widest);
-  input_gradient_.resize(widest);
   std::int64_t largest_weight = 0;
-  for (const auto* network : {&layout_.actor, &layout_.critic}) {
-    for (const DenseLayerLayout& layer : *network) {
+  for (auto [mlp, outputs] : {std::pair{&networks_.actor, &actor_outputs_},
+                              std::pair{&networks_.critic, &critic_outputs_}}) {
+    for (const DenseLayerLayout& layer : mlp->layers()) {
+      outputs->emplace_back(rows * static_cast<std::size_t>(layer.out));
       largest_weight = std::max(largest_weight, layer.in * layer.out);
     }
   }
+  const std::size_t widest = rows * static_cast<std::size_t>(widest_layer(networks_));
+  output_gradient_.resize(widest);
+  input_gradient_.resize(widest);
   transposed_weight_.resize(static_cast<std::size_t>(largest_weight));
   log_prob_gradient_.resize(rows);
   advantages_.resize(rows);
 }
 
-void PpoGradient::forward(Network& network, const float* parameters, const float* input,
-                          std::int64_t rows) {
-  const bool relu = activation_ == Activation::kReLU;  // else tanh: covers() allows no other
+void PpoGradient::forward(const Mlp& mlp, LayerOutputs& outputs, const float* parameters,
+                          const float* input, std::int64_t rows) {
+  const bool relu = mlp.activation() == Activation::kReLU;  // else tanh: covers() allows no other
   const float* x = input;
-  for (std::size_t i = 0; i < network.mlp.layers().size(); ++i) {
-    const DenseLayerLayout& layer = network.mlp.layers()[i];
-    const bool hidden = network.mlp.activated(i);
+  for (std::size_t i = 0; i < mlp.layers().size(); ++i) {
+    const DenseLayerLayout& layer = mlp.layers()[i];
+    const bool hidden = mlp.activated(i);
     const ConstMatrixMap in(x, rows, layer.in);
     const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
-    float* y_data = network.outputs[i].data();
+    float* y_data = outputs[i].data();
     MatrixMap y(y_data, rows, layer.out);
     if (avx2_) {
       // y = x·Wᵀ + b with Wᵀ copied row-major (in x out) for the kernel.
@@ -473,17 +465,17 @@ void PpoGradient::forward(Network& network, const float* parameters, const float
   }
 }
 
-void PpoGradient::backward(const Network& network, const float* parameters, const float* input,
-                           std::int64_t rows, float* gradients) {
-  const bool relu = activation_ == Activation::kReLU;  // else tanh: covers() allows no other
+void PpoGradient::backward(const Mlp& mlp, const LayerOutputs& outputs, const float* parameters,
+                           const float* input, std::int64_t rows, float* gradients) {
+  const bool relu = mlp.activation() == Activation::kReLU;  // else tanh: covers() allows no other
   // output_gradient_ holds ∂L/∂(output of the last layer) on entry, and ∂L/∂z (before the
   // activation) of the layer below at the end of each iteration. Through the activation,
   // from its output y: relu passes the gradient where y > 0 (none at 0, like torch's
   // threshold_backward); tanh' = 1 − y².
   // Every layer below the output layer is activated (Mlp::activated).
-  for (std::size_t k = network.mlp.layers().size(); k-- > 0;) {
-    const DenseLayerLayout& layer = network.mlp.layers()[k];
-    const float* in_data = k == 0 ? input : network.outputs[k - 1].data();
+  for (std::size_t k = mlp.layers().size(); k-- > 0;) {
+    const DenseLayerLayout& layer = mlp.layers()[k];
+    const float* in_data = k == 0 ? input : outputs[k - 1].data();
     const ConstMatrixMap in(in_data, rows, layer.in);
     const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
     MatrixMap d_output(output_gradient_.data(), rows, layer.out);
@@ -513,20 +505,21 @@ void PpoGradient::backward(const Network& network, const float* parameters, cons
 
 bool PpoGradient::same_shape(const ActorCritic& policy) const {
   const PolicyConfig& config = policy.config();
-  if (policy.observation_size() != observation_size_ || policy.action_size() != action_size_ ||
-      config.activation != activation_ ||
-      config.actor_hidden_sizes.size() + 1 != layout_.actor.size() ||
-      config.critic_hidden_sizes.size() + 1 != layout_.critic.size() ||
-      policy.flat_parameters().numel() != layout_.size) {
-    return false;
-  }
-  for (std::size_t i = 0; i < config.actor_hidden_sizes.size(); ++i) {
-    if (config.actor_hidden_sizes[i] != layout_.actor[i].out) return false;
-  }
-  for (std::size_t i = 0; i < config.critic_hidden_sizes.size(); ++i) {
-    if (config.critic_hidden_sizes[i] != layout_.critic[i].out) return false;
-  }
-  return true;
+  // The hidden widths, then the output layer.
+  const auto same_widths = [](const Mlp& mlp, const std::vector<std::int64_t>& hidden) {
+    const std::vector<DenseLayerLayout>& layers = mlp.layers();
+    if (hidden.size() + 1 != layers.size()) return false;
+    for (std::size_t i = 0; i < hidden.size(); ++i) {
+      if (hidden[i] != layers[i].out) return false;
+    }
+    return true;
+  };
+  return policy.observation_size() == networks_.actor.input_size() &&
+         policy.action_size() == networks_.actor.output_size() &&
+         config.activation == networks_.actor.activation() &&
+         same_widths(networks_.actor, config.actor_hidden_sizes) &&
+         same_widths(networks_.critic, config.critic_hidden_sizes) &&
+         policy.flat_parameters().numel() == networks_.size;
 }
 
 namespace {
@@ -675,8 +668,9 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
   if (!same_shape(policy)) {
     throw std::invalid_argument("PpoGradient: the policy's shape differs from the constructor's");
   }
-  check_span(batch.observations, n * observation_size_, "observations");
-  check_span(batch.actions, n * action_size_, "actions");
+  const std::int64_t action_size = networks_.actor.output_size();
+  check_span(batch.observations, n * networks_.actor.input_size(), "observations");
+  check_span(batch.actions, n * action_size, "actions");
   check_span(batch.old_log_prob, n, "old_log_prob");
   check_span(batch.old_values, n, "old_values");
   check_span(batch.advantages, n, "advantages");
@@ -684,31 +678,31 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
 
   const float* parameters = policy.flat_parameters().data_ptr<float>();
   float* gradients = policy.flat_gradients().data_ptr<float>();
-  forward(actor_, parameters, batch.observations.data(), n);
-  forward(critic_, parameters, batch.observations.data(), n);
+  forward(networks_.actor, actor_outputs_, parameters, batch.observations.data(), n);
+  forward(networks_.critic, critic_outputs_, parameters, batch.observations.data(), n);
   normalise_advantages(batch.advantages, config.normalize_advantage, advantages_.data());
 
   // Policy term: ∂L/∂μ into the actor's output gradient, ∂L/∂log σ straight into the flat
   // gradient, then back through the actor.
-  const GaussianPolicy gaussian{actor_.outputs.back().data(), parameters + layout_.log_std,
-                                action_size_};
+  const GaussianPolicy gaussian{actor_outputs_.back().data(), parameters + networks_.log_std,
+                                action_size};
   const SurrogateSums sums =
       surrogate_term(batch, gaussian, advantages_.data(), config, log_prob_gradient_.data());
   gaussian_gradients(batch, gaussian, log_prob_gradient_.data(), config.ent_coef,
-                     output_gradient_.data(), gradients + layout_.log_std);
-  backward(actor_, parameters, batch.observations.data(), n, gradients);
+                     output_gradient_.data(), gradients + networks_.log_std);
+  backward(networks_.actor, actor_outputs_, parameters, batch.observations.data(), n, gradients);
 
   // Value term, then back through the critic.
   const double value_sum =
-      value_term(batch, critic_.outputs.back().data(), config, output_gradient_.data());
-  backward(critic_, parameters, batch.observations.data(), n, gradients);
+      value_term(batch, critic_outputs_.back().data(), config, output_gradient_.data());
+  backward(networks_.critic, critic_outputs_, parameters, batch.observations.data(), n, gradients);
 
   const double inverse_n = 1.0 / static_cast<double>(n);
   PpoLossStatistics statistics;
   statistics.policy_gradient_loss = -sums.surrogate * inverse_n;
   statistics.value_loss = value_sum * inverse_n;
   statistics.entropy_loss = -gaussian_entropy(
-      std::span<const float>(gaussian.log_std, static_cast<std::size_t>(action_size_)));
+      std::span<const float>(gaussian.log_std, static_cast<std::size_t>(action_size)));
   statistics.approx_kl = sums.kl * inverse_n;
   statistics.clip_fraction = static_cast<double>(sums.clipped) * inverse_n;
   statistics.total = statistics.policy_gradient_loss + config.vf_coef * statistics.value_loss;

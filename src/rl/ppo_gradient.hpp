@@ -96,26 +96,22 @@ class PpoGradient {
   bool uses_avx2() const { return avx2_; }
 
  private:
-  /// Activations of one MLP: outputs[i] holds layer i's output (after the activation for
-  /// hidden layers), max_batch_size x mlp.layers()[i].out, row-major.
-  struct Network {
-    Mlp mlp;
-    std::vector<std::vector<float>> outputs;
-  };
+  /// Outputs of one MLP's layers: [i] holds layer i's output (after the activation for
+  /// hidden layers), max_batch_size x layer i's width, row-major.
+  using LayerOutputs = std::vector<std::vector<float>>;
 
   bool same_shape(const ActorCritic& policy) const;
-  void forward(Network& network, const float* parameters, const float* input, std::int64_t rows);
-  void backward(const Network& network, const float* parameters, const float* input,
-                std::int64_t rows, float* gradients);
+  void forward(const Mlp& mlp, LayerOutputs& outputs, const float* parameters, const float* input,
+               std::int64_t rows);
+  void backward(const Mlp& mlp, const LayerOutputs& outputs, const float* parameters,
+                const float* input, std::int64_t rows, float* gradients);
 
   bool avx2_;
-  Activation activation_;
-  std::int64_t observation_size_;
-  std::int64_t action_size_;
   std::int64_t max_batch_size_;
-  ActorCriticLayout layout_;
-  Network actor_;
-  Network critic_;
+  /// The policy's shape, held once: its layers, activation, sizes and flat layout.
+  ActorCriticNetworks networks_;
+  LayerOutputs actor_outputs_;
+  LayerOutputs critic_outputs_;
   // ∂L/∂z (z: pre-activation output) of the layer being back-propagated and of the one
   // below it, each max_batch_size x (widest layer), row-major, swapped after each layer.
   // The output layer's is ∂L/∂μ or ∂L/∂V.

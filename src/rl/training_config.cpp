@@ -163,13 +163,6 @@ void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& con
 
 }  // namespace
 
-const char* gradient_method_name(GradientMethod method) {
-  for (const auto& [known, name] : kGradientMethods) {
-    if (known == method) return name;
-  }
-  return "unknown";
-}
-
 bool uses_hand_gradient(const TrainingConfig& config) {
   return config.ppo.gradient == GradientMethod::kHand ||
          (config.ppo.gradient == GradientMethod::kAuto &&

@@ -42,9 +42,6 @@ enum class GradientMethod {
   kAutograd,  ///< libtorch's autograd (rl/autograd_ppo_gradient.hpp): every activation.
 };
 
-/// "auto", "hand" or "autograd".
-const char* gradient_method_name(GradientMethod method);
-
 /// Steps each of `num_envs` environments collects per update of `n_steps` (all
 /// environments together): n_steps / num_envs, at least 1. The rollout's length and the
 /// bound of ppo.batch_size.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "rl/point_mass_vector_env.hpp"
 
@@ -91,29 +92,48 @@ TEST(Ppo, AnEluNetworkTrainsThroughAutograd) {
 }
 
 // ppo.gradient auto uses the hand-written gradient where it covers the activation and
-// autograd elsewhere: for every other activation, an update with auto is bit for bit the
-// update with ppo.gradient autograd (the autograd gradient itself is checked against the
-// loss's derivative in tests/rl/ppo_gradient_test.cpp).
-TEST(Ppo, AutoFallsBackToAutogradForEveryActivationTheHandGradientDoesNotCover) {
+// autograd elsewhere. The two paths sum in different orders, so that an update's last bits
+// tell which one ran: with auto, the update must be bit for bit that of the path auto
+// stands for, and for relu and tanh differ in its last bits from autograd's while agreeing
+// with it closely (the gradients themselves are compared in tests/rl/ppo_gradient_test.cpp).
+// Odd layer widths, so that the kernels' tails run too.
+TEST(Ppo, AutoTakesTheHandGradientWhereItCoversTheActivationAndAutogradElsewhere) {
   for (const Activation activation : all_activations()) {
     SCOPED_TRACE(activation_name(activation));
     TrainingConfig config = point_mass_config();
     config.policy.activation = activation;
-    TrainingConfig autograd_config = config;
-    autograd_config.ppo.gradient = GradientMethod::kAutograd;
-    PointMassVectorEnv env(4), autograd_env(4);
-    Ppo ppo(env, config), reference(autograd_env, autograd_config);
+    config.policy.actor_hidden_sizes = {7, 5};
+    config.policy.critic_hidden_sizes = {9};
+    // The parameters after one iteration with `method`, and whether it ran the hand path.
+    const auto update = [&config](GradientMethod method) {
+      TrainingConfig method_config = config;
+      method_config.ppo.gradient = method;
+      PointMassVectorEnv env(4);
+      Ppo ppo(env, method_config);
+      ppo.reset_environments(2);
+      const torch::Tensor initial = ppo.policy().flat_parameters().clone();
+      ppo.iterate();
+      const torch::Tensor after = ppo.policy().flat_parameters().clone();
+      EXPECT_GT((after - initial).norm().item<double>(), 1e-4);
+      return std::pair{after, ppo.uses_hand_gradient()};
+    };
+    const auto [with_auto, auto_used_hand] = update(GradientMethod::kAuto);
+    const auto [with_autograd, autograd_used_hand] = update(GradientMethod::kAutograd);
+    EXPECT_FALSE(autograd_used_hand);
     const bool covered = activation == Activation::kReLU || activation == Activation::kTanh;
-    EXPECT_EQ(ppo.uses_hand_gradient(), covered);
-    EXPECT_FALSE(reference.uses_hand_gradient());
-    if (covered) continue;  // tests/rl/ppo_gradient_test.cpp compares those with autograd.
-    ppo.reset_environments(2);
-    reference.reset_environments(2);
-    const torch::Tensor initial = ppo.policy().flat_parameters().clone();
-    ppo.iterate();
-    reference.iterate();
-    EXPECT_GT((ppo.policy().flat_parameters() - initial).norm().item<double>(), 1e-4);
-    EXPECT_TRUE(torch::equal(ppo.policy().flat_parameters(), reference.policy().flat_parameters()));
+    EXPECT_EQ(auto_used_hand, covered);
+    if (covered) {
+      const auto [with_hand, hand_used_hand] = update(GradientMethod::kHand);
+      EXPECT_TRUE(hand_used_hand);
+      EXPECT_TRUE(torch::equal(with_auto, with_hand));
+      EXPECT_FALSE(torch::equal(with_auto, with_autograd));
+      EXPECT_LT((with_auto - with_autograd).abs().max().item<double>(), 1e-4);
+    } else {
+      EXPECT_TRUE(torch::equal(with_auto, with_autograd));
+      config.ppo.gradient = GradientMethod::kHand;
+      PointMassVectorEnv env(4);
+      EXPECT_THROW(Ppo(env, config), std::invalid_argument);
+    }
   }
 }
 
