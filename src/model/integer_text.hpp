@@ -7,6 +7,8 @@
 #include <optional>
 #include <string_view>
 
+#include "model/trim.hpp"
+
 namespace upkie_rl {
 
 /// The integer `text` spells in decimal, spaces, tabs and line ends around it allowed; or
@@ -14,10 +16,8 @@ namespace upkie_rl {
 /// characters) or does not fit in T. Callers word the error, naming their key.
 template <class T>
 std::optional<T> integer_from_text(std::string_view text) {
-  constexpr std::string_view kSpace = " \t\r\n";
-  const std::size_t begin = text.find_first_not_of(kSpace);
-  if (begin == std::string_view::npos) return std::nullopt;
-  text = text.substr(begin, text.find_last_not_of(kSpace) - begin + 1);
+  text = trim(text);
+  if (text.empty()) return std::nullopt;
   T value{};
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;

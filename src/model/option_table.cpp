@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "model/integer_text.hpp"
+#include "model/number_text.hpp"
 #include "model/setting_bounds.hpp"
 
 namespace upkie_rl {
@@ -21,13 +22,6 @@ std::string format_double(double value) {
   return out.str();
 }
 
-// A value exactly as it reads back ("0.0003", "1e-08").
-std::string format_exact(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
-
 std::string join(const std::vector<std::string>& items, const char* separator) {
   std::string joined;
   for (const std::string& item : items) {
@@ -37,22 +31,15 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
   return joined;
 }
 
-std::string trim(const std::string& text) {
-  const auto begin = text.find_first_not_of(" \t\r\n");
-  if (begin == std::string::npos) return "";
-  const auto end = text.find_last_not_of(" \t\r\n");
-  return text.substr(begin, end - begin + 1);
-}
-
 bool read_double(const std::string& raw, double* value) {
-  const std::string text = trim(raw);
+  const std::string_view text = trim(raw);
   const char* end = text.data() + text.size();
   const auto [stop, error] = std::from_chars(text.data(), end, *value);
   return !text.empty() && error == std::errc() && stop == end;
 }
 
 bool read_boolean(const std::string& raw, bool* value) {
-  std::string text = trim(raw);
+  std::string text(trim(raw));
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (text == "true" || text == "yes" || text == "on" || text == "1") {
@@ -66,7 +53,7 @@ bool read_boolean(const std::string& raw, bool* value) {
 }
 
 bool read_integer_list(const std::string& raw, std::vector<std::int64_t>* value) {
-  std::string text = trim(raw);
+  std::string text(trim(raw));
   if (text.size() >= 2 && text.front() == '[' && text.back() == ']') {
     text = text.substr(1, text.size() - 2);
   }
@@ -112,24 +99,6 @@ std::string expected(const OptionInfo& info) {
 
 }  // namespace
 
-bool read_integer_text(const std::string& text, std::int64_t* value) {
-  const auto parsed = integer_from_text<std::int64_t>(text);
-  if (parsed) *value = *parsed;
-  return parsed.has_value();
-}
-
-bool read_integer_text(const std::string& text, std::uint64_t* value) {
-  const auto parsed = integer_from_text<std::uint64_t>(text);
-  if (parsed) *value = *parsed;
-  return parsed.has_value();
-}
-
-bool read_integer_text(const std::string& text, int* value) {
-  const auto parsed = integer_from_text<int>(text);
-  if (parsed) *value = *parsed;
-  return parsed.has_value();
-}
-
 void OptionTable::add(Entry entry) {
   // A name declared twice would read into one field and leave the other at its default.
   if (find(entry.info.name) != nullptr) {
@@ -145,7 +114,7 @@ void OptionTable::add_real(std::string name, double* target, double min, double 
                            format_double(*target), min, max);
   entry.info.min_excluded = min_excluded;
   entry.read = [target](const std::string& text) { return read_double(text, target); };
-  entry.write = [target] { return format_exact(*target); };
+  entry.write = [target] { return shortest_text(*target); };
   entry.check_range = [target, min, max, min_excluded](const std::string& where,
                                                        const std::string& shown) {
     check_setting(where, *target, shown, min, max,
@@ -163,9 +132,9 @@ void OptionTable::add_text(std::string name, std::string* target, std::string he
   Entry entry;
   entry.info = option_info(std::move(name), OptionInfo::Type::kText, std::move(help), *target);
   entry.read = [target](const std::string& text) {
-    const std::string trimmed = trim(text);
+    const std::string_view trimmed = trim(text);
     if (trimmed.empty()) return false;
-    *target = trimmed;
+    *target = std::string(trimmed);
     return true;
   };
   entry.write = [target] { return *target; };

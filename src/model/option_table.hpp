@@ -9,12 +9,15 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "model/integer_text.hpp"
+#include "model/setting_bounds.hpp"
 #include "model/trim.hpp"
 
 namespace upkie_rl {
@@ -155,12 +158,7 @@ class OptionTable {
   std::vector<Rule> rules_;
 };
 
-// Template definitions, kept beside the declarations so that any integer or enum type works.
-
-/// Parses an integer (model/integer_text.hpp's spellings); false on anything else.
-bool read_integer_text(const std::string& text, std::int64_t* value);
-bool read_integer_text(const std::string& text, std::uint64_t* value);
-bool read_integer_text(const std::string& text, int* value);
+// Template definitions, kept beside the declarations so that any integer type works.
 
 template <class Integer>
 void OptionTable::add_integer(std::string name, Integer* target, Integer min, Integer max,
@@ -169,13 +167,14 @@ void OptionTable::add_integer(std::string name, Integer* target, Integer min, In
   entry.info =
       option_info(std::move(name), OptionInfo::Type::kInteger, std::move(help),
                   std::to_string(*target), static_cast<double>(min), static_cast<double>(max));
-  entry.read = [target](const std::string& text) { return read_integer_text(text, target); };
+  entry.read = [target](const std::string& text) {
+    const std::optional<Integer> parsed = integer_from_text<Integer>(text);
+    if (parsed) *target = *parsed;
+    return parsed.has_value();
+  };
   entry.write = [target] { return std::to_string(*target); };
   entry.check_range = [target, min, max](const std::string& where, const std::string& shown) {
-    if (*target >= min && *target <= max) return;
-    throw std::invalid_argument(where + ": " + (shown.empty() ? std::to_string(*target) : shown) +
-                                " is outside [" + std::to_string(min) + ", " + std::to_string(max) +
-                                "]");
+    check_setting(where, *target, shown, min, max);
   };
   entry.rule = std::move(rule);
   add(std::move(entry));

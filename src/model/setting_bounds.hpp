@@ -5,7 +5,9 @@
 /// throws std::invalid_argument with one line naming the setting, its value and the limit,
 /// so the command line and Python report the same thing.
 
+#include <concepts>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 
 namespace upkie_rl {
@@ -23,8 +25,22 @@ void check_setting(const std::string& name, double value, double min, double max
 void check_setting(const std::string& name, double value, const std::string& shown, double min,
                    double max, LowerBound lower = LowerBound::kIncluded);
 
+/// Throws unless min <= value <= max, showing the value as `shown` (as the user wrote it;
+/// "" for its decimal text).
+template <std::integral Integer>
+void check_setting(const std::string& name, Integer value, const std::string& shown, Integer min,
+                   Integer max) {
+  if (value >= min && value <= max) return;
+  throw std::invalid_argument(name + ": " + (shown.empty() ? std::to_string(value) : shown) +
+                              " is outside [" + std::to_string(min) + ", " + std::to_string(max) +
+                              "]");
+}
+
 /// Throws unless min <= value <= max.
-void check_setting(const std::string& name, std::int64_t value, std::int64_t min, std::int64_t max);
+inline void check_setting(const std::string& name, std::int64_t value, std::int64_t min,
+                          std::int64_t max) {
+  check_setting(name, value, "", min, max);
+}
 
 /// Bytes of physical memory of this machine (0 when unknown).
 std::uint64_t physical_memory_bytes();

@@ -3,11 +3,13 @@
 #include <unistd.h>
 
 #include <charconv>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "model/number_text.hpp"
 
 namespace upkie_rl {
 
@@ -30,9 +32,7 @@ std::string join(const std::vector<std::string>& cells) {
 
 std::string format_value(float value) {
   if (std::isnan(value)) return "";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
+  return shortest_text(value);
 }
 
 double parse_cell(const std::string& cell, const std::string& where) {

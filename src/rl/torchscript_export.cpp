@@ -2,9 +2,9 @@
 
 #include <torch/script.h>
 
-#include <charconv>
 #include <stdexcept>
 
+#include "model/number_text.hpp"
 #include "policy/checkpoint_header.hpp"
 #include "rl/ppo_checkpoint.hpp"
 
@@ -13,9 +13,7 @@ namespace upkie_rl {
 namespace {
 
 std::string literal(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  std::string text(buffer, result.ptr);
+  std::string text = shortest_text(value);
   if (text.find_first_of(".e") == std::string::npos) text += ".0";
   return text;
 }

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "model/setting_bounds.hpp"
+#include "model/trim.hpp"
 #include "policy/network_limits.hpp"
 #include "rl/hand_gradient_activations.hpp"
 #include "vec/make_vector_env.hpp"
@@ -18,13 +19,6 @@
 namespace upkie_rl {
 
 namespace {
-
-std::string trim(const std::string& text) {
-  const auto begin = text.find_first_not_of(" \t\r\n");
-  if (begin == std::string::npos) return "";
-  const auto end = text.find_last_not_of(" \t\r\n");
-  return text.substr(begin, end - begin + 1);
-}
 
 [[noreturn]] void bad_value(const std::string& key, const std::string& value,
                             const std::string& expected) {
@@ -106,7 +100,8 @@ void set_env_option(TrainingConfig& config, const std::string& name, const std::
 void set_key(TrainingConfig& config, const OptionTable& table, const std::string& key,
              const std::string& value) {
   if (key.rfind(kEnvOptionsPrefix, 0) == 0) {
-    set_env_option(config, key.substr(std::string(kEnvOptionsPrefix).size()), trim(value));
+    set_env_option(config, key.substr(std::string(kEnvOptionsPrefix).size()),
+                   std::string(trim(value)));
     return;
   }
   if (!table.contains(key)) throw std::invalid_argument("unknown config key '" + key + "'");
@@ -340,7 +335,7 @@ void apply_overrides(TrainingConfig& config, const std::vector<std::string>& ove
     if (equal == std::string::npos || equal == 0) {
       throw std::invalid_argument("override '" + item + "': expected key=value");
     }
-    set_key(config, table, trim(item.substr(0, equal)), item.substr(equal + 1));
+    set_key(config, table, std::string(trim(item.substr(0, equal))), item.substr(equal + 1));
   }
 }
 
