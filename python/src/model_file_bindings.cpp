@@ -5,14 +5,18 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cctype>
 #include <string>
+#include <string_view>
 
 #include "bindings.hpp"
 #include "onnx/onnx_error.hpp"
 #include "onnx/onnx_export.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/checkpoint_gate.hpp"
+#include "policy/checkpoint_header.hpp"
 #include "policy/deployed_policy.hpp"
+#include "policy/model_header.hpp"
 #include "policy/provenance.hpp"
 
 namespace py = pybind11;
@@ -50,6 +54,31 @@ void write_model_checkpoint(const std::string& path, const std::string& header,
   write_checkpoint_file(file, path);
 }
 
+// A key's Python name: its C++ constant's without the k, in upper snake case
+// ("kNumTimesteps" -> "NUM_TIMESTEPS", "kNUpdates" -> "N_UPDATES").
+std::string python_name(std::string_view constant) {
+  const std::string_view name = constant.substr(1);
+  std::string upper;
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const bool starts_word =
+        i > 0 && std::isupper(static_cast<unsigned char>(name[i])) &&
+        (std::islower(static_cast<unsigned char>(name[i - 1])) ||
+         (i + 1 < name.size() && std::islower(static_cast<unsigned char>(name[i + 1]))));
+    if (starts_word) upper += '_';
+    upper += static_cast<char>(std::toupper(static_cast<unsigned char>(name[i])));
+  }
+  return upper;
+}
+
+// {Python name: wire text} of every checkpoint header key.
+py::dict checkpoint_header_keys() {
+  py::dict keys;
+  for (const checkpoint_header::NamedKey& key : checkpoint_header::kAllKeys) {
+    keys[py::str(python_name(key.constant))] = key.text;
+  }
+  return keys;
+}
+
 }  // namespace
 
 void bind_model_files(py::module_& module) {
@@ -68,6 +97,12 @@ void bind_model_files(py::module_& module) {
         return model_provenance(nlohmann::json::parse(header)).dump();
       },
       py::arg("header"), "Complete provenance (JSON text) of a checkpoint header (JSON text).");
+  module.def("checkpoint_header_keys", &checkpoint_header_keys,
+             "{name: key} of every key of a checkpoint's JSON header and tensors, from their one "
+             "declaration (e.g. NUM_TIMESTEPS: 'num_timesteps').");
+  module.def(
+      "checkpoint_format", [] { return py::make_tuple(kCheckpointFormat, kCheckpointVersion); },
+      "(format text, version) that a checkpoint header's format and version entries hold.");
   module.def(
       "export_onnx",
       [](const std::string& model, const std::string& onnx) {

@@ -52,7 +52,10 @@ MAX_MEMBERS = 64
 ACTIVATIONS = {"Tanh": "tanh", "ReLU": "relu", "ELU": "elu", "LeakyReLU": "leaky_relu",
                "SiLU": "silu", "GELU": "gelu", "Sigmoid": "sigmoid", "Softplus": "softplus",
                "SELU": "selu"}
-_CHECKPOINT_FORMAT = "upkie-rl checkpoint"
+# The checkpoint header's keys and format, from their one declaration
+# (policy/checkpoint_header.hpp), e.g. _KEY["NUM_TIMESTEPS"] == "num_timesteps".
+_KEY = _core.checkpoint_header_keys()
+_CHECKPOINT_FORMAT, _CHECKPOINT_VERSION = _core.checkpoint_format()
 _IMPORT_SOURCE = "upkie_rl.sb3_convert import"
 
 
@@ -383,7 +386,8 @@ def import_sb3(
         data, contents, zip_path, env_id, options, normalization,
         observation_space, action_space, actor_hidden, critic_hidden, activation,
     )
-    _core.write_model_checkpoint(str(output), json.dumps(header), {"policy.parameters": parameters})
+    _core.write_model_checkpoint(str(output), json.dumps(header),
+                                 {_KEY["POLICY_PARAMETERS"]: parameters})
     return output
 
 
@@ -425,18 +429,19 @@ def _import_header(data, contents, zip_path, env_id, options, normalization, obs
     import yaml  # type: ignore[import-untyped]  # PyYAML ships no stubs; Debian has none
 
     return {
-        "format": _CHECKPOINT_FORMAT,
-        "version": 1,
-        "config": yaml.safe_dump(config, sort_keys=False),
-        "counters": {"num_timesteps": hyperparameters.get("num_timesteps", 0)},
-        "normalization": normalization,
-        "policy": {"observation_size": len(observation_space[0]),
-                   "action_size": len(action_space[0]),
-                   "actor_hidden_sizes": actor_hidden, "critic_hidden_sizes": critic_hidden,
-                   "activation": activation},
-        "observation_space": _space_json(observation_space),
-        "action_space": _space_json(action_space),
-        "provenance": provenance,
+        _KEY["FORMAT"]: _CHECKPOINT_FORMAT,
+        _KEY["VERSION"]: _CHECKPOINT_VERSION,
+        _KEY["CONFIG"]: yaml.safe_dump(config, sort_keys=False),
+        _KEY["COUNTERS"]: {_KEY["NUM_TIMESTEPS"]: hyperparameters.get("num_timesteps", 0)},
+        _KEY["NORMALIZATION"]: normalization,
+        _KEY["POLICY"]: {_KEY["OBSERVATION_SIZE"]: len(observation_space[0]),
+                         _KEY["ACTION_SIZE"]: len(action_space[0]),
+                         _KEY["ACTOR_HIDDEN_SIZES"]: actor_hidden,
+                         _KEY["CRITIC_HIDDEN_SIZES"]: critic_hidden,
+                         _KEY["ACTIVATION"]: activation},
+        _KEY["OBSERVATION_SPACE"]: _space_json(observation_space),
+        _KEY["ACTION_SPACE"]: _space_json(action_space),
+        _KEY["PROVENANCE"]: provenance,
     }
 
 
@@ -488,7 +493,7 @@ def _state_dict(parameters: np.ndarray, policy: dict) -> dict:
     """SB3's MlpPolicy state dict of upkie-rl's flat parameters (the inverse of import)."""
     import torch
 
-    observation_size, action_size = policy["observation_size"], policy["action_size"]
+    observation_size, action_size = policy[_KEY["OBSERVATION_SIZE"]], policy[_KEY["ACTION_SIZE"]]
     offset, state = 0, {}
 
     def take(shape):
@@ -499,8 +504,8 @@ def _state_dict(parameters: np.ndarray, policy: dict) -> dict:
         return torch.from_numpy(piece.copy())
 
     for net, hidden, head, head_size in (
-        ("policy_net", policy["actor_hidden_sizes"], "action_net", action_size),
-        ("value_net", policy["critic_hidden_sizes"], "value_net", 1),
+        ("policy_net", policy[_KEY["ACTOR_HIDDEN_SIZES"]], "action_net", action_size),
+        ("value_net", policy[_KEY["CRITIC_HIDDEN_SIZES"]], "value_net", 1),
     ):
         size = observation_size
         for i, out in enumerate(hidden):
@@ -527,30 +532,31 @@ def export_sb3(model: PathLike, output: PathLike, vecnormalize: Optional[PathLik
     model, output = Path(model), Path(output)
     header_text, tensors = _core.read_model_checkpoint(str(model))
     header = json.loads(header_text)
-    policy = header["policy"]
-    normalization = header.get("normalization")
+    policy = header[_KEY["POLICY"]]
+    normalization = header.get(_KEY["NORMALIZATION"])
     normalizes = bool(normalization and normalization["config"]["observations"])
     if normalizes and vecnormalize is None:
         raise ConversionError(
             f"{model}: the model normalises observations; give a VecNormalize output path "
             "(--vecnormalize) or SB3 would see raw observations"
         )
-    observation_space = _gym_box(header["observation_space"])
-    action_space = _gym_box(header["action_space"])
+    observation_space = _gym_box(header[_KEY["OBSERVATION_SPACE"]])
+    action_space = _gym_box(header[_KEY["ACTION_SPACE"]])
     torch_names = {ours: torch_name for torch_name, ours in ACTIVATIONS.items()}
-    if policy["activation"] not in torch_names:
-        raise ConversionError(f"{model}: activation {policy['activation']} has no SB3 equivalent")
-    activation = getattr(torch.nn, torch_names[policy["activation"]])
+    ours = policy[_KEY["ACTIVATION"]]
+    if ours not in torch_names:
+        raise ConversionError(f"{model}: activation {ours} has no SB3 equivalent")
+    activation = getattr(torch.nn, torch_names[ours])
     venv = _spaces_env(observation_space, action_space)
     provenance = json.loads(_core.model_provenance(header_text))
     ppo = PPO(
         "MlpPolicy", venv, device="cpu",
-        policy_kwargs={"net_arch": {"pi": policy["actor_hidden_sizes"],
-                                    "vf": policy["critic_hidden_sizes"]},
+        policy_kwargs={"net_arch": {"pi": policy[_KEY["ACTOR_HIDDEN_SIZES"]],
+                                    "vf": policy[_KEY["CRITIC_HIDDEN_SIZES"]]},
                        "activation_fn": activation},
         **_sb3_hyperparameters(provenance),
     )
-    ppo.policy.load_state_dict(_state_dict(tensors["policy.parameters"].ravel(), policy))
+    ppo.policy.load_state_dict(_state_dict(tensors[_KEY["POLICY_PARAMETERS"]].ravel(), policy))
     if isinstance(provenance.get("timesteps"), int):
         ppo.num_timesteps = provenance["timesteps"]
     ppo.save(output)

@@ -3,42 +3,77 @@
 /// The keys of a checkpoint's JSON header (policy/checkpoint_file.hpp), declared once for
 /// its writers (rl/ppo_checkpoint.cpp, rl/training_run.cpp, the SB3 import) and readers
 /// (policy/checkpoint_gate.cpp, policy/deployed_policy.cpp, policy/provenance.cpp, the
-/// trainer's resume), and for the exports that copy entries of it (TorchScript, ONNX).
+/// trainer's resume), for the exports that copy entries of it (TorchScript, ONNX), and for
+/// Python (_core.checkpoint_header_keys(), which upkie_rl/sb3_convert.py reads).
 /// The wire text is the one of every checkpoint written so far: these are its names.
+
+#include <string_view>
 
 namespace upkie_rl::checkpoint_header {
 
-/// kCheckpointFormat (policy/model_header.hpp).
-inline constexpr const char* kFormat = "format";
-/// kCheckpointVersion (policy/checkpoint_gate.hpp).
-inline constexpr const char* kVersion = "version";
-/// The resolved training configuration, YAML text.
-inline constexpr const char* kConfig = "config";
-/// The actor-critic's PolicyShape (policy/model_header.hpp).
-inline constexpr const char* kPolicy = "policy";
-/// The environment's spaces (policy/space_json.hpp).
-inline constexpr const char* kObservationSpace = "observation_space";
-inline constexpr const char* kActionSpace = "action_space";
-/// The VecNormalize state, null without normalisation.
-inline constexpr const char* kNormalization = "normalization";
-/// The trainer's counters (Ppo::counters_state), with the entries below.
-inline constexpr const char* kCounters = "counters";
-inline constexpr const char* kNumTimesteps = "num_timesteps";
-inline constexpr const char* kIterations = "iterations";
-inline constexpr const char* kNUpdates = "n_updates";
-/// The optimizer's state besides its moment tensors: {kStepCount: integer}.
-inline constexpr const char* kOptimizer = "optimizer";
-inline constexpr const char* kStepCount = "step_count";
-/// The training run's state: {kCheckpointsSaved: integer}.
-inline constexpr const char* kRun = "run";
-inline constexpr const char* kCheckpointsSaved = "checkpoints_saved";
-/// Where the model comes from (policy/provenance.hpp).
-inline constexpr const char* kProvenance = "provenance";
+// The one list: X(constant, wire text). It defines the constants below and the table of
+// kAllKeys, so that a key added here reaches C++ and Python (a list rather than separate
+// constants, because a separate table for the bindings could miss one).
+// - kFormat, kVersion: kCheckpointFormat (policy/model_header.hpp), kCheckpointVersion
+//   (policy/checkpoint_gate.hpp).
+// - kConfig: the resolved training configuration, YAML text.
+// - kPolicy: the actor-critic's PolicyShape (policy/model_header.hpp), whose entries are
+//   kObservationSize to kActivation.
+// - kObservationSpace, kActionSpace: the environment's spaces (policy/space_json.hpp).
+// - kNormalization: the VecNormalize state, null without normalisation.
+// - kCounters: the trainer's counters (Ppo::counters_state): kNumTimesteps to kEpisodes
+//   (the random generators' state as text, the recent episodes' statistics).
+// - kOptimizer: the optimizer's state besides its moment tensors: {kStepCount: integer}.
+// - kRun: the training run's state: {kCheckpointsSaved: integer}.
+// - kProvenance: where the model comes from (policy/provenance.hpp).
+// - kPolicyParameters, kOptimizerExpAvg, kOptimizerExpAvgSq: names of the checkpoint's
+//   tensors: the actor-critic's parameters in the order of policy/parameter_layout.hpp,
+//   and Adam's moments of the same length.
+// NOLINTBEGIN(cppcoreguidelines-macro-usage): an X-macro, the one way to declare each key
+// once for both its constant and the table.
+#define UPKIE_RL_CHECKPOINT_HEADER_KEYS(X)     \
+  X(kFormat, "format")                         \
+  X(kVersion, "version")                       \
+  X(kConfig, "config")                         \
+  X(kPolicy, "policy")                         \
+  X(kObservationSize, "observation_size")      \
+  X(kActionSize, "action_size")                \
+  X(kActorHiddenSizes, "actor_hidden_sizes")   \
+  X(kCriticHiddenSizes, "critic_hidden_sizes") \
+  X(kActivation, "activation")                 \
+  X(kObservationSpace, "observation_space")    \
+  X(kActionSpace, "action_space")              \
+  X(kNormalization, "normalization")           \
+  X(kCounters, "counters")                     \
+  X(kNumTimesteps, "num_timesteps")            \
+  X(kIterations, "iterations")                 \
+  X(kNUpdates, "n_updates")                    \
+  X(kRandomState, "random_state")              \
+  X(kEpisodes, "episodes")                     \
+  X(kOptimizer, "optimizer")                   \
+  X(kStepCount, "step_count")                  \
+  X(kRun, "run")                               \
+  X(kCheckpointsSaved, "checkpoints_saved")    \
+  X(kProvenance, "provenance")                 \
+  X(kPolicyParameters, "policy.parameters")    \
+  X(kOptimizerExpAvg, "optimizer.exp_avg")     \
+  X(kOptimizerExpAvgSq, "optimizer.exp_avg_sq")
 
-/// Names of the checkpoint's tensors: the actor-critic's parameters in the order of
-/// policy/parameter_layout.hpp, and Adam's moments of the same length.
-inline constexpr const char* kPolicyParameters = "policy.parameters";
-inline constexpr const char* kOptimizerExpAvg = "optimizer.exp_avg";
-inline constexpr const char* kOptimizerExpAvgSq = "optimizer.exp_avg_sq";
+#define UPKIE_RL_CHECKPOINT_HEADER_CONSTANT(name, text) inline constexpr const char* name = text;
+UPKIE_RL_CHECKPOINT_HEADER_KEYS(UPKIE_RL_CHECKPOINT_HEADER_CONSTANT)
+#undef UPKIE_RL_CHECKPOINT_HEADER_CONSTANT
+
+/// One key: its constant's name ("kNumTimesteps") and its wire text ("num_timesteps").
+struct NamedKey {
+  std::string_view constant;
+  const char* text;
+};
+
+#define UPKIE_RL_CHECKPOINT_HEADER_ENTRY(name, text) NamedKey{#name, text},
+/// Every key, in the order of the list.
+inline constexpr NamedKey kAllKeys[] = {
+    UPKIE_RL_CHECKPOINT_HEADER_KEYS(UPKIE_RL_CHECKPOINT_HEADER_ENTRY)};
+#undef UPKIE_RL_CHECKPOINT_HEADER_ENTRY
+// NOLINTEND(cppcoreguidelines-macro-usage)
 
 }  // namespace upkie_rl::checkpoint_header

@@ -16,11 +16,12 @@ namespace {
 /// The keys of the header's "policy" entry, each once, for the writer and the reader.
 template <typename Shape, typename Visitor>
 void visit_policy_shape_fields(Shape& shape, Visitor&& visit) {
-  visit("observation_size", shape.observation_size);
-  visit("action_size", shape.action_size);
-  visit("actor_hidden_sizes", shape.actor_hidden_sizes);
-  visit("critic_hidden_sizes", shape.critic_hidden_sizes);
-  visit("activation", shape.activation);
+  using namespace checkpoint_header;
+  visit(kObservationSize, shape.observation_size);
+  visit(kActionSize, shape.action_size);
+  visit(kActorHiddenSizes, shape.actor_hidden_sizes);
+  visit(kCriticHiddenSizes, shape.critic_hidden_sizes);
+  visit(kActivation, shape.activation);
 }
 
 }  // namespace

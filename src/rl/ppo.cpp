@@ -309,8 +309,8 @@ nlohmann::json Ppo::counters_state() const {
   return {{checkpoint_header::kNumTimesteps, num_timesteps_},
           {checkpoint_header::kIterations, iterations_},
           {checkpoint_header::kNUpdates, n_updates_},
-          {"random_state", random_state.str()},
-          {"episodes", episodes_.state()}};
+          {checkpoint_header::kRandomState, random_state.str()},
+          {checkpoint_header::kEpisodes, episodes_.state()}};
 }
 
 void Ppo::load_counters_state(const nlohmann::json& state) {
@@ -318,7 +318,7 @@ void Ppo::load_counters_state(const nlohmann::json& state) {
     const auto num_timesteps = state.at(checkpoint_header::kNumTimesteps).get<std::int64_t>();
     const auto iterations = state.at(checkpoint_header::kIterations).get<std::int64_t>();
     const auto n_updates = state.at(checkpoint_header::kNUpdates).get<std::int64_t>();
-    std::istringstream random_state(state.at("random_state").get<std::string>());
+    std::istringstream random_state(state.at(checkpoint_header::kRandomState).get<std::string>());
     std::mt19937_64 rng;
     std::normal_distribution<double> normal;
     random_state >> rng >> normal;
@@ -327,7 +327,7 @@ void Ppo::load_counters_state(const nlohmann::json& state) {
       throw std::invalid_argument("negative counter");
     }
     EpisodeStatistics episodes;
-    episodes.load_state(state.at("episodes"));
+    episodes.load_state(state.at(checkpoint_header::kEpisodes));
     num_timesteps_ = num_timesteps;
     iterations_ = iterations;
     n_updates_ = n_updates;

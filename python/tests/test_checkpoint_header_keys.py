@@ -1,0 +1,28 @@
+"""The checkpoint header's keys reach Python from their one C++ declaration
+(policy/checkpoint_header.hpp): they name every entry of the trained checkpoints in
+tests/data/policies (the SB3 converter, which writes and reads headers with them, is
+tested in test_sb3_convert.py)."""
+
+import json
+from pathlib import Path
+
+from upkie_rl import _core
+
+POLICIES = Path(__file__).resolve().parents[2] / "tests" / "data" / "policies"
+
+
+def test_declared_keys_name_every_entry_of_a_trained_checkpoint():
+    keys = _core.checkpoint_header_keys()
+    assert keys["NUM_TIMESTEPS"] == "num_timesteps"
+    assert keys["N_UPDATES"] == "n_updates"
+    assert keys["POLICY_PARAMETERS"] == "policy.parameters"
+    declared = set(keys.values())
+    for path in sorted(POLICIES.glob("*.ckpt")):
+        header_text, tensors = _core.read_model_checkpoint(str(path))
+        header = json.loads(header_text)
+        assert set(header) <= declared, (path.name, set(header) - declared)
+        assert set(header[keys["POLICY"]]) <= declared, path.name
+        assert set(header[keys["COUNTERS"]]) <= declared, path.name
+        assert set(tensors) <= declared, path.name
+        assert (header[keys["FORMAT"]], header[keys["VERSION"]]) == _core.checkpoint_format()
+
