@@ -141,15 +141,23 @@ void check_contents(const CheckpointFile& file) {
 
 }  // namespace
 
-void check_checkpoint(const CheckpointFile& file, const std::string& where) {
+void rethrow_as_checkpoint_error(const std::string& where) {
   try {
-    check_contents(file);
+    throw;
   } catch (const CheckpointError& error) {
     throw CheckpointError(where + ": " + error.what());
   } catch (const std::invalid_argument& error) {
     throw CheckpointError(where + ": " + error.what());
   } catch (const nlohmann::json::exception& error) {
     throw CheckpointError(where + ": malformed header: " + error.what());
+  }
+}
+
+void check_checkpoint(const CheckpointFile& file, const std::string& where) {
+  try {
+    check_contents(file);
+  } catch (...) {
+    rethrow_as_checkpoint_error(where);
   }
 }
 

@@ -34,6 +34,13 @@ inline constexpr std::int64_t kMaxCheckpointCounter = 1'000'000'000'000'000;
 /// message starts with `where` and names the first problem.
 void check_checkpoint(const CheckpointFile& file, const std::string& where);
 
+/// Rethrows the exception being handled as a CheckpointError whose message starts with
+/// "<where>: ": a CheckpointError's or std::invalid_argument's message as it is, a JSON
+/// error's after "malformed header: "; any other exception unchanged. For the catch (...)
+/// of the readers of a checkpoint's contents (the gate, DeployedPolicy), so that they word
+/// a problem alike.
+[[noreturn]] void rethrow_as_checkpoint_error(const std::string& where);
+
 /// read_checkpoint_file, then check_checkpoint with `where` = "checkpoint <path>".
 CheckpointFile read_checked_checkpoint(const std::filesystem::path& path);
 

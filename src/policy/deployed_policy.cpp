@@ -65,12 +65,8 @@ DeployedPolicy DeployedPolicy::from_checkpoint(const CheckpointFile& file,
     policy.normalizer_ = ObservationNormalizer::from_state(
         header.value(checkpoint_header::kNormalization, nlohmann::json()),
         policy.observation_space_.size());
-  } catch (const CheckpointError& error) {
-    throw CheckpointError(where + ": " + error.what());
-  } catch (const std::invalid_argument& error) {
-    throw CheckpointError(where + ": " + error.what());
-  } catch (const nlohmann::json::exception& error) {
-    throw CheckpointError(where + ": malformed header: " + error.what());
+  } catch (...) {
+    rethrow_as_checkpoint_error(where);
   }
   policy.input_.resize(policy.observation_space_.size());
   policy.scratch_.resize(policy.actor_.scratch_size());
