@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "onnx/onnx_error.hpp"
 #include "onnx/onnx_export.hpp"
+#include "policy/activation.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/checkpoint_gate.hpp"
 #include "policy/checkpoint_header.hpp"
@@ -103,6 +104,19 @@ void bind_model_files(py::module_& module) {
   module.def(
       "checkpoint_format", [] { return py::make_tuple(kCheckpointFormat, kCheckpointVersion); },
       "(format text, version) that a checkpoint header's format and version entries hold.");
+  module.def(
+      "activation_torch_names",
+      [] {
+        py::dict names;
+        for (const auto& [spelling, activation] : activation_spellings()) {
+          if (spelling != activation_name(activation)) {
+            names[py::str(spelling)] = activation_name(activation);
+          }
+        }
+        return names;
+      },
+      "{PyTorch class name: upkie-rl's name} of every activation (policy/activation.hpp), "
+      "e.g. LeakyReLU: 'leaky_relu'.");
   module.def(
       "export_onnx",
       [](const std::string& model, const std::string& onnx) {

@@ -1,7 +1,8 @@
 """The checkpoint header's keys reach Python from their one C++ declaration
 (policy/checkpoint_header.hpp): they name every entry of the trained checkpoints in
 tests/data/policies (the SB3 converter, which writes and reads headers with them, is
-tested in test_sb3_convert.py)."""
+tested in test_sb3_convert.py). The converter's activation table comes from
+policy/activation.hpp's list the same way."""
 
 import json
 from pathlib import Path
@@ -26,3 +27,11 @@ def test_declared_keys_name_every_entry_of_a_trained_checkpoint():
         assert set(tensors) <= declared, path.name
         assert (header[keys["FORMAT"]], header[keys["VERSION"]]) == _core.checkpoint_format()
 
+
+
+def test_the_converter_maps_every_pytorch_activation_class_from_the_one_list():
+    names = _core.activation_torch_names()
+    assert names["ReLU"] == "relu"
+    assert names["LeakyReLU"] == "leaky_relu"
+    assert sorted(names.values()) == sorted(
+        ["relu", "tanh", "elu", "leaky_relu", "silu", "gelu", "sigmoid", "softplus", "selu"])

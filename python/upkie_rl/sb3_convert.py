@@ -47,11 +47,9 @@ MAX_MEMBER_BYTES = 64 << 20
 #: Most members an SB3 zip may have (SB3 writes six).
 MAX_MEMBERS = 64
 
-# SB3 activation classes (torch.nn, default parameters) and upkie-rl's names for them
-# (policy/activation.hpp): the actor is evaluated with the same function.
-ACTIVATIONS = {"Tanh": "tanh", "ReLU": "relu", "ELU": "elu", "LeakyReLU": "leaky_relu",
-               "SiLU": "silu", "GELU": "gelu", "Sigmoid": "sigmoid", "Softplus": "softplus",
-               "SELU": "selu"}
+# SB3 activation classes (torch.nn, default parameters) and upkie-rl's names for them, from
+# their one list (policy/activation.hpp): the actor is evaluated with the same function.
+ACTIVATIONS = _core.activation_torch_names()
 # The checkpoint header's keys and format, from their one declaration
 # (policy/checkpoint_header.hpp), e.g. _KEY["NUM_TIMESTEPS"] == "num_timesteps".
 _KEY = _core.checkpoint_header_keys()
