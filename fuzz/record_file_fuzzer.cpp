@@ -28,8 +28,8 @@ void check_accepted(const upkie_rl::apps::RecordFile& file) {
       std::abort();
     }
     if (step.action.size() != file.action_names.size()) std::abort();
-    if (step.command.has_value() != file.has_velocity ||
-        step.measured.has_value() != file.has_velocity) {
+    if (step.command.has_value() != file.has_velocity() ||
+        step.measured.has_value() != file.has_velocity()) {
       std::abort();
     }
   }

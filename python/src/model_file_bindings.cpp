@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <cctype>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -19,6 +20,7 @@
 #include "policy/deployed_policy.hpp"
 #include "policy/model_header.hpp"
 #include "policy/provenance.hpp"
+#include "vec/normalization_state.hpp"
 
 namespace py = pybind11;
 
@@ -71,12 +73,10 @@ std::string python_name(std::string_view constant) {
   return upper;
 }
 
-// {Python name: wire text} of every checkpoint header key.
-py::dict checkpoint_header_keys() {
+// {Python name: wire text} of every key of one declared list.
+py::dict python_keys(std::span<const NamedKey> declared) {
   py::dict keys;
-  for (const checkpoint_header::NamedKey& key : checkpoint_header::kAllKeys) {
-    keys[py::str(python_name(key.constant))] = key.text;
-  }
+  for (const NamedKey& key : declared) keys[py::str(python_name(key.constant))] = key.text;
   return keys;
 }
 
@@ -98,9 +98,18 @@ void bind_model_files(py::module_& module) {
         return model_provenance(nlohmann::json::parse(header)).dump();
       },
       py::arg("header"), "Complete provenance (JSON text) of a checkpoint header (JSON text).");
-  module.def("checkpoint_header_keys", &checkpoint_header_keys,
-             "{name: key} of every key of a checkpoint's JSON header and tensors, from their one "
-             "declaration (e.g. NUM_TIMESTEPS: 'num_timesteps').");
+  module.def(
+      "checkpoint_header_keys", [] { return python_keys(checkpoint_header::kAllKeys); },
+      "{name: key} of every key of a checkpoint's JSON header and tensors, from their one "
+      "declaration (e.g. NUM_TIMESTEPS: 'num_timesteps').");
+  module.def(
+      "normalization_state_keys", [] { return python_keys(normalization_state::kAllKeys); },
+      "{name: key} of every key of the normalisation state (a header's normalization entry), "
+      "from their one declaration (e.g. CLIP_OBSERVATIONS: 'clip_observations').");
+  module.def(
+      "provenance_keys", [] { return python_keys(provenance_key::kAllKeys); },
+      "{name: key} of every key of a model's provenance, from their one declaration "
+      "(e.g. ENV_ID: 'env_id').");
   module.def(
       "checkpoint_format", [] { return py::make_tuple(kCheckpointFormat, kCheckpointVersion); },
       "(format text, version) that a checkpoint header's format and version entries hold.");

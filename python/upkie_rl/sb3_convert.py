@@ -53,6 +53,10 @@ ACTIVATIONS = _core.activation_torch_names()
 # The checkpoint header's keys and format, from their one declaration
 # (policy/checkpoint_header.hpp), e.g. _KEY["NUM_TIMESTEPS"] == "num_timesteps".
 _KEY = _core.checkpoint_header_keys()
+# The normalisation state's keys (vec/normalization_state.hpp) and the provenance's
+# (policy/provenance.hpp), from their one declaration the same way.
+_NORM = _core.normalization_state_keys()
+_PROV = _core.provenance_keys()
 _CHECKPOINT_FORMAT, _CHECKPOINT_VERSION = _core.checkpoint_format()
 _IMPORT_SOURCE = "upkie_rl.sb3_convert import"
 
@@ -257,7 +261,7 @@ def read_vec_normalize(path: PathLike, observation_size: int) -> dict:
         if not isinstance(record, InertRecord):
             raise ConversionError(f"{path}: {name} is not a RunningMeanStd (dict observations?)")
         # SB3 keeps the return statistics as shape () arrays: read them as one value.
-        mean = np.asarray(record.state.get("mean"))
+        mean = np.asarray(record.state.get("mean"))  # SB3's RunningMeanStd attributes
         var = np.asarray(record.state.get("var"))
         if size == 1 and mean.shape == () and var.shape == ():
             mean, var = mean.reshape(1), var.reshape(1)
@@ -268,25 +272,26 @@ def read_vec_normalize(path: PathLike, observation_size: int) -> dict:
             raise ConversionError(f"{path}: {name} is not {size} floating-point means and variances")
         if not np.all(np.isfinite(mean)) or not np.all(var >= 0) or not np.isfinite(float(count)):
             raise ConversionError(f"{path}: {name} holds invalid statistics")
-        return {"mean": mean.tolist(), "var": var.tolist(), "count": float(count)}
+        return {_NORM["MEAN"]: mean.tolist(), _NORM["VAR"]: var.tolist(),
+                _NORM["COUNT"]: float(count)}
 
     try:
         config = {
-            "observations": bool(state["norm_obs"]),
-            "rewards": bool(state["norm_reward"]),
-            "clip_observations": float(state["clip_obs"]),
-            "clip_rewards": float(state["clip_reward"]),
-            "gamma": float(state["gamma"]),
-            "epsilon": float(state["epsilon"]),
+            _NORM["OBSERVATIONS"]: bool(state["norm_obs"]),
+            _NORM["REWARDS"]: bool(state["norm_reward"]),
+            _NORM["CLIP_OBSERVATIONS"]: float(state["clip_obs"]),
+            _NORM["CLIP_REWARDS"]: float(state["clip_reward"]),
+            _NORM["GAMMA"]: float(state["gamma"]),
+            _NORM["EPSILON"]: float(state["epsilon"]),
         }
     except (KeyError, TypeError, ValueError) as error:
         raise ConversionError(f"{path}: VecNormalize field missing or malformed: {error}") from None
     if state.get("norm_obs_keys"):
         raise ConversionError(f"{path}: normalises dict observations, which cannot be converted")
     return {
-        "config": config,
-        "observations": statistics("obs_rms", observation_size),
-        "returns": statistics("ret_rms", 1),
+        _NORM["CONFIG"]: config,
+        _NORM["OBSERVATION_STATISTICS"]: statistics("obs_rms", observation_size),
+        _NORM["RETURN_STATISTICS"]: statistics("ret_rms", 1),
     }
 
 
@@ -409,21 +414,23 @@ def _import_header(data, contents, zip_path, env_id, options, normalization, obs
         "seed": hyperparameters.get("seed"),
     }
     if normalization:
-        config["normalize"] = normalization["config"]
+        config["normalize"] = normalization[_NORM["CONFIG"]]
     provenance = json.loads(_core.new_provenance(_IMPORT_SOURCE))
     original = _embedded_provenance(contents)
     provenance.update({
-        "imported_from": {
-            "file": zip_path.name,
-            "sha256": hashlib.sha256(zip_path.read_bytes()).hexdigest(),
-            "stable_baselines3_version": contents.get("_stable_baselines3_version", b"unknown")
-            .decode("utf-8", "replace").strip(),
+        _PROV["IMPORTED_FROM"]: {
+            _PROV["FILE"]: zip_path.name,
+            _PROV["SHA256"]: hashlib.sha256(zip_path.read_bytes()).hexdigest(),
+            _PROV["STABLE_BASELINES3_VERSION"]:
+                contents.get("_stable_baselines3_version", b"unknown")
+                .decode("utf-8", "replace").strip(),
         },
-        "seed": hyperparameters.get("seed") if hyperparameters.get("seed") is not None else "unknown",
-        "timesteps": hyperparameters.get("num_timesteps", "unknown"),
+        _PROV["SEED"]:
+            hyperparameters.get("seed") if hyperparameters.get("seed") is not None else "unknown",
+        _PROV["TIMESTEPS"]: hyperparameters.get("num_timesteps", "unknown"),
     })
     if original:
-        provenance["original"] = original
+        provenance[_PROV["ORIGINAL"]] = original
     import yaml  # type: ignore[import-untyped]  # PyYAML ships no stubs; Debian has none
 
     return {
@@ -452,7 +459,7 @@ def _embedded_provenance(contents: Dict[str, bytes]):
         value = json.loads(raw)
     except (UnicodeDecodeError, ValueError):
         return None
-    return value.get("provenance") if isinstance(value, dict) else None
+    return value.get(_KEY["PROVENANCE"]) if isinstance(value, dict) else None
 
 
 # ---------------------------------------------------------------------------------------
@@ -532,7 +539,7 @@ def export_sb3(model: PathLike, output: PathLike, vecnormalize: Optional[PathLik
     header = json.loads(header_text)
     policy = header[_KEY["POLICY"]]
     normalization = header.get(_KEY["NORMALIZATION"])
-    normalizes = bool(normalization and normalization["config"]["observations"])
+    normalizes = bool(normalization and normalization[_NORM["CONFIG"]][_NORM["OBSERVATIONS"]])
     if normalizes and vecnormalize is None:
         raise ConversionError(
             f"{model}: the model normalises observations; give a VecNormalize output path "
@@ -555,11 +562,12 @@ def export_sb3(model: PathLike, output: PathLike, vecnormalize: Optional[PathLik
         **_sb3_hyperparameters(provenance),
     )
     ppo.policy.load_state_dict(_state_dict(tensors[_KEY["POLICY_PARAMETERS"]].ravel(), policy))
-    if isinstance(provenance.get("timesteps"), int):
-        ppo.num_timesteps = provenance["timesteps"]
+    if isinstance(provenance.get(_PROV["TIMESTEPS"]), int):
+        ppo.num_timesteps = provenance[_PROV["TIMESTEPS"]]
     ppo.save(output)
-    member = {"env_id": provenance.get("env_id"), "env_options": provenance.get("env_options"),
-              "provenance": provenance}
+    member = {_PROV["ENV_ID"]: provenance.get(_PROV["ENV_ID"]),
+              _PROV["ENV_OPTIONS"]: provenance.get(_PROV["ENV_OPTIONS"]),
+              _KEY["PROVENANCE"]: provenance}
     with zipfile.ZipFile(output, "a") as archive:
         archive.writestr(PROVENANCE_MEMBER, json.dumps(member, indent=2))
     if vecnormalize is not None:
@@ -582,7 +590,7 @@ def _sb3_hyperparameters(provenance: dict) -> dict:
     import yaml
 
     try:
-        config = yaml.safe_load(provenance.get("config", ""))
+        config = yaml.safe_load(provenance.get(_PROV["CONFIG"], ""))
     except yaml.YAMLError:
         return {}
     if not isinstance(config, dict):
@@ -611,19 +619,19 @@ def _write_vec_normalize(normalization, venv, path: Path) -> None:
     if not normalization:
         VecNormalize(venv, norm_obs=False, norm_reward=False).save(str(path))
         return
-    config = normalization["config"]
+    config = normalization[_NORM["CONFIG"]]
     wrapper = VecNormalize(
-        venv, norm_obs=config["observations"], norm_reward=config["rewards"],
-        clip_obs=config["clip_observations"], clip_reward=config["clip_rewards"],
-        gamma=config["gamma"], epsilon=config["epsilon"],
+        venv, norm_obs=config[_NORM["OBSERVATIONS"]], norm_reward=config[_NORM["REWARDS"]],
+        clip_obs=config[_NORM["CLIP_OBSERVATIONS"]], clip_reward=config[_NORM["CLIP_REWARDS"]],
+        gamma=config[_NORM["GAMMA"]], epsilon=config[_NORM["EPSILON"]],
     )
-    for name, key in (("obs_rms", "observations"), ("ret_rms", "returns")):
-        statistics = normalization.get(key)
+    for name, key in (("obs_rms", "OBSERVATION_STATISTICS"), ("ret_rms", "RETURN_STATISTICS")):
+        statistics = normalization.get(_NORM[key])
         if statistics:
             rms = getattr(wrapper, name)
-            rms.mean = np.array(statistics["mean"], dtype=np.float64).reshape(rms.mean.shape)
-            rms.var = np.array(statistics["var"], dtype=np.float64).reshape(rms.var.shape)
-            rms.count = float(statistics["count"])
+            rms.mean = np.array(statistics[_NORM["MEAN"]], dtype=np.float64).reshape(rms.mean.shape)
+            rms.var = np.array(statistics[_NORM["VAR"]], dtype=np.float64).reshape(rms.var.shape)
+            rms.count = float(statistics[_NORM["COUNT"]])
     wrapper.training = False
     wrapper.save(str(path))
 

@@ -13,6 +13,7 @@
 #include "onnx/onnx_metadata.hpp"
 #include "onnx/onnx_model_info.hpp"
 #include "policy/checkpoint_gate.hpp"
+#include "policy/checkpoint_header.hpp"
 #include "policy/model_header.hpp"
 #include "policy/provenance.hpp"
 #include "policy/space_json.hpp"
@@ -20,6 +21,8 @@
 namespace upkie_rl::apps {
 
 namespace {
+
+namespace key = checkpoint_header;
 
 // "4: theta, p, theta_dot, p_dot"
 std::string describe_space(const nlohmann::json& json) {
@@ -34,9 +37,13 @@ std::string describe_space(const nlohmann::json& json) {
 void print_checkpoint(const std::filesystem::path& path) {
   const CheckpointFile file = read_checked_checkpoint(path);  // the gate of every command
   std::cout << "format: upkie-rl checkpoint\n"
-            << "observation_space: " << describe_space(file.header.at("observation_space")) << "\n"
-            << "action_space: " << describe_space(file.header.at("action_space")) << "\n"
-            << "policy: " << policy_shape_to_json(policy_shape_from_json(file.header.at("policy"))).dump() << "\n"
+            << key::kObservationSpace << ": "
+            << describe_space(file.header.at(key::kObservationSpace)) << "\n"
+            << key::kActionSpace << ": " << describe_space(file.header.at(key::kActionSpace))
+            << "\n"
+            << key::kPolicy << ": "
+            << policy_shape_to_json(policy_shape_from_json(file.header.at(key::kPolicy))).dump()
+            << "\n"
             << format_provenance(model_provenance(file.header));
 }
 
@@ -69,7 +76,7 @@ void print_onnx(const std::filesystem::path& path) {
     }
   }
   if (!provenance.is_object()) provenance = nlohmann::json::object();
-  std::cout << format_provenance(model_provenance({{"provenance", provenance}}));
+  std::cout << format_provenance(model_provenance({{checkpoint_header::kProvenance, provenance}}));
 }
 
 void print_torchscript(const std::filesystem::path& path) {
@@ -93,15 +100,18 @@ void print_torchscript(const std::filesystem::path& path) {
     throw std::runtime_error("TorchScript file " + path.string() + ": malformed metadata.json");
   }
   std::cout << "format: TorchScript\n";
-  for (const char* key : {"observation_space", "action_space"}) {
+  // The metadata's entries are named as those of the checkpoint header they copy, and its
+  // env id as the provenance's (rl/torchscript_export.cpp).
+  for (const char* key : {checkpoint_header::kObservationSpace, checkpoint_header::kActionSpace}) {
     if (metadata.contains(key)) std::cout << key << ": " << describe_space(metadata[key]) << "\n";
   }
-  nlohmann::json provenance = metadata.value("provenance", nlohmann::json::object());
+  nlohmann::json provenance =
+      metadata.value(checkpoint_header::kProvenance, nlohmann::json::object());
   if (!provenance.is_object()) provenance = nlohmann::json::object();
-  if (!provenance.contains("env_id") && metadata.contains("env_id")) {
-    provenance["env_id"] = metadata["env_id"];
+  if (!provenance.contains(provenance_key::kEnvId) && metadata.contains(provenance_key::kEnvId)) {
+    provenance[provenance_key::kEnvId] = metadata[provenance_key::kEnvId];
   }
-  std::cout << format_provenance(model_provenance({{"provenance", provenance}}));
+  std::cout << format_provenance(model_provenance({{checkpoint_header::kProvenance, provenance}}));
 }
 
 void print_info(const std::filesystem::path& path) {

@@ -167,7 +167,6 @@ RecordFile read_record_file(std::istream& in, const std::string& path) {
   const std::vector<std::string> header = split_fields(line);
   RecordFile file;
   const RecordLayout layout = record_layout(header, path, file.action_names);
-  file.has_velocity = layout.velocity;
   long line_number = 1;
   std::vector<double> values(layout.columns.size());
   while (std::getline(in, line)) {

@@ -38,7 +38,9 @@ struct RecordedStep {
 struct RecordFile {
   std::vector<std::string> action_names;
   std::vector<RecordedStep> steps;
-  bool has_velocity = false;  ///< Whether every step has its command and measured velocity.
+  /// Whether the file has the velocity task's columns. The reader takes that group for every
+  /// row or for none (RecordedStep::command and measured), so the first step says.
+  bool has_velocity() const { return !steps.empty() && steps.front().command.has_value(); }
 };
 
 /// Reads a record file written by EpisodeRecorder (any environment).

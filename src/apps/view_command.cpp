@@ -42,7 +42,7 @@ ViewSession replay_session(const RecordFile& record, const std::string& title) {
   session.mode = ViewSession::Mode::kReplay;
   session.title = title;
   session.action_names = record.action_names;
-  if (record.has_velocity) add_velocity_charts(session);
+  if (record.has_velocity()) add_velocity_charts(session);
   const std::size_t frame_size = view_session_frame_size(session);
   const std::size_t num_extra = session.extra_fields.size();
   std::vector<double> frame(frame_size);
@@ -69,7 +69,7 @@ ViewSession replay_session(const RecordFile& record, const std::string& title) {
     const std::span<double> frame_row(frame);
     write_view_frame(observation, {step.episode, step.step, episode_return}, action,
                      frame_row.first(frame_size - num_extra));
-    if (record.has_velocity) {
+    if (record.has_velocity()) {
       write_velocity_fields(*step.command, *step.measured, frame_row.last(num_extra));
     }
     std::vector<double>& frames = session.episodes.back().frames;

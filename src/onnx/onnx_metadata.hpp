@@ -4,6 +4,7 @@
 /// onnx_model_info.cpp, the tests and users' deployment code.
 
 #include "policy/checkpoint_header.hpp"
+#include "policy/provenance.hpp"
 
 namespace upkie_rl::onnx_names {
 
@@ -14,9 +15,10 @@ inline constexpr const char* kAction = "action";
 /// The symbolic batch dimension of both.
 inline constexpr const char* kBatch = "batch";
 
-/// Metadata properties (ModelProto.metadata_props). Spaces, options and provenance are JSON.
-inline constexpr const char* kEnvId = "env_id";
-inline constexpr const char* kEnvOptions = "env_options";
+/// Metadata properties (ModelProto.metadata_props), named as the provenance's and the
+/// checkpoint header's entries they copy. Spaces, options and provenance are JSON.
+inline constexpr const char* kEnvId = provenance_key::kEnvId;
+inline constexpr const char* kEnvOptions = provenance_key::kEnvOptions;
 inline constexpr const char* kObservationSpace = checkpoint_header::kObservationSpace;
 inline constexpr const char* kActionSpace = checkpoint_header::kActionSpace;
 /// Control frequency in Hz (text), "unknown" when the environment does not say.

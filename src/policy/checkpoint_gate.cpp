@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "model/setting_bounds.hpp"
 #include "policy/checkpoint_header.hpp"
@@ -11,6 +12,7 @@
 #include "policy/observation_normalizer.hpp"
 #include "policy/parameter_layout.hpp"
 #include "policy/space_json.hpp"
+#include "vec/normalization_state.hpp"
 #include "vec/running_mean_std.hpp"
 #include "vec/vec_normalize.hpp"
 
@@ -69,8 +71,10 @@ ObservationNormalizer check_normalization(const nlohmann::json& state,
   try {
     ObservationNormalizer normalizer = ObservationNormalizer::from_state(state, observation_size);
     RunningMeanStd returns(1);
-    returns.from_json(state.at("returns"), "normalization.returns");
-    normalize_config_from_json(state.at("config"));
+    returns.from_json(state.at(normalization_state::kReturnStatistics),
+                      std::string(checkpoint_header::kNormalization) + "." +
+                          normalization_state::kReturnStatistics);
+    normalize_config_from_json(state.at(normalization_state::kConfig));
     return normalizer;
   } catch (const std::invalid_argument& error) {
     throw CheckpointError(std::string("normalization: ") + error.what());

@@ -7,7 +7,7 @@
 /// Python (_core.checkpoint_header_keys(), which upkie_rl/sb3_convert.py reads).
 /// The wire text is the one of every checkpoint written so far: these are its names.
 
-#include <string_view>
+#include "model/named_key.hpp"
 
 namespace upkie_rl::checkpoint_header {
 
@@ -59,21 +59,10 @@ namespace upkie_rl::checkpoint_header {
   X(kOptimizerExpAvg, "optimizer.exp_avg")     \
   X(kOptimizerExpAvgSq, "optimizer.exp_avg_sq")
 
-#define UPKIE_RL_CHECKPOINT_HEADER_CONSTANT(name, text) inline constexpr const char* name = text;
-UPKIE_RL_CHECKPOINT_HEADER_KEYS(UPKIE_RL_CHECKPOINT_HEADER_CONSTANT)
-#undef UPKIE_RL_CHECKPOINT_HEADER_CONSTANT
+UPKIE_RL_CHECKPOINT_HEADER_KEYS(UPKIE_RL_NAMED_KEY_CONSTANT)
 
-/// One key: its constant's name ("kNumTimesteps") and its wire text ("num_timesteps").
-struct NamedKey {
-  std::string_view constant;
-  const char* text;
-};
-
-#define UPKIE_RL_CHECKPOINT_HEADER_ENTRY(name, text) NamedKey{#name, text},
 /// Every key, in the order of the list.
-inline constexpr NamedKey kAllKeys[] = {
-    UPKIE_RL_CHECKPOINT_HEADER_KEYS(UPKIE_RL_CHECKPOINT_HEADER_ENTRY)};
-#undef UPKIE_RL_CHECKPOINT_HEADER_ENTRY
+inline constexpr NamedKey kAllKeys[] = {UPKIE_RL_CHECKPOINT_HEADER_KEYS(UPKIE_RL_NAMED_KEY_ENTRY)};
 // NOLINTEND(cppcoreguidelines-macro-usage)
 
 }  // namespace upkie_rl::checkpoint_header

@@ -5,9 +5,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "policy/checkpoint_header.hpp"
+#include "vec/normalization_state.hpp"
 #include "vec/running_mean_std.hpp"
 
 namespace upkie_rl {
+
+namespace key = normalization_state;
 
 ObservationNormalizer::ObservationNormalizer(std::size_t size)
     : mean_(size, 0.0), var_(size, 1.0) {}
@@ -17,15 +21,17 @@ ObservationNormalizer ObservationNormalizer::from_state(const nlohmann::json& st
   ObservationNormalizer normalizer(size);
   if (state.is_null()) return normalizer;
   try {
-    const nlohmann::json& config = state.at("config");
-    normalizer.enabled_ = config.at("observations").get<bool>();
-    normalizer.clip_ = config.at("clip_observations").get<double>();
-    normalizer.epsilon_ = config.at("epsilon").get<double>();
+    const nlohmann::json& config = state.at(key::kConfig);
+    normalizer.enabled_ = config.at(key::kObservations).get<bool>();
+    normalizer.clip_ = config.at(key::kClipObservations).get<double>();
+    normalizer.epsilon_ = config.at(key::kEpsilon).get<double>();
   } catch (const nlohmann::json::exception& error) {
     throw std::invalid_argument(std::string("normalisation state: ") + error.what());
   }
   RunningMeanStd statistics(size);
-  statistics.from_json(state.at("observations"), "normalization.observations");
+  statistics.from_json(
+      state.at(key::kObservationStatistics),
+      std::string(checkpoint_header::kNormalization) + "." + key::kObservationStatistics);
   normalizer.mean_ = statistics.mean();
   normalizer.var_ = statistics.var();
   return normalizer;

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <ctime>
+#include <iterator>
 #include <sstream>
 
 #include "policy/build_info.hpp"
@@ -13,6 +14,8 @@
 namespace upkie_rl {
 
 namespace {
+
+namespace key = provenance_key;
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
@@ -27,13 +30,15 @@ std::string utc_now() {
 void complete_from_header(const nlohmann::json& header, nlohmann::json& provenance) {
   try {
     const std::string config = checkpoint_config_yaml(header);
-    provenance["config"] = config;
-    provenance["env_id"] = checkpoint_env_id(header);
+    provenance[key::kConfig] = config;
+    provenance[key::kEnvId] = checkpoint_env_id(header);
     nlohmann::json options = nlohmann::json::object();
     for (const auto& [name, value] : checkpoint_env_options(header)) options[name] = value;
-    provenance["env_options"] = options;
-    const YAML::Node seed = YAML::Load(config)["seed"];
-    if (seed && seed.IsScalar()) provenance["seed"] = seed.as<std::string>();
+    provenance[key::kEnvOptions] = options;
+    // The training configuration's seed key (rl/training_config.cpp), which policy_core
+    // cannot include: the provenance's key has the same name.
+    const YAML::Node seed = YAML::Load(config)[key::kSeed];
+    if (seed && seed.IsScalar()) provenance[key::kSeed] = seed.as<std::string>();
   } catch (const CheckpointError&) {
     // A header without (readable) configuration: those fields stay unknown.
   } catch (const YAML::Exception&) {
@@ -42,7 +47,7 @@ void complete_from_header(const nlohmann::json& header, nlohmann::json& provenan
   if (counters != header.end() && counters->is_object()) {
     const auto timesteps = counters->find(checkpoint_header::kNumTimesteps);
     if (timesteps != counters->end() && timesteps->is_number_integer()) {
-      provenance["timesteps"] = timesteps->get<std::int64_t>();
+      provenance[key::kTimesteps] = timesteps->get<std::int64_t>();
     }
   }
 }
@@ -50,10 +55,10 @@ void complete_from_header(const nlohmann::json& header, nlohmann::json& provenan
 }  // namespace
 
 nlohmann::json new_provenance(const std::string& source) {
-  return {{"upkie_rl_version", upkie_rl_version()},
-          {"git_commit", upkie_rl_git_commit()},
-          {"date", utc_now()},
-          {"source", source}};
+  return {{key::kUpkieRlVersion, upkie_rl_version()},
+          {key::kGitCommit, upkie_rl_git_commit()},
+          {key::kDate, utc_now()},
+          {key::kSource, source}};
 }
 
 nlohmann::json model_provenance(const nlohmann::json& header) {
@@ -63,12 +68,12 @@ nlohmann::json model_provenance(const nlohmann::json& header) {
   // What the stored entry says wins (an import records the original's seed and steps).
   nlohmann::json from_header = nlohmann::json::object();
   complete_from_header(header, from_header);
-  for (const auto& [key, value] : from_header.items()) {
-    if (!provenance.contains(key)) provenance[key] = value;
+  for (const auto& [name, value] : from_header.items()) {
+    if (!provenance.contains(name)) provenance[name] = value;
   }
-  for (const char* key : {"upkie_rl_version", "git_commit", "date", "source", "env_id",
-                          "env_options", "seed", "timesteps", "config"}) {
-    if (!provenance.contains(key)) provenance[key] = kUnknownProvenance;
+  for (std::size_t i = 0; i < std::size(key::kAllKeys); ++i) {
+    const char* name = key::kAllKeys[i].text;
+    if (key::kAlways[i] && !provenance.contains(name)) provenance[name] = kUnknownProvenance;
   }
   return provenance;
 }
@@ -76,15 +81,15 @@ nlohmann::json model_provenance(const nlohmann::json& header) {
 std::string format_provenance(const nlohmann::json& provenance) {
   std::ostringstream out;
   std::string config;
-  for (const auto& [key, value] : provenance.items()) {
-    if (key == "config") {
+  for (const auto& [name, value] : provenance.items()) {
+    if (name == key::kConfig) {
       config = value.is_string() ? value.get<std::string>() : value.dump();
       continue;
     }
-    out << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump()) << "\n";
+    out << name << ": " << (value.is_string() ? value.get<std::string>() : value.dump()) << "\n";
   }
   if (!config.empty()) {
-    out << "config:";
+    out << key::kConfig << ":";
     if (config == kUnknownProvenance) {
       out << " " << config << "\n";
     } else {

@@ -6,6 +6,7 @@
 
 #include "model/number_text.hpp"
 #include "policy/checkpoint_header.hpp"
+#include "policy/provenance.hpp"
 #include "rl/ppo_checkpoint.hpp"
 
 namespace upkie_rl {
@@ -65,7 +66,7 @@ void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& 
   module.define(source);
 
   const nlohmann::json metadata = {
-      {"env_id", env_id},
+      {provenance_key::kEnvId, env_id},
       {checkpoint_header::kObservationSpace, space_to_json(observation_space)},
       {checkpoint_header::kActionSpace, space_to_json(action_space)},
       {"deterministic", true},

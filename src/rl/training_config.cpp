@@ -14,6 +14,7 @@
 #include "policy/network_limits.hpp"
 #include "rl/hand_gradient_activations.hpp"
 #include "vec/make_vector_env.hpp"
+#include "vec/normalization_state.hpp"
 #include "vec/vec_normalize.hpp"
 
 namespace upkie_rl {
@@ -199,14 +200,18 @@ void TrainingConfig::declare_run_options(OptionTable& table) {
 }
 
 void NormalizationConfig::declare_options(OptionTable& table) {
-  table.add_boolean("normalize.observations", &observations, "normalise observations");
-  table.add_boolean("normalize.rewards", &rewards, "normalise rewards by the return's std");
-  table.add_real("normalize.clip_observations", &clip_observations, 0, kMaxNormalizationClip,
+  // The keys of the normalisation state's config (an SB3 import's configuration copies that
+  // entry into its normalize section).
+  namespace key = normalization_state;
+  const auto name = [](const char* setting) { return std::string("normalize.") + setting; };
+  table.add_boolean(name(key::kObservations), &observations, "normalise observations");
+  table.add_boolean(name(key::kRewards), &rewards, "normalise rewards by the return's std");
+  table.add_real(name(key::kClipObservations), &clip_observations, 0, kMaxNormalizationClip,
                  "clip normalised observations to +-it", true);
-  table.add_real("normalize.clip_rewards", &clip_rewards, 0, kMaxNormalizationClip,
+  table.add_real(name(key::kClipRewards), &clip_rewards, 0, kMaxNormalizationClip,
                  "clip normalised rewards to +-it", true);
-  table.add_real("normalize.gamma", &gamma, 0, 1, "discount of the return", true);
-  table.add_real("normalize.epsilon", &epsilon, 0, 1, "added to variances", true);
+  table.add_real(name(key::kGamma), &gamma, 0, 1, "discount of the return", true);
+  table.add_real(name(key::kEpsilon), &epsilon, 0, 1, "added to variances", true);
 }
 
 void PolicyConfig::declare_options(OptionTable& table) {

@@ -4,7 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "vec/normalization_state.hpp"
+
 namespace upkie_rl {
+
+namespace key = normalization_state;
 
 RunningMeanStd::RunningMeanStd(std::size_t size, double initial_count)
     : mean_(size, 0.0),
@@ -59,44 +63,48 @@ void RunningMeanStd::update_from_moments(std::span<const double> batch_mean,
 }
 
 nlohmann::json RunningMeanStd::to_json() const {
-  return {{"mean", mean_}, {"var", var_}, {"count", count_}};
+  return {{key::kMean, mean_}, {key::kVar, var_}, {key::kCount, count_}};
 }
 
 void RunningMeanStd::from_json(const nlohmann::json& json, const std::string& name) {
   if (!json.is_object()) throw std::invalid_argument(name + " must be an object");
-  auto read_vector = [&](const char* key) {
-    if (!json.contains(key)) throw std::invalid_argument("missing key " + name + "." + key);
-    const nlohmann::json& value = json.at(key);
+  auto read_vector = [&](const char* entry) {
+    if (!json.contains(entry)) throw std::invalid_argument("missing key " + name + "." + entry);
+    const nlohmann::json& value = json.at(entry);
     if (!value.is_array() || value.size() != size()) {
-      throw std::invalid_argument(name + "." + key + " must be an array of " +
+      throw std::invalid_argument(name + "." + entry + " must be an array of " +
                                   std::to_string(size()) + " numbers");
     }
     std::vector<double> out;
     out.reserve(size());
     for (const auto& item : value) {
-      if (!item.is_number()) throw std::invalid_argument(name + "." + key + " holds a non-number");
+      if (!item.is_number())
+        throw std::invalid_argument(name + "." + entry + " holds a non-number");
       out.push_back(item.get<double>());
     }
     return out;
   };
-  std::vector<double> mean = read_vector("mean");
-  std::vector<double> var = read_vector("var");
-  if (!json.contains("count")) throw std::invalid_argument("missing key " + name + ".count");
-  if (!json.at("count").is_number() || !(json.at("count").get<double>() > 0.0) ||
-      !std::isfinite(json.at("count").get<double>())) {
-    throw std::invalid_argument(name + ".count must be a finite positive number");
+  std::vector<double> mean = read_vector(key::kMean);
+  std::vector<double> var = read_vector(key::kVar);
+  const std::string where = name + ".";
+  if (!json.contains(key::kCount))
+    throw std::invalid_argument("missing key " + where + key::kCount);
+  const nlohmann::json& count = json.at(key::kCount);
+  if (!count.is_number() || !(count.get<double>() > 0.0) || !std::isfinite(count.get<double>())) {
+    throw std::invalid_argument(where + key::kCount + " must be a finite positive number");
   }
   for (double m : mean) {
-    if (!std::isfinite(m)) throw std::invalid_argument(name + ".mean must hold finite numbers");
+    if (!std::isfinite(m))
+      throw std::invalid_argument(where + key::kMean + " must hold finite numbers");
   }
   for (double v : var) {
     if (!(v >= 0.0) || !std::isfinite(v)) {
-      throw std::invalid_argument(name + ".var must hold finite non-negative numbers");
+      throw std::invalid_argument(where + key::kVar + " must hold finite non-negative numbers");
     }
   }
   mean_ = std::move(mean);
   var_ = std::move(var);
-  count_ = json.at("count").get<double>();
+  count_ = count.get<double>();
 }
 
 void RunningMeanStd::merge_across_processes(

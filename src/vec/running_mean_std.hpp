@@ -40,7 +40,7 @@ class RunningMeanStd {
   void merge_across_processes(RunningMeanStd& at_last_merge,
                               const std::function<void(std::span<double>)>& sum_over_processes);
 
-  /// {"mean": [...], "var": [...], "count": c}.
+  /// {"mean": [...], "var": [...], "count": c} (keys: vec/normalization_state.hpp).
   nlohmann::json to_json() const;
   /// Reads to_json()'s output.
   /// @throws std::invalid_argument naming `name`.field on a missing key, a wrong type or a

@@ -1,44 +1,51 @@
 #include "vec/vec_normalize.hpp"
 
 #include "model/setting_bounds.hpp"
+#include "vec/normalization_state.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace upkie_rl {
 
+namespace key = normalization_state;
+
 void check_normalize_config(const NormalizeConfig& config) {
   constexpr auto kExcluded = LowerBound::kExcluded;
-  check_setting("normalization clip_observations", config.clip_observations, 0.0,
-                kMaxNormalizationClip, kExcluded);
-  check_setting("normalization clip_rewards", config.clip_rewards, 0.0, kMaxNormalizationClip,
+  const auto name = [](const char* setting) { return std::string("normalization ") + setting; };
+  check_setting(name(key::kClipObservations), config.clip_observations, 0.0, kMaxNormalizationClip,
                 kExcluded);
-  check_setting("normalization gamma", config.gamma, 0.0, 1.0, kExcluded);
-  check_setting("normalization epsilon", config.epsilon, 0.0, 1.0, kExcluded);
+  check_setting(name(key::kClipRewards), config.clip_rewards, 0.0, kMaxNormalizationClip,
+                kExcluded);
+  check_setting(name(key::kGamma), config.gamma, 0.0, 1.0, kExcluded);
+  check_setting(name(key::kEpsilon), config.epsilon, 0.0, 1.0, kExcluded);
 }
 
 NormalizeConfig normalize_config_from_json(const nlohmann::json& json) {
-  if (!json.is_object()) throw std::invalid_argument("config must be an object");
+  if (!json.is_object()) {
+    throw std::invalid_argument(std::string(key::kConfig) + " must be an object");
+  }
   NormalizeConfig config;
-  auto read_bool = [&](const char* key, bool& out) {
-    if (!json.contains(key) || !json.at(key).is_boolean()) {
-      throw std::invalid_argument(std::string("config.") + key + " must be a boolean");
+  auto read_bool = [&](const char* name, bool& out) {
+    if (!json.contains(name) || !json.at(name).is_boolean()) {
+      throw std::invalid_argument(std::string(key::kConfig) + "." + name + " must be a boolean");
     }
-    out = json.at(key).get<bool>();
+    out = json.at(name).get<bool>();
   };
-  auto read_number = [&](const char* key, double& out) {
-    if (!json.contains(key) || !json.at(key).is_number()) {
-      throw std::invalid_argument(std::string("config.") + key + " must be a number");
+  auto read_number = [&](const char* name, double& out) {
+    if (!json.contains(name) || !json.at(name).is_number()) {
+      throw std::invalid_argument(std::string(key::kConfig) + "." + name + " must be a number");
     }
-    out = json.at(key).get<double>();
+    out = json.at(name).get<double>();
   };
-  read_bool("observations", config.observations);
-  read_bool("rewards", config.rewards);
-  read_number("clip_observations", config.clip_observations);
-  read_number("clip_rewards", config.clip_rewards);
-  read_number("gamma", config.gamma);
-  read_number("epsilon", config.epsilon);
+  read_bool(key::kObservations, config.observations);
+  read_bool(key::kRewards, config.rewards);
+  read_number(key::kClipObservations, config.clip_observations);
+  read_number(key::kClipRewards, config.clip_rewards);
+  read_number(key::kGamma, config.gamma);
+  read_number(key::kEpsilon, config.epsilon);
   check_normalize_config(config);
   return config;
 }
@@ -130,27 +137,27 @@ const VectorStep& VecNormalize::step(std::span<const float> actions) {
 }
 
 nlohmann::json VecNormalize::state() const {
-  return {{"observations", observation_rms_.to_json()},
-          {"returns", return_rms_.to_json()},
-          {"config",
-           {{"observations", config_.observations},
-            {"rewards", config_.rewards},
-            {"clip_observations", config_.clip_observations},
-            {"clip_rewards", config_.clip_rewards},
-            {"gamma", config_.gamma},
-            {"epsilon", config_.epsilon}}}};
+  return {{key::kObservationStatistics, observation_rms_.to_json()},
+          {key::kReturnStatistics, return_rms_.to_json()},
+          {key::kConfig,
+           {{key::kObservations, config_.observations},
+            {key::kRewards, config_.rewards},
+            {key::kClipObservations, config_.clip_observations},
+            {key::kClipRewards, config_.clip_rewards},
+            {key::kGamma, config_.gamma},
+            {key::kEpsilon, config_.epsilon}}}};
 }
 
 void VecNormalize::load_state(const nlohmann::json& state) {
   if (!state.is_object()) throw std::invalid_argument("normalisation state must be an object");
-  for (const char* key : {"observations", "returns", "config"}) {
-    if (!state.contains(key)) throw std::invalid_argument(std::string("missing key ") + key);
+  for (const char* name : {key::kObservationStatistics, key::kReturnStatistics, key::kConfig}) {
+    if (!state.contains(name)) throw std::invalid_argument(std::string("missing key ") + name);
   }
   RunningMeanStd observations(observation_size_);
-  observations.from_json(state.at("observations"), "observations");
+  observations.from_json(state.at(key::kObservationStatistics), key::kObservationStatistics);
   RunningMeanStd returns(1);
-  returns.from_json(state.at("returns"), "returns");
-  const NormalizeConfig config = normalize_config_from_json(state.at("config"));
+  returns.from_json(state.at(key::kReturnStatistics), key::kReturnStatistics);
+  const NormalizeConfig config = normalize_config_from_json(state.at(key::kConfig));
   observation_rms_ = std::move(observations);
   return_rms_ = std::move(returns);
   merged_observation_rms_ = observation_rms_;

@@ -62,7 +62,7 @@ class VecNormalize final : public VectorEnv {
   const std::vector<float>& raw_rewards() const { return raw_rewards_; }
 
   /// Statistics as JSON: {"observations": {"mean","var","count"}, "returns": {...},
-  /// "config": {...}}.
+  /// "config": {...}}, keys declared in vec/normalization_state.hpp.
   nlohmann::json state() const;
   /// Restores state(); throws std::invalid_argument naming the field on a mismatch (wrong
   /// size, missing key, wrong type). Leaves the object unchanged when it throws.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "apps/cli_runner.hpp"
+#include "common/csv_fields.hpp"
 #include "common/temp_files.hpp"
 
 namespace upkie_rl {
@@ -24,13 +25,6 @@ namespace {
 using testing::read_bytes;
 using testing::run_cli;
 using testing::temp_path;
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
-  return fields;
-}
 
 TEST(DriveCommand, ARunWithoutADriverStandsStillAndRecordsCommandAndVelocity) {
   const auto record = temp_path("drive.csv");
@@ -46,7 +40,7 @@ TEST(DriveCommand, ARunWithoutADriverStandsStillAndRecordsCommandAndVelocity) {
   std::string line;
   std::getline(in, line);
   std::unordered_map<std::string, std::size_t> column;
-  const std::vector<std::string> header = split(line);
+  const std::vector<std::string> header = testing::csv_fields(line);
   for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
   for (const char* name : {"command.forward_velocity", "command.yaw_rate",
                            "measured.forward_velocity", "measured.yaw_rate"}) {
@@ -55,7 +49,7 @@ TEST(DriveCommand, ARunWithoutADriverStandsStillAndRecordsCommandAndVelocity) {
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    const std::vector<std::string> fields = split(line);
+    const std::vector<std::string> fields = testing::csv_fields(line);
     ASSERT_EQ(fields.size(), header.size()) << line;
     EXPECT_EQ(std::stod(fields[column["command.forward_velocity"]]), 0.0);
     EXPECT_EQ(std::stod(fields[column["command.yaw_rate"]]), 0.0);

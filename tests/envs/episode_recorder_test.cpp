@@ -7,18 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "common/csv_fields.hpp"
 #include "common/temp_files.hpp"
 #include "envs/registry.hpp"
 
 namespace upkie_rl {
 namespace {
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
-  return fields;
-}
 
 // The columns after the step's outcome are the declared ones (envs/record_columns.hpp), in
 // their order, and each holds the field the declaration names.
@@ -43,8 +37,8 @@ TEST(EpisodeRecorder, WritesTheDeclaredColumnsWithTheirFields) {
   std::string header_line;
   std::string row_line;
   ASSERT_TRUE(std::getline(in, header_line) && std::getline(in, row_line));
-  const std::vector<std::string> header = split(header_line);
-  const std::vector<std::string> row = split(row_line);
+  const std::vector<std::string> header = testing::csv_fields(header_line);
+  const std::vector<std::string> row = testing::csv_fields(row_line);
   ASSERT_EQ(row.size(), header.size());
   EXPECT_EQ(header[0], kEpisodeColumn);
   EXPECT_EQ(header[2], kTimeColumn);
