@@ -42,9 +42,9 @@ class InvalidCommandError : public Error {
 /// ("no clamp beyond the effort limit"); the robot gets finite values only.
 enum class ServoActionTarget { kSimulation, kRobot };
 
-/// Checks every field of kServoCommandFields (sim/servo_command_fields.hpp): finite, except where the table allows NaN (a
-/// NaN position is the documented "no position loop") or, for a simulation, +inf (a
-/// maximum_torque of +inf is "no clamp beyond the effort limit").
+/// Checks every field of kServoCommandFields (sim/servo_command_fields.hpp): finite, except where
+/// the table allows NaN (a NaN position is the documented "no position loop") or, for a simulation,
+/// +inf (a maximum_torque of +inf is "no clamp beyond the effort limit").
 /// @throws InvalidCommandError naming the joint and the field.
 void validate_servo_action(const ServoAction& action,
                            ServoActionTarget target = ServoActionTarget::kSimulation);

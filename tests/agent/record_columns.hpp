@@ -3,23 +3,15 @@
 
 #include <cstddef>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "common/csv_fields.hpp"
 #include "policy/deployed_policy.hpp"
 
 namespace upkie_rl::testing {
-
-/// The fields of one CSV line.
-inline std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
-  return fields;
-}
 
 /// A record file: its header's column names and its rows.
 struct RecordTable {
@@ -38,8 +30,8 @@ inline RecordTable read_record(const std::string& path) {
   RecordTable table;
   std::ifstream in(path);
   std::string line;
-  if (std::getline(in, line)) table.columns = split_csv(line);
-  while (std::getline(in, line)) table.rows.push_back(split_csv(line));
+  if (std::getline(in, line)) table.columns = csv_fields(line);
+  while (std::getline(in, line)) table.rows.push_back(csv_fields(line));
   return table;
 }
 
