@@ -130,15 +130,17 @@ TEST(VelocityCommand, ShortTrainingImprovesTheReturnAndLogsEachTerm) {
       "train --quiet --config " + config + " --run-dir " + run_dir.string() +
       " --set env.num_envs=8 --set env.threads=0 --set ppo.n_steps=2048 --set ppo.batch_size=512"
       " --set ppo.total_timesteps=81920 --set checkpoint_every=0"
-      " --set env.options.max_episode_steps=200");
+      " --set env.options.max_episode_steps=200 --set env.options.residual_scale=0.3");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const ScalarTable table = read_scalar_csv(run_dir / "progress.csv");
   const std::size_t column = table.index("rollout/ep_rew_mean");
   const std::size_t tracking = table.index("episode/reward_track_forward_velocity");
   table.index("episode/reward_action_rate");
   ASSERT_GE(table.rows.size(), 6u);
-  // Means of the first and last three iterations (one iteration's mean is noisy); measured:
-  // about 43 then 59 (episodes of at most 200 steps, up to 5.5 per step).
+  // Means of the first and last three iterations (one iteration's mean is noisy). The
+  // config's residual_scale 0.1 leaves the baseline's near-maximal return little to gain in
+  // 81,920 steps (956 then 952 measured); 0.3 starts the untrained residual further from it
+  // (518 then 730 measured).
   const auto mean_of = [&](std::size_t begin) {
     return (table.rows[begin][column] + table.rows[begin + 1][column] +
             table.rows[begin + 2][column]) /
