@@ -25,6 +25,11 @@ from . import _core
 from .spaces import box
 from .vector import canonical_id
 
+# The TorchScript metadata names its entries after the checkpoint header's and the
+# provenance's keys (rl/torchscript_export.cpp), read from their one declaration.
+_HEADER_KEY = _core.checkpoint_header_keys()
+_PROVENANCE_KEY = _core.provenance_keys()
+
 #: Largest difference between the actions of a ``.pt`` export and its ``.ckpt`` (absolute,
 #: per component), measured on trained pendulum policies (python/tests/test_policy.py).
 PT_CKPT_TOLERANCE = 1e-5
@@ -117,14 +122,14 @@ class TorchScriptPolicy(Policy):
                     np.array(metadata[what]["high"], dtype=np.float32),
                     metadata[what].get("names", []),
                 )
-                for what in ("observation_space", "action_space")
+                for what in (_HEADER_KEY["OBSERVATION_SPACE"], _HEADER_KEY["ACTION_SPACE"])
             }
         except (RuntimeError, ValueError, KeyError) as error:
             raise ValueError(f"{path}: not an upkie-rl TorchScript policy ({error})") from error
         self._torch = torch
-        self.env_id = metadata["env_id"]
-        self.observation_space = box(spaces["observation_space"])
-        self.action_space = box(spaces["action_space"])
+        self.env_id = metadata[_PROVENANCE_KEY["ENV_ID"]]
+        self.observation_space = box(spaces[_HEADER_KEY["OBSERVATION_SPACE"]])
+        self.action_space = box(spaces[_HEADER_KEY["ACTION_SPACE"]])
 
     def _act(self, observation: np.ndarray) -> np.ndarray:
         with self._torch.no_grad():
