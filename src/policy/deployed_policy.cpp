@@ -21,6 +21,10 @@ void check_size(std::size_t size, std::size_t expected, const char* what) {
   }
 }
 
+bool all_finite(std::span<const float> values) {
+  return std::ranges::all_of(values, [](float value) { return std::isfinite(value); });
+}
+
 /// "component 3 (pitch_rate) is nan" for the first non-finite value of `values`, or "".
 std::string first_non_finite(std::span<const float> values, const BoxSpace& space) {
   for (std::size_t i = 0; i < values.size(); ++i) {
@@ -83,21 +87,17 @@ void DeployedPolicy::act(std::span<const float> observation, std::span<float> ac
   check_size(observation.size(), observation_space_.size(), "observation");
   check_size(action.size(), action_space_.size(), "action");
   // One pass over each vector when all is well; the messages are made only on failure.
-  for (float value : observation) {
-    if (!std::isfinite(value)) {
-      throw std::invalid_argument("DeployedPolicy: observation " +
-                                  first_non_finite(observation, observation_space_));
-    }
+  if (!all_finite(observation)) {
+    throw std::invalid_argument("DeployedPolicy: observation " +
+                                first_non_finite(observation, observation_space_));
   }
   normalizer_.normalize(observation, input_);
   actor_.forward(parameters_, input_, scratch_, action);
-  for (float value : action) {
-    if (!std::isfinite(value)) {
-      throw PolicyOutputError(
-          "policy action " + first_non_finite(action, action_space_) +
-          ": the network overflows on this observation, outside the range the checkpoint "
-          "gate proves finite");
-    }
+  if (!all_finite(action)) {
+    throw PolicyOutputError(
+        "policy action " + first_non_finite(action, action_space_) +
+        ": the network overflows on this observation, outside the range the checkpoint "
+        "gate proves finite");
   }
   for (std::size_t j = 0; j < action.size(); ++j) {
     action[j] = std::clamp(action[j], action_space_.low[j], action_space_.high[j]);
