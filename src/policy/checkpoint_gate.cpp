@@ -3,7 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "model/number_text.hpp"
 #include "model/setting_bounds.hpp"
 #include "policy/checkpoint_header.hpp"
 #include "policy/model_header.hpp"
@@ -60,6 +62,30 @@ void check_tensors(const CheckpointFile& file, std::int64_t parameter_count) {
         throw CheckpointError("tensor '" + name + "' value " + std::to_string(i) + " is " +
                               std::to_string(tensor.values[i]));
       }
+    }
+  }
+}
+
+/// Adam's moments, when stored, are consistent (see kMaxAdamMomentRatio).
+void check_optimizer_moments(const CheckpointFile& file) {
+  if (!file.tensors.contains(checkpoint_header::kOptimizerExpAvg) ||
+      !file.tensors.contains(checkpoint_header::kOptimizerExpAvgSq)) {
+    return;
+  }
+  const std::vector<float>& first = file.tensor(checkpoint_header::kOptimizerExpAvg).values;
+  const std::vector<float>& second = file.tensor(checkpoint_header::kOptimizerExpAvgSq).values;
+  for (std::size_t i = 0; i < second.size(); ++i) {
+    if (second[i] < 0.0f) {
+      throw CheckpointError("tensor '" + std::string(checkpoint_header::kOptimizerExpAvgSq) +
+                            "' value " + std::to_string(i) + " is " + shortest_text(second[i]) +
+                            ": a second moment cannot be negative");
+    }
+    const double limit = std::sqrt(kMaxAdamMomentRatio * second[i]) + kAdamMomentSlack;
+    if (std::abs(static_cast<double>(first[i])) > limit) {
+      throw CheckpointError("tensor '" + std::string(checkpoint_header::kOptimizerExpAvg) +
+                            "' value " + std::to_string(i) + " is " + shortest_text(first[i]) +
+                            ": Adam allows at most " + shortest_text(limit) +
+                            " beside a second moment of " + shortest_text(second[i]));
     }
   }
 }
@@ -131,6 +157,7 @@ void check_contents(const CheckpointFile& file) {
       actor_critic_layout(shape.observation_size, shape.action_size, shape.actor_hidden_sizes,
                           shape.critic_hidden_sizes);
   check_tensors(file, layout.size);
+  check_optimizer_moments(file);
   const ObservationNormalizer normalizer = check_normalization(
       header.value(checkpoint_header::kNormalization, nlohmann::json()), observation_space.size());
   // Finite weights can still overflow (the fuzz target's weights of 1e36 gave a NaN action):

@@ -10,7 +10,8 @@
 /// nesting depth) it checks the contents: the known format and version, a readable
 /// configuration, a network within policy/network_limits.hpp whose sizes match the stored
 /// spaces, spaces with ordered bounds (finite for actions), tensors of the network's size,
-/// every weight, moment and statistic finite, normalisation settings in range, actor and
+/// every weight, moment and statistic finite, Adam's moments consistent
+/// (kMaxAdamMomentRatio), normalisation settings in range, actor and
 /// critic outputs proven finite for every input in range and log σ in [-20, 20]
 /// (policy/network_output_bound.hpp), and counters in [0, kMaxCheckpointCounter]. Header keys it
 /// does not know are left alone (later versions of the writer may add optional ones, such as
@@ -29,6 +30,16 @@ inline constexpr std::int64_t kCheckpointVersion = 1;
 /// Largest counter (timesteps, iterations, updates, checkpoints, optimiser steps) accepted:
 /// far beyond any run, far from int64 overflow.
 inline constexpr std::int64_t kMaxCheckpointCounter = 1'000'000'000'000'000;
+/// Largest m² / v accepted for the optimiser's moments m (optimizer.exp_avg) and v
+/// (optimizer.exp_avg_sq ≥ 0), beyond an absolute slack of kAdamMomentSlack on |m|. Adam's
+/// recurrences from zero bound m² by (1 − β1)² / ((1 − β2)(1 − β1² / β2)) · v for any
+/// gradients: 52.9 for PPO's β = (0.9, 0.999) (rl/flat_adam.hpp checks its own betas against
+/// this limit). A crafted checkpoint outside it (a negative v, or a large m over a tiny v)
+/// would make the first update after resume NaN or arbitrarily large.
+inline constexpr double kMaxAdamMomentRatio = 64.0;
+/// Absolute slack on |m|: float32 moments of gradients below about 1e-19 underflow v to 0
+/// first. With PPO's eps = 1e-5 it still bounds the first update's step to lr · 0.1.
+inline constexpr double kAdamMomentSlack = 1e-6;
 
 /// Checks a checkpoint's contents (see the file comment). Throws CheckpointError whose
 /// message starts with `where` and names the first problem.

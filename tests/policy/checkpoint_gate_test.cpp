@@ -116,6 +116,35 @@ TEST(CheckpointGate, NanOrInfiniteWeightsAreRefused) {
                  "tensor 'optimizer.exp_avg_sq'");
 }
 
+/// Sets the stored model's optimiser moments: every m and v zero except value 3, (m, v).
+void set_moments(CheckpointFile& file, float first, float second) {
+  const FloatTensor& parameters = file.tensor("policy.parameters");
+  for (const char* name : {"optimizer.exp_avg", "optimizer.exp_avg_sq"}) {
+    file.tensors[name] = {parameters.shape, std::vector<float>(parameters.values.size(), 0.0f)};
+  }
+  file.tensors["optimizer.exp_avg"].values[3] = first;
+  file.tensors["optimizer.exp_avg_sq"].values[3] = second;
+}
+
+// A negative second moment makes the first update after resume NaN (its square root), and a
+// large first moment over a small second one makes it arbitrarily large; both are finite.
+TEST(CheckpointGate, InconsistentAdamMomentsAreRefused) {
+  expect_refused(crafted("negative_second_moment",
+                         [](CheckpointFile& file) { set_moments(file, 0.0f, -0.25f); }),
+                 "tensor 'optimizer.exp_avg_sq' value 3 is -0.25: a second moment cannot be "
+                 "negative");
+  expect_refused(
+      crafted("large_first_moment", [](CheckpointFile& file) { set_moments(file, 1.0f, 1e-4f); }),
+      "tensor 'optimizer.exp_avg' value 3 is 1: Adam allows at most");
+  // At the limit both pass: |m| = sqrt(64 v), and a tiny m whose v underflowed to zero.
+  const float second = 1e-4f;
+  const float first = static_cast<float>(std::sqrt(kMaxAdamMomentRatio * second));
+  EXPECT_NO_THROW(read_checked_checkpoint(crafted(
+      "moments_at_limit", [&](CheckpointFile& file) { set_moments(file, -first, second); })));
+  EXPECT_NO_THROW(read_checked_checkpoint(crafted(
+      "underflowed_second_moment", [](CheckpointFile& file) { set_moments(file, 1e-7f, 0.0f); })));
+}
+
 /// Index in policy.parameters of weight `index` of layer `layer` of the stored model's
 /// critic.
 std::size_t critic_weight_index(std::size_t layer, std::int64_t index) {

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "policy/checkpoint_gate.hpp"
+
 namespace upkie_rl {
 namespace {
 
@@ -43,6 +47,35 @@ TEST(FlatAdam, LoadStateChecksSizes) {
   adam.load_state(torch::ones({4}), torch::full({4}, 2.0f), 7);
   EXPECT_EQ(adam.step_count(), 7);
   EXPECT_FLOAT_EQ(adam.exp_avg_sq()[2].item<float>(), 2.0f);
+}
+
+// The checkpoint gate refuses moments with m² > kMaxAdamMomentRatio · v. Adam's own moments
+// from any gradients stay within (1 − β1)² / ((1 − β2)(1 − β1² / β2)) · v (Cauchy–Schwarz on
+// the two recurrences), so a checkpoint PPO writes always passes.
+TEST(FlatAdam, MomentsStayWithinTheCheckpointGatesRatio) {
+  const AdamConfig config;
+  const double ratio_bound =
+      (1.0 - config.beta1) * (1.0 - config.beta1) /
+      ((1.0 - config.beta2) * (1.0 - config.beta1 * config.beta1 / config.beta2));
+  EXPECT_NEAR(ratio_bound, 52.9, 0.1);
+  EXPECT_LT(ratio_bound, kMaxAdamMomentRatio);
+  // The gradients that come nearest the bound: g_i ∝ (β1² / β2)^(t − i) seen from step t,
+  // so growing by β2 / β1² per step, for 40 steps; then ten random steps of mixed signs.
+  torch::Tensor parameters = torch::zeros({3});
+  torch::Tensor gradients = torch::zeros({3});
+  FlatAdam adam(parameters, gradients, config);
+  double largest_ratio = 0.0;
+  double gradient = 1e-3;
+  torch::manual_seed(5);
+  for (int step = 0; step < 50; ++step) {
+    gradient *= config.beta2 / (config.beta1 * config.beta1);
+    gradients.copy_(step < 40 ? torch::full({3}, gradient) : torch::randn({3}));
+    adam.step();
+    const torch::Tensor ratio = adam.exp_avg().square() / adam.exp_avg_sq();
+    largest_ratio = std::max(largest_ratio, ratio.max().item<double>());
+  }
+  EXPECT_GT(largest_ratio, 45.0);  // the sequence does approach the bound
+  EXPECT_LE(largest_ratio, ratio_bound * (1.0 + 1e-5));
 }
 
 TEST(ClipGradientNorm, MatchesTorchClipGradNorm) {
