@@ -20,5 +20,7 @@ void bind_registry(pybind11::module_& module);
 void bind_policy(pybind11::module_& module);
 void bind_model_files(pybind11::module_& module);
 void bind_evaluation(pybind11::module_& module);
+/// `ARGUMENT_RANGES`: (min, max) of each integer argument the package checks.
+void bind_argument_ranges(pybind11::module_& module);
 
 }  // namespace upkie_rl::python

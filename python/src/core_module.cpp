@@ -64,4 +64,5 @@ PYBIND11_MODULE(_core, module) {
   upkie_rl::python::bind_policy(module);
   upkie_rl::python::bind_model_files(module);
   upkie_rl::python::bind_evaluation(module);
+  upkie_rl::python::bind_argument_ranges(module);
 }

@@ -9,6 +9,7 @@ import numpy as np
 
 from . import _core
 from .actions import as_action_array
+from .arguments import flag_argument, render_size, seed_argument
 from .options import to_env_options
 from .spaces import NestedLayout, box, is_nested
 
@@ -51,12 +52,12 @@ class UpkieEnv(gym.Env):
             raise ValueError(
                 f"{env_id}: render_mode {render_mode!r} is not supported; use 'rgb_array'"
             )
-        self._render_size = (int(render_width), int(render_height))
-        self._render_overlay = bool(render_overlay)
+        self._render_size = render_size(render_width, render_height)
+        self._render_overlay = flag_argument("render_overlay", render_overlay)
         options.setdefault("max_episode_steps", 0)
         self.env_id = env_id
         self.render_mode = render_mode
-        self._with_spine_observation = spine_observation
+        self._with_spine_observation = flag_argument("spine_observation", spine_observation)
         self._core = _core.Env(env_id, to_env_options(env_id, options))
         # Real time: one frame per step (RecordVideo writes videos at this rate).
         self.metadata = {"render_modes": ["rgb_array"], "render_fps": 1.0 / self._core.timestep}
@@ -80,6 +81,7 @@ class UpkieEnv(gym.Env):
     def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
         """Starts an episode: a seed re-seeds the environment's generator (initial-state
         randomisation); without one it continues."""
+        seed = seed_argument(seed)
         super().reset(seed=seed)
         if options:
             raise ValueError(

@@ -16,6 +16,7 @@ import numpy as np
 from stable_baselines3.common.vec_env.base_vec_env import VecEnv
 
 from .actions import as_action_array
+from .arguments import index_argument, seed_argument
 from .spaces import box
 from .vector import RenderSettings, agent_frequency, canonical_id, make_core_vector_env
 
@@ -56,14 +57,14 @@ class UpkieSB3VecEnv(VecEnv):
             **self.metadata, "render_fps": agent_frequency(env_id, options)
         }
         self.num_threads = self._core.num_threads
-        self._first_seed = 0 if seed is None else seed
+        self._first_seed = seed_argument(0 if seed is None else seed)
         self._was_reset = False
         self._actions: Optional[np.ndarray] = None
         self._start_time = time.monotonic()
         self._action_shape = (num_envs, len(self._core.action_space[0]))
 
     def reset(self):
-        seed = self._seeds[0]
+        seed = seed_argument(self._seeds[0])  # VecEnv.seed(s) sets s + i for env i
         if seed is None and not self._was_reset:
             seed = self._first_seed
         self._was_reset = True
@@ -111,7 +112,10 @@ class UpkieSB3VecEnv(VecEnv):
 
     def env_method(self, method_name: str, *method_args, indices=None, **method_kwargs):
         if method_name == "spine_observation":
-            return [self._core.spine_observation(i) for i in self._get_indices(indices)]
+            return [
+                self._core.spine_observation(index_argument(i, self.num_envs))
+                for i in self._get_indices(indices)
+            ]
         raise AttributeError(f"{self.env_id}: no environment method {method_name!r}")
 
     def env_is_wrapped(self, wrapper_class, indices=None) -> List[bool]:

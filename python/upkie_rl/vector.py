@@ -11,6 +11,13 @@ from gymnasium.vector.utils import batch_space
 
 from . import _core
 from .actions import as_action_array
+from .arguments import (
+    flag_argument,
+    index_argument,
+    integer_argument,
+    render_size,
+    seed_argument,
+)
 from .options import to_env_options
 from .spaces import box, is_nested
 
@@ -44,14 +51,13 @@ def default_num_threads(num_envs: int) -> int:
 def make_core_vector_env(
     env_id: str, num_envs: int, num_threads: Optional[int], autoreset: str, options: dict
 ) -> "_core.VectorEnv":
-    """The C++ vector env behind both Python vector classes. Raises ValueError on a bad
-    count, and for the Servos ids, whose nested dicts the flat batch cannot carry."""
-    if not isinstance(num_envs, int) or num_envs < 1:
-        raise ValueError(f"num_envs must be a positive integer, got {num_envs!r}")
+    """The C++ vector env behind both Python vector classes. Raises TypeError or ValueError
+    on a bad count (arguments.py), and ValueError for the Servos ids, whose nested dicts the
+    flat batch cannot carry."""
+    num_envs = integer_argument("num_envs", num_envs)
     if num_threads is None:
         num_threads = default_num_threads(num_envs)
-    if not isinstance(num_threads, int) or num_threads < 0:
-        raise ValueError(f"num_threads must be a non-negative integer, got {num_threads!r}")
+    num_threads = integer_argument("num_threads", num_threads)
     if is_nested(env_id):
         raise ValueError(
             f"{env_id}: vector envs step flat arrays; use the ServosTask id, or "
@@ -122,22 +128,21 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
         self._action_shape = (num_envs, self.single_action_space.shape[0])
-        self._seed = 0 if seed is None else seed
+        self._seed = seed_argument(0 if seed is None else seed)
         self._was_reset = False
         self._same_step = mode == "SameStep"
-        self._spine_observation = spine_observation
+        self._spine_observation = flag_argument("spine_observation", spine_observation)
 
     def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
         if options:
             raise ValueError(f"{self.env_id}: reset options are not supported")
-        if seed is not None and not isinstance(seed, (int, np.integer)):
-            raise TypeError(f"seed must be an integer (env i gets seed + i), got {seed!r}")
+        seed = seed_argument(seed)
         if seed is not None:
-            self._np_random, self._np_random_seed = gym.utils.seeding.np_random(int(seed))
+            self._np_random, self._np_random_seed = gym.utils.seeding.np_random(seed)
         elif not self._was_reset:
             seed = self._seed
         self._was_reset = True
-        observations = self._core.reset(None if seed is None else int(seed))
+        observations = self._core.reset(seed)
         infos: dict = {}
         if self._spine_observation:
             self._add_spine_observations(infos)
@@ -176,7 +181,7 @@ class UpkieVectorEnv(gym.vector.VectorEnv):
 
     def spine_observation(self, index: int) -> Optional[dict]:
         """Environment ``index``'s full observation dictionary after the last step."""
-        return self._core.spine_observation(index)
+        return self._core.spine_observation(index_argument(index, self.num_envs))
 
     def close_extras(self, **kwargs: Any) -> None:
         self._core = None  # type: ignore[assignment]  # any later use fails
@@ -206,11 +211,9 @@ class RenderSettings:
             raise ValueError(
                 f"{env_id}: render_mode {render_mode!r} is not supported; use 'rgb_array'"
             )
-        if count is not None and (not isinstance(count, int) or count < 1):
-            raise ValueError(f"render_envs must be a positive integer or None, got {count!r}")
-        self.size = (int(width), int(height))
-        self.count = count
-        self.overlay = bool(overlay)
+        self.size = render_size(width, height)
+        self.count = None if count is None else integer_argument("render_envs", count)
+        self.overlay = flag_argument("render_overlay", overlay)
 
     def frames(self, core: Any, num_envs: int) -> List[np.ndarray]:
         """Frames of the first ``count`` environments (all without a count)."""

@@ -35,8 +35,11 @@ int overlay_font_scale(int height) {
 }
 
 void RenderConfig::validate() const {
-  if (width < 16 || width > 1920 || height < 16 || height > 1080) {
-    throw RenderError("frame size must be within 16x16 and 1920x1080 pixels, got " +
+  if (width < kMinFrameWidth || width > kMaxFrameWidth || height < kMinFrameHeight ||
+      height > kMaxFrameHeight) {
+    throw RenderError("frame size must be within " + std::to_string(kMinFrameWidth) + "x" +
+                      std::to_string(kMinFrameHeight) + " and " + std::to_string(kMaxFrameWidth) +
+                      "x" + std::to_string(kMaxFrameHeight) + " pixels, got " +
                       std::to_string(width) + "x" + std::to_string(height));
   }
   if (!(camera_distance > 0.0) || !std::isfinite(camera_distance)) {

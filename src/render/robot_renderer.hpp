@@ -27,14 +27,20 @@ struct RobotPose {
 /// @throws RenderError when the observation has none (a real robot's).
 RobotPose robot_pose(const Observation& observation);
 
+/// Frame sizes RenderConfig::validate accepts [px].
+inline constexpr int kMinFrameWidth = 16;
+inline constexpr int kMaxFrameWidth = 1920;
+inline constexpr int kMinFrameHeight = 16;
+inline constexpr int kMaxFrameHeight = 1080;
+
 /// Font scale [%] of the caption on frames of `height` rows: 150 at 480 rows, in proportion,
 /// in MuJoCo's steps (50 to 300), so that the caption takes the same share of any frame.
 int overlay_font_scale(int height);
 
 /// Image size and camera. The camera tracks the base from a fixed direction.
 struct RenderConfig {
-  int width = 640;                  ///< [px], at most 1920.
-  int height = 480;                 ///< [px], at most 1080.
+  int width = 640;                  ///< [px], in [kMinFrameWidth, kMaxFrameWidth].
+  int height = 480;                 ///< [px], in [kMinFrameHeight, kMaxFrameHeight].
   double camera_distance = 1.4;     ///< From the tracked point [m].
   double camera_azimuth = 135.0;    ///< [deg], MuJoCo's convention.
   double camera_elevation = -20.0;  ///< [deg], negative looks down.
