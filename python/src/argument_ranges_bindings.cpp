@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "bindings.hpp"
+#include "envs/evaluation_start.hpp"
 #include "render/robot_renderer.hpp"
 #include "vec/make_vector_env.hpp"
 
@@ -24,6 +25,7 @@ void bind_argument_ranges(py::module_& module) {
   ranges["render_width"] = py::make_tuple(kMinFrameWidth, kMaxFrameWidth);
   ranges["render_height"] = py::make_tuple(kMinFrameHeight, kMaxFrameHeight);
   ranges["seed"] = py::make_tuple(0, std::numeric_limits<std::uint64_t>::max());
+  ranges["episodes"] = py::make_tuple(1, kMaxEvaluationEpisodes);
   module.attr("ARGUMENT_RANGES") = ranges;
 }
 

@@ -22,6 +22,7 @@ import gymnasium as gym
 import numpy as np
 
 from . import _core
+from .arguments import flag_argument, integer_argument
 from .spaces import box
 from .vector import canonical_id
 
@@ -136,6 +137,10 @@ class TorchScriptPolicy(Policy):
             return self._module(self._torch.from_numpy(observation)).numpy()
 
 
+#: Episode seeds wrap around past the largest seed, as the C++ side's 64-bit ones do.
+_SEED_MODULUS = _core.ARGUMENT_RANGES["seed"][1] + 1
+
+
 def load_policy(path: Union[str, Path]) -> Policy:
     """Loads ``model_*.ckpt`` (C++, no torch) or ``model_*.pt`` (TorchScript, needs torch).
 
@@ -165,16 +170,22 @@ def evaluate(
     in ``options``, gets the evaluation's bound), so that N episodes are N different ones.
     ``exact_start=True`` keeps the environment's own start (the pendulum's is the same
     every episode, as in upkie's environments). Warns (UserWarning) when every episode
-    was the same."""
+    was the same.
+
+    ``episodes`` is in [1, 1000000] (as ``upkie-rl evaluate --episodes``), ``seed`` in
+    [0, 2**64 - 1] (seeds past it wrap around, as the command line's); TypeError or
+    ValueError otherwise, naming the argument."""
+    episodes = integer_argument("episodes", episodes)
+    seed = integer_argument("seed", seed)
     env_id = canonical_id(env_id)
-    if not exact_start:
+    if not flag_argument("exact_start", exact_start):
         options = evaluation_start_options(env_id, options)
     # Always our id: a bare Upkie-Mock-* or Upkie-Spine-* may be the public upkie package's.
     env = gym.make(f"upkie_rl/{env_id}", **options)
     policy.check_env(env)
     results = []
     for episode in range(episodes):
-        observation, _ = env.reset(seed=seed + episode)
+        observation, _ = env.reset(seed=(seed + episode) % _SEED_MODULUS)
         total, length, done = 0.0, 0, False
         while not done:
             observation, reward, terminated, truncated, _ = env.step(policy(observation))

@@ -22,6 +22,11 @@ struct EvaluationStartBound {
 inline constexpr EvaluationStartBound kEvaluationStart[] = {{"init_rand_pitch", 0.05},
                                                             {"init_rand_omega_y", 0.1}};
 
+/// Most episodes `upkie_rl.evaluate(episodes=...)` runs, so that a typo cannot start a run
+/// that never ends: the bound of `upkie-rl evaluate --episodes` (python/tests/
+/// test_arguments.py checks that they agree until the command uses this declaration).
+inline constexpr int kMaxEvaluationEpisodes = 1'000'000;
+
 /// Help of the CLI's --exact-start flag (rollout, evaluate).
 inline constexpr const char* kExactStartHelp =
     "Start episodes from the environment's own initial state (the seed's, for parity) "
