@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "agent/policy_runner.hpp"
 #include "apps/interrupt_handlers.hpp"
@@ -49,6 +50,11 @@ void add_limit_options(CLI::App& app, upkie_rl::SupervisorLimits& limits) {
       ->capture_default_str();
 }
 
+/// A refused option ends as one line on the standard error, before the spine is touched.
+std::string one_line_failure(const CLI::App*, const CLI::Error& error) {
+  return std::string("upkie-rl-agent: error: ") + error.what() + "\n";
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
       "upkie-rl-agent: runs a policy of `upkie-rl train` on Upkie's spine (the robot's, or "
@@ -78,10 +84,11 @@ int run(int argc, char** argv) {
                "space stop)")
       ->excludes(commands);
   add_limit_options(app, options.limits);
+  app.failure_message(one_line_failure);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    return app.exit(error) == 0 ? 0 : 1;  // --help: 0; a refused option: 1, as documented
   }
   const upkie_rl::apps::InterruptHandlers handlers;
   const upkie_rl::RunSummary summary =
