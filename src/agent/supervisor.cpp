@@ -25,23 +25,24 @@ double rate_limited(double target, double last, double max_change) {
 }  // namespace
 
 void SupervisorLimits::validate() const {
-  const auto positive = [](double value, const char* name) {
-    if (!(value > 0.0 && std::isfinite(value))) {
-      throw AgentError(std::string(name) + " must be positive and finite, got " +
-                       std::to_string(value));
+  const auto in_range = [](double value, LimitRange range, const char* name) {
+    if (!(std::isfinite(value) && value >= range.min && value <= range.max)) {
+      throw AgentError(fmt::format("{} must be a finite number in [{}, {}], got {}", name,
+                                   range.min, range.max, value));
     }
   };
-  positive(max_pitch, "max pitch");
-  positive(max_roll, "max roll");
-  positive(joint_position_margin + 1.0, "joint position margin + 1");
-  positive(joint_velocity_factor, "joint velocity factor");
-  positive(max_velocity_command_rate, "velocity command rate limit");
-  positive(max_position_command_rate, "position command rate limit");
-  positive(max_torque + 1.0, "max torque + 1");
-  positive(spine_timeout, "spine timeout");
-  positive(max_consecutive_deadline_misses, "max consecutive deadline misses");
-  positive(max_cycle_periods, "max cycle periods");
-  positive(nb_stop_cycles + 1.0, "stop cycles + 1");
+  in_range(max_pitch, kMaxPitchRange, "max pitch");
+  in_range(max_roll, kMaxRollRange, "max roll");
+  in_range(joint_position_margin, kJointPositionMarginRange, "joint position margin");
+  in_range(joint_velocity_factor, kJointVelocityFactorRange, "joint velocity factor");
+  in_range(max_velocity_command_rate, kVelocityCommandRateRange, "velocity command rate limit");
+  in_range(max_position_command_rate, kPositionCommandRateRange, "position command rate limit");
+  in_range(max_torque, kMaxTorqueRange, "max torque");
+  in_range(spine_timeout, kSpineTimeoutRange, "spine timeout");
+  in_range(max_consecutive_deadline_misses, kMaxDeadlineMissesRange,
+           "max consecutive deadline misses");
+  in_range(max_cycle_periods, kMaxCyclePeriodsRange, "max cycle periods");
+  in_range(nb_stop_cycles, kStopCyclesRange, "stop cycles");
 }
 
 Supervisor::Supervisor(const SupervisorLimits& limits, std::shared_ptr<const RobotModel> model,

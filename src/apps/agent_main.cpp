@@ -12,42 +12,55 @@
 
 #include "agent/policy_runner.hpp"
 #include "apps/interrupt_handlers.hpp"
+#include "apps/option_checks.hpp"
 
 namespace {
 
-void add_limit_options(CLI::App& app, upkie_rl::SupervisorLimits& limits) {
-  app.add_option("--max-pitch", limits.max_pitch, "Attitude limit: |pitch| [rad]")
-      ->capture_default_str();
-  app.add_option("--max-roll", limits.max_roll, "Attitude limit: |roll| [rad]")
-      ->capture_default_str();
-  app.add_option("--joint-position-margin", limits.joint_position_margin,
-                 "Measured joint angle allowed beyond the joint's limits [rad]")
-      ->capture_default_str();
-  app.add_option("--joint-velocity-factor", limits.joint_velocity_factor,
-                 "Measured joint velocity allowed, as a fraction of the joint's limit")
-      ->capture_default_str();
-  app.add_option("--velocity-command-rate", limits.max_velocity_command_rate,
-                 "Rate limit of velocity commands [rad/s^2]")
-      ->capture_default_str();
-  app.add_option("--position-command-rate", limits.max_position_command_rate,
-                 "Rate limit of position commands [rad/s]")
-      ->capture_default_str();
-  app.add_option("--max-torque", limits.max_torque,
-                 "Cap of every command's maximum torque [N.m], never above the joint's "
-                 "effort (0: the effort)")
-      ->capture_default_str();
-  app.add_option("--spine-timeout", limits.spine_timeout,
-                 "The spine is silent after this long without an answer [s]")
-      ->capture_default_str();
-  app.add_option("--max-deadline-misses", limits.max_consecutive_deadline_misses,
-                 "Stop after this many missed deadlines in a row")
-      ->capture_default_str();
-  app.add_option("--max-cycle-periods", limits.max_cycle_periods,
-                 "Stop after one cycle longer than this many periods")
-      ->capture_default_str();
-  app.add_option("--stop-cycles", limits.nb_stop_cycles,
-                 "Cycles of stop commands sent before the Stop request")
-      ->capture_default_str();
+using upkie_rl::LimitRange;
+using upkie_rl::SupervisorLimits;
+using upkie_rl::apps::finite_range;
+
+/// A number option checked against its declared range (finite, within it).
+template <typename Number>
+void add_ranged_option(CLI::App& app, const std::string& flag, Number& value, LimitRange range,
+                       const std::string& help) {
+  app.add_option(flag, value, help)
+      ->capture_default_str()
+      ->check(finite_range(range.min, range.max));
+}
+
+void add_limit_options(CLI::App& app, SupervisorLimits& limits) {
+  add_ranged_option(app, "--max-pitch", limits.max_pitch, SupervisorLimits::kMaxPitchRange,
+                    "Attitude limit: |pitch| [rad]");
+  add_ranged_option(app, "--max-roll", limits.max_roll, SupervisorLimits::kMaxRollRange,
+                    "Attitude limit: |roll| [rad]");
+  add_ranged_option(app, "--joint-position-margin", limits.joint_position_margin,
+                    SupervisorLimits::kJointPositionMarginRange,
+                    "Measured joint angle allowed beyond the joint's limits [rad]");
+  add_ranged_option(app, "--joint-velocity-factor", limits.joint_velocity_factor,
+                    SupervisorLimits::kJointVelocityFactorRange,
+                    "Measured joint velocity allowed, as a fraction of the joint's limit");
+  add_ranged_option(app, "--velocity-command-rate", limits.max_velocity_command_rate,
+                    SupervisorLimits::kVelocityCommandRateRange,
+                    "Rate limit of velocity commands [rad/s^2]");
+  add_ranged_option(app, "--position-command-rate", limits.max_position_command_rate,
+                    SupervisorLimits::kPositionCommandRateRange,
+                    "Rate limit of position commands [rad/s]");
+  add_ranged_option(app, "--max-torque", limits.max_torque, SupervisorLimits::kMaxTorqueRange,
+                    "Cap of every command's maximum torque [N.m], never above the joint's "
+                    "effort (0: the effort)");
+  add_ranged_option(app, "--spine-timeout", limits.spine_timeout,
+                    SupervisorLimits::kSpineTimeoutRange,
+                    "The spine is silent after this long without an answer [s]");
+  add_ranged_option(app, "--max-deadline-misses", limits.max_consecutive_deadline_misses,
+                    SupervisorLimits::kMaxDeadlineMissesRange,
+                    "Stop after this many missed deadlines in a row");
+  add_ranged_option(app, "--max-cycle-periods", limits.max_cycle_periods,
+                    SupervisorLimits::kMaxCyclePeriodsRange,
+                    "Stop after one cycle longer than this many periods");
+  add_ranged_option(app, "--stop-cycles", limits.nb_stop_cycles, SupervisorLimits::kStopCyclesRange,
+                    "Cycles of stop commands sent before the Stop request (200: 1 s at "
+                    "200 Hz)");
 }
 
 /// A refused option ends as one line on the standard error, before the spine is touched.
@@ -63,9 +76,10 @@ int run(int argc, char** argv) {
   app.add_option("--model", options.model, "Checkpoint (.ckpt) of `upkie-rl train`")->required();
   app.add_option("--shm-name", options.shm_name, "Shared-memory name of the spine")
       ->capture_default_str();
+  // A week at most: longer runs are runs until stopped (0).
   app.add_option("--duration", options.duration, "Run for this long [s], 0 until stopped")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0.0, 7 * 86400.0));
   app.add_option("--record", options.record,
                  "Flight record: every cycle to a CSV file (`upkie-rl view --replay` reads it)");
   app.add_flag("--dry-run", options.dry_run,

@@ -52,9 +52,56 @@ void expect_refused(const std::string& flag, const std::string& value) {
   EXPECT_EQ(run.err.rfind("upkie-rl-agent: error: " + flag, 0), 0) << what << "\n" << run.err;
 }
 
-TEST(AgentOptions, ARefusedOptionIsOneLineOnStandardError) {
-  expect_refused("--open-tries", "0");
-  expect_refused("--duration", "-1");
+TEST(AgentOptions, NumbersOutsideTheirRangeAreRefusedInOneLine) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--duration", "nan"},
+      {"--duration", "inf"},
+      {"--duration", "1e308"},
+      {"--duration", "-1"},
+      {"--max-pitch", "nan"},
+      {"--max-pitch", "1e300"},
+      {"--max-pitch", "1.6"},  // |pitch| never exceeds pi/2: no limit at all
+      {"--max-pitch", "0"},
+      {"--max-roll", "nan"},
+      {"--max-roll", "3.2"},
+      {"--joint-position-margin", "nan"},
+      {"--joint-position-margin", "-1e9"},
+      {"--joint-velocity-factor", "inf"},
+      {"--joint-velocity-factor", "-1"},
+      {"--velocity-command-rate", "nan"},
+      {"--velocity-command-rate", "-1"},
+      {"--position-command-rate", "inf"},
+      {"--max-torque", "nan"},
+      {"--max-torque", "-1"},
+      {"--max-torque", "1e300"},
+      {"--spine-timeout", "nan"},
+      {"--spine-timeout", "0"},
+      {"--spine-timeout", "1e12"},
+      {"--max-deadline-misses", "0"},
+      {"--max-deadline-misses", "1000000"},
+      {"--max-cycle-periods", "nan"},
+      {"--max-cycle-periods", "0"},
+      {"--stop-cycles", "-1"},
+      {"--stop-cycles", "2000000000"},
+      {"--open-tries", "0"},
+  };
+  for (const auto& [flag, value] : cases) expect_refused(flag, value);
+}
+
+TEST(AgentOptions, HelpShowsTheRanges) {
+  const AgentRun run = run_agent({"--help"});
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("--max-pitch"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("NUMBER in [0.01, 1.5]"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("NUMBER in [0, 200]"), std::string::npos) << run.out;
+}
+
+TEST(AgentOptions, TheRangesBoundsAreAccepted) {
+  // Accepted options go on to the spine, which is not there: the runner's own refusal.
+  const AgentRun run = run_agent({"--max-pitch", "1.5", "--stop-cycles", "200", "--duration",
+                                  "604800", "--max-torque", "0", "--spine-timeout", "10"});
+  EXPECT_EQ(run.status, 2) << run.out << run.err;
+  EXPECT_NE(run.out.find("no spine to stop"), std::string::npos) << run.out;
 }
 
 }  // namespace

@@ -125,5 +125,27 @@ TEST(LoopMonitor, CountsMissesAndTripsOnOverrun) {
   EXPECT_THROW(single.on_cycle_start(now += microseconds(60000)), SupervisorTrip);
 }
 
+TEST(Supervisor, LimitsOutsideTheirRangesAreRefused) {
+  EXPECT_NO_THROW(SupervisorLimits{}.validate());
+  SupervisorLimits limits;
+  limits.max_pitch = 1.6;  // beyond what an arcsine pitch can reach: a limit that never trips
+  EXPECT_THROW(limits.validate(), AgentError);
+  limits = {};
+  limits.max_pitch = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(limits.validate(), AgentError);
+  limits = {};
+  limits.nb_stop_cycles = 2000000000;
+  EXPECT_THROW(limits.validate(), AgentError);
+  limits = {};
+  limits.joint_position_margin = -1e9;
+  EXPECT_THROW(limits.validate(), AgentError);
+  limits = {};
+  limits.max_torque = 1e300;
+  EXPECT_THROW(limits.validate(), AgentError);
+  limits.max_torque = SupervisorLimits::kMaxTorqueRange.max;
+  limits.nb_stop_cycles = static_cast<int>(SupervisorLimits::kStopCyclesRange.max);
+  EXPECT_NO_THROW(limits.validate());
+}
+
 }  // namespace
 }  // namespace upkie_rl
