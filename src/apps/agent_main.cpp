@@ -13,12 +13,15 @@
 #include "agent/policy_runner.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/option_checks.hpp"
+#include "spine/shared_memory.hpp"
+#include "spine/spine_error.hpp"
 
 namespace {
 
 using upkie_rl::LimitRange;
 using upkie_rl::SupervisorLimits;
 using upkie_rl::apps::finite_range;
+using upkie_rl::apps::kNonEmptyPath;
 
 /// A number option checked against its declared range (finite, within it).
 template <typename Number>
@@ -63,6 +66,18 @@ void add_limit_options(CLI::App& app, SupervisorLimits& limits) {
                     "200 Hz)");
 }
 
+/// A shared-memory name the spine layer accepts ('/' and up to 250 other characters).
+const CLI::Validator kShmName(
+    [](std::string& name) {
+      try {
+        upkie_rl::SharedMemory::validate_name(name);
+        return std::string();
+      } catch (const upkie_rl::SpineError& error) {
+        return std::string(error.what());
+      }
+    },
+    "NAME");
+
 /// A refused option ends as one line on the standard error, before the spine is touched.
 std::string one_line_failure(const CLI::App*, const CLI::Error& error) {
   return std::string("upkie-rl-agent: error: ") + error.what() + "\n";
@@ -73,15 +88,19 @@ int run(int argc, char** argv) {
       "upkie-rl-agent: runs a policy of `upkie-rl train` on Upkie's spine (the robot's, or "
       "`upkie-rl spine`) under a safety supervisor. Ctrl-C or SIGTERM stops it cleanly."};
   upkie_rl::RunnerOptions options;
-  app.add_option("--model", options.model, "Checkpoint (.ckpt) of `upkie-rl train`")->required();
+  app.add_option("--model", options.model, "Checkpoint (.ckpt) of `upkie-rl train`")
+      ->required()
+      ->check(kNonEmptyPath);
   app.add_option("--shm-name", options.shm_name, "Shared-memory name of the spine")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kShmName);
   // A week at most: longer runs are runs until stopped (0).
   app.add_option("--duration", options.duration, "Run for this long [s], 0 until stopped")
       ->capture_default_str()
       ->check(finite_range(0.0, 7 * 86400.0));
   app.add_option("--record", options.record,
-                 "Flight record: every cycle to a CSV file (`upkie-rl view --replay` reads it)");
+                 "Flight record: every cycle to a CSV file (`upkie-rl view --replay` reads it)")
+      ->check(kNonEmptyPath);
   app.add_flag("--dry-run", options.dry_run,
                "Send only stop commands; log the commands the policy would send");
   app.add_option("--open-tries", options.open_tries, "Attempts at opening the spine, 1 s apart")
@@ -92,7 +111,8 @@ int run(int argc, char** argv) {
                      "Velocity tasks: commands from a CSV file of rows time,vx,wz ([s], [m/s], "
                      "[rad/s], each held until the next row's time, as `upkie-rl rollout "
                      "--commands`), or - for lines vx,wz on the standard input, each taking "
-                     "effect when read; without it, or --keyboard, the robot stands still");
+                     "effect when read; without it, or --keyboard, the robot stands still")
+          ->check(kNonEmptyPath);
   app.add_flag("--keyboard", options.keyboard,
                "Velocity tasks: steer with the keys of the terminal (w/s forward, a/d turn, "
                "space stop)")

@@ -88,6 +88,19 @@ TEST(AgentOptions, NumbersOutsideTheirRangeAreRefusedInOneLine) {
   for (const auto& [flag, value] : cases) expect_refused(flag, value);
 }
 
+TEST(AgentOptions, EmptyPathsAreRefused) {
+  expect_refused("--record", "");
+  expect_refused("--commands", "");
+  expect_refused("--model", "");
+}
+
+TEST(AgentOptions, MalformedSharedMemoryNamesAreRefused) {
+  expect_refused("--shm-name", "");
+  expect_refused("--shm-name", "noslash");
+  expect_refused("--shm-name", "/a/b");
+  expect_refused("--shm-name", "/" + std::string(300, 'x'));
+}
+
 TEST(AgentOptions, HelpShowsTheRanges) {
   const AgentRun run = run_agent({"--help"});
   EXPECT_EQ(run.status, 0) << run.err;
