@@ -131,14 +131,19 @@ std::string run_loop(DeployedPolicy& policy, RobotEnv& robot, Supervisor& superv
   }
 }
 
-/// Sends what a spine expects of a stopping agent. Before the environment exists (a bad
-/// checkpoint), only the Stop request, if a spine is there.
-int send_stop_commands(RobotEnv& robot, const RunnerOptions& options) {
+/// Sends what a spine expects of a stopping agent, filling the summary's stop fields. Before
+/// the environment exists (a bad checkpoint), only the Stop request, if a spine is there.
+/// `cut_short`: as SupervisedSpine::send_stop_commands.
+void send_stop_commands(RobotEnv& robot, const RunnerOptions& options,
+                        const std::atomic<bool>& cut_short, RunSummary& summary) {
   if (robot.link != nullptr && robot.supervisor->state() != SupervisorState::kIdle) {
-    const int answered = robot.link->send_stop_commands(options.limits.nb_stop_cycles);
-    spdlog::info("stopping: {} of {} stop cycles answered, Stop request sent", answered,
-                 options.limits.nb_stop_cycles);
-    return answered;
+    const int planned = options.limits.nb_stop_cycles;
+    summary.stop_cycles_sent = robot.link->send_stop_commands(planned, cut_short);
+    summary.stop_cut_short = summary.stop_cycles_sent < planned && cut_short.load();
+    spdlog::info("stopping: {} of {} stop cycles answered{}, Stop request sent",
+                 summary.stop_cycles_sent, planned,
+                 summary.stop_cut_short ? " (cut short by SIGINT or SIGTERM)" : "");
+    return;
   }
   try {
     SpineBackendConfig config;
@@ -152,7 +157,6 @@ int send_stop_commands(RobotEnv& robot, const RunnerOptions& options) {
   } catch (const std::exception& error) {
     spdlog::info("stopping: nothing was started, and no spine to stop ({})", error.what());
   }
-  return 0;
 }
 
 /// Goes to `next` on the supervisor if there is one, else logs the same line.
@@ -168,7 +172,7 @@ void transition(const RobotEnv& robot, SupervisorState from, SupervisorState nex
 
 }  // namespace
 
-RunSummary run_policy(const RunnerOptions& options, const std::atomic<bool>& interrupt) {
+RunSummary run_policy(const RunnerOptions& options, std::atomic<bool>& interrupt) {
   RunSummary summary;
   std::optional<LoopMonitor> monitor;
   RobotEnv robot;
@@ -197,8 +201,9 @@ RunSummary run_policy(const RunnerOptions& options, const std::atomic<bool>& int
   } catch (const std::exception& error) {
     summary.stop_reason = error.what();
   }
+  interrupt.store(false);  // The one that caused the stop; a second one cuts stopping short.
   transition(robot, SupervisorState::kIdle, SupervisorState::kStopping, summary.stop_reason);
-  summary.stop_cycles_sent = send_stop_commands(robot, options);
+  send_stop_commands(robot, options, interrupt, summary);
   if (recorder) {
     try {
       recorder->close();

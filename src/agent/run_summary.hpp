@@ -18,6 +18,8 @@ struct RunSummary {
   bool completed = false;
   LoopStatistics loop;
   int stop_cycles_sent = 0;  ///< Stop-command cycles the spine answered.
+  /// True when an interrupt during the stop commands cut them short (then the Stop request).
+  bool stop_cut_short = false;
 
   /// "summary: <cycles> cycles, loop period mean ... ms, p99 ... ms, max ... ms, <n> deadline
   /// misses; stopped: <reason>".

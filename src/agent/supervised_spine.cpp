@@ -27,11 +27,11 @@ const Observation& SupervisedSpine::step(const ServoAction& action) {
   return observation;
 }
 
-int SupervisedSpine::send_stop_commands(int nb_stop_cycles) {
+int SupervisedSpine::send_stop_commands(int nb_stop_cycles, const std::atomic<bool>& cut_short) {
   const ServoAction stop = supervisor_.stop_action(spine_->observation());
   int answered = 0;
   try {
-    for (; answered < nb_stop_cycles; ++answered) spine_->step(stop);
+    for (; answered < nb_stop_cycles && !cut_short.load(); ++answered) spine_->step(stop);
     spine_->stop();
   } catch (const SpineError& error) {
     spdlog::warn("stopping: the spine did not take the stop commands ({}); writing Stop",

@@ -2,6 +2,7 @@
 /// @file
 /// SupervisedSpine: the spine backend with the supervisor between the task and the spine.
 
+#include <atomic>
 #include <memory>
 
 #include "agent/supervisor.hpp"
@@ -37,9 +38,10 @@ class SupervisedSpine final : public Simulation {
 
   /// The stopping state's commands: `nb_stop_cycles` cycles of stop commands, then the Stop
   /// request. Returns how many stop cycles the spine answered; a silent spine gets the Stop
-  /// request written anyway (it acts on it if it comes back).
+  /// request written anyway (it acts on it if it comes back). `cut_short` set (an operator's
+  /// second Ctrl-C) ends the stop cycles early: the Stop request follows at once.
   /// @throws SpineError when even the Stop request cannot be written (an Error reply).
-  int send_stop_commands(int nb_stop_cycles);
+  int send_stop_commands(int nb_stop_cycles, const std::atomic<bool>& cut_short);
 
  private:
   std::unique_ptr<SpineBackend> spine_;

@@ -63,7 +63,7 @@ void add_limit_options(CLI::App& app, SupervisorLimits& limits) {
                     "Stop after one cycle longer than this many periods");
   add_ranged_option(app, "--stop-cycles", limits.nb_stop_cycles, SupervisorLimits::kStopCyclesRange,
                     "Cycles of stop commands sent before the Stop request (200: 1 s at "
-                    "200 Hz)");
+                    "200 Hz); a second Ctrl-C or SIGTERM while stopping cuts them short");
 }
 
 /// A shared-memory name the spine layer accepts ('/' and up to 250 other characters).
@@ -128,13 +128,20 @@ int run(int argc, char** argv) {
   const upkie_rl::RunSummary summary =
       upkie_rl::run_policy(options, upkie_rl::apps::interrupt_requested);
   std::cout << summary.to_string() << std::endl;
+  if (summary.stop_cut_short) {
+    std::cerr << "upkie-rl-agent: stopping cut short by a second interrupt after "
+              << summary.stop_cycles_sent << " of " << options.limits.nb_stop_cycles
+              << " stop cycles; the Stop request was sent" << std::endl;
+    return 3;
+  }
   return summary.completed ? 0 : 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Every failure ends as one line and status 1; a run the supervisor stopped, status 2.
+  // Every failure ends as one line and status 1; a run the supervisor stopped, status 2; a
+  // stop cut short by a second interrupt, status 3.
   try {
     return run(argc, argv);
   } catch (const std::exception& error) {

@@ -1,10 +1,10 @@
 // upkie-rl-agent's options: every number is finite and in its documented range, every path
 // non-empty, and a refused option ends as one line on the standard error naming it, with
 // status 1, before the spine is touched (nothing on the standard output, where the runner
-// logs).
+// logs). A second Ctrl-C while stopping ends the stop commands at once.
 
 #include <gtest/gtest.h>
-#include <signal.h>
+#include <csignal>
 
 #include <algorithm>
 #include <chrono>
@@ -115,6 +115,30 @@ TEST(AgentOptions, TheRangesBoundsAreAccepted) {
                                   "604800", "--max-torque", "0", "--spine-timeout", "10"});
   EXPECT_EQ(run.status, 2) << run.out << run.err;
   EXPECT_NE(run.out.find("no spine to stop"), std::string::npos) << run.out;
+}
+
+TEST(AgentOptions, SecondInterruptCutsStoppingShort) {
+  // 200 stop cycles take 1 s at 200 Hz; an operator's Ctrl-C during them ends them at once.
+  testing::Spine spine("cut_short");
+  auto agent = testing::start_agent(spine, kPendulum, "cut_short",
+                                    {"--duration", "1", "--stop-cycles", "200"});
+  bool stopping = false;
+  for (int i = 0; i < 2000 && !stopping; ++i) {
+    stopping = agent->output().find("running -> stopping") != std::string::npos;
+    if (!stopping) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(stopping) << agent->output();
+  EXPECT_EQ(agent->wait(SIGINT), 3) << agent->output();
+  const std::string output = agent->output();
+  const std::string cut_short = " of 200 stop cycles answered (cut short by SIGINT or SIGTERM)";
+  const auto at = output.find(cut_short);
+  ASSERT_NE(at, std::string::npos) << output;
+  const auto number_at = output.rfind(' ', at - 1) + 1;
+  EXPECT_LT(std::stoi(output.substr(number_at, at - number_at)), 150) << output;
+  EXPECT_NE(output.find("upkie-rl-agent: stopping cut short by a second interrupt after"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("Stop request sent"), std::string::npos) << output;
 }
 
 }  // namespace
