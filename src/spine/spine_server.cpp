@@ -73,12 +73,30 @@ void SpineServer::cycle() {
     if (machine_.start_ignored()) spdlog::warn("spine: Start request while started, ignored");
     process_state();
     if (const auto request = machine_.on_cycle_end()) memory_.set_request(*request);
+  } catch (const SimulationDivergedError& exception) {
+    // A diverged simulation refuses every step until a reset, and a shutting-down spine
+    // resets nothing: the Shutdown cycles send it no stops (they would throw each cycle).
+    simulation_ready_ = false;
+    fail(exception.what());
   } catch (const std::exception& exception) {
-    error_ = exception.what();
-    spdlog::error("spine: {}; shutting down", error_);
-    machine_.on_interrupt();
+    fail(exception.what());
   }
   publish_state();
+}
+
+void SpineServer::fail(const std::string& message) {
+  if (machine_.state() == SpineState::kShutdown) {
+    // The shutdown itself failed: its stop cycles cannot run, and retrying the cycle would
+    // fail again every cycle and never reach Over (nor honour a signal, which only asks
+    // for the Shutdown already under way).
+    spdlog::error("spine: {} while shutting down; stopping at once", message);
+    if (error_.empty()) error_ = message;
+    machine_.abort();
+    return;
+  }
+  error_ = message;
+  spdlog::error("spine: {}; shutting down", error_);
+  machine_.on_interrupt();
 }
 
 void SpineServer::process_state() {

@@ -59,7 +59,9 @@ struct SpineServerConfig {
 /// word, runs the state machine, then resets or steps the simulation and writes the
 /// observation before clearing the request. An exception in a cycle (malformed, nil,
 /// mistyped or oversized message, an invalid command, a diverged simulation) is logged
-/// and sends the spine to Shutdown, then Over; it never escapes cycle().
+/// and sends the spine to Shutdown, then Over; it never escapes cycle(). A diverged
+/// simulation is not stepped again (no stops in Shutdown), and an exception in Shutdown
+/// ends the spine at once (Over), so a failing spine always ends.
 class SpineServer {
  public:
   /// Steps the simulation once with every joint braked (e.g. BulletSimulation's
@@ -117,6 +119,8 @@ class SpineServer {
 
  private:
   void process_state();
+  /// A cycle threw `message`: Shutdown, or Over when the Shutdown itself failed.
+  void fail(const std::string& message);
   void reset_from_payload();
   void step_from_payload();
   void advance(const ServoAction& action);

@@ -98,4 +98,8 @@ void SpineStateMachine::on_interrupt() {
   }
 }
 
+void SpineStateMachine::abort() {
+  if (state_ == SpineState::kShutdown) state_ = SpineState::kOver;
+}
+
 }  // namespace upkie_rl

@@ -35,6 +35,7 @@ std::string_view spine_state_name(SpineState state);
 /// - Reset and Step go to Idle at cycle end, which clears the request (the agent's "done").
 /// - Entering SendStops clears the request, so that the agent's next wait returns.
 /// - Interrupt -> Shutdown; after `nb_stop_cycles` cycles in Shutdown -> Over.
+/// - A failure while in Shutdown (abort) -> Over at once.
 class SpineStateMachine {
  public:
   /// Number of stop cycles required before a Start, and spent in Shutdown.
@@ -58,6 +59,10 @@ class SpineStateMachine {
 
   /// SIGINT, SIGTERM or an exception in a cycle: go to Shutdown (no-op once there).
   void on_interrupt();
+
+  /// The shutdown itself failed (its stop cycles cannot run): go to Over at once, rather
+  /// than retry a failing cycle forever. A no-op outside Shutdown.
+  void abort();
 
   /// True when the last on_cycle_beginning() in Idle saw a Start (the spine warns).
   bool start_ignored() const { return start_ignored_; }

@@ -186,6 +186,16 @@ TEST_F(SpineServerTest, RealTimeModeStepsEveryCycleAndBrakesWhenStopped) {
   EXPECT_DOUBLE_EQ(brake.maximum_torque, 100.0);
 }
 
+/// Sends a Start with the default reset state to a server built outside the fixture, and
+/// cycles it through the stop cycles and the reset.
+void start_server(SpineServer& server, SharedMemory& agent) {
+  msgpack::sbuffer start;
+  write_start_config_msgpack(ResetState{}, {}, start);
+  agent.write_payload({start.data(), start.size()});
+  agent.set_request(Request::kStart);
+  for (int i = 0; i < 6; ++i) server.cycle();
+}
+
 TEST(SpineServer, BrakeStepReplacesStopCommands) {
   FakeSimulation simulation;
   SpineServerConfig config;
@@ -193,11 +203,7 @@ TEST(SpineServer, BrakeStepReplacesStopCommands) {
   int brake_steps = 0;
   SpineServer server(simulation, config, [&brake_steps] { ++brake_steps; });
   SharedMemory agent = SharedMemory::open(config.shm_name);
-  msgpack::sbuffer start;
-  write_start_config_msgpack(ResetState{}, {}, start);
-  agent.write_payload({start.data(), start.size()});
-  agent.set_request(Request::kStart);
-  for (int i = 0; i < 6; ++i) server.cycle();
+  start_server(server, agent);
   ASSERT_EQ(server.state(), SpineState::kIdle);
   EXPECT_EQ(brake_steps, 0);  // not before the first reset
   agent.set_request(Request::kStop);
@@ -350,6 +356,41 @@ TEST_F(SpineServerTest, SimulationErrorShutsDown) {
   send(Request::kAction, message.bytes());
   server_->cycle();
   expect_shutdown_then_over("fake divergence");
+}
+
+// Fault injection (issue 26): a real-time spine whose simulation diverged kept braking it
+// in Shutdown; each brake step threw "diverged earlier", the cycle never reached its end,
+// and the spine logged that error every cycle forever, deaf to SIGINT and SIGTERM.
+TEST_F(SpineServerTest, RealTimeDivergedSimulationEndsWithoutSteppingIt) {
+  make_server(true);
+  start();
+  const std::size_t steps_before = simulation_.actions.size();
+  simulation_.throw_on_step = true;
+  server_->cycle();  // Idle steps the simulation, which diverges
+  expect_shutdown_then_over("fake divergence");
+  EXPECT_EQ(simulation_.actions.size(), steps_before);  // no stop sent to it
+}
+
+TEST(SpineServer, FailingBrakeStepInShutdownEndsTheSpineAtOnce) {
+  FakeSimulation simulation;
+  SpineServerConfig config;
+  config.shm_name = testing::unique_shm_name("failing_brake");
+  int brake_steps = 0;
+  SpineServer server(simulation, config, [&brake_steps] {
+    ++brake_steps;
+    throw std::runtime_error("brake failure");
+  });
+  SharedMemory agent = SharedMemory::open(config.shm_name);
+  start_server(server, agent);
+  ASSERT_EQ(server.state(), SpineState::kIdle);
+  server.interrupt();
+  server.cycle();                                // the Shutdown's first brake step throws
+  ASSERT_EQ(server.state(), SpineState::kOver);  // else run() below would never return
+  EXPECT_EQ(brake_steps, 1);
+  EXPECT_EQ(server.error(), "brake failure");
+  std::atomic<bool> interrupt{false};
+  server.run(interrupt);  // returns at once: nothing left to do
+  EXPECT_EQ(brake_steps, 1);
 }
 
 TEST_F(SpineServerTest, RunStopsOnInterruptAndDestructorUnlinks) {

@@ -104,6 +104,15 @@ TEST(SpineStateMachine, InterruptShutsDownAfterFiveCycles) {
   EXPECT_TRUE(machine.is_over());
 }
 
+TEST(SpineStateMachine, AbortEndsOnlyAShutdown) {
+  SpineStateMachine machine;
+  machine.abort();  // not shutting down: nothing to abort
+  EXPECT_EQ(machine.state(), SpineState::kSendStops);
+  machine.on_interrupt();
+  machine.abort();
+  EXPECT_TRUE(machine.is_over());
+}
+
 TEST(SpineStateMachine, StateNames) {
   EXPECT_EQ(spine_state_name(SpineState::kSendStops), "SendStops");
   EXPECT_EQ(spine_state_name(SpineState::kOver), "Over");
