@@ -38,6 +38,12 @@ unsigned parse_shm_mode(const std::string& text) {
   return static_cast<unsigned>(mode);
 }
 
+/// Largest push of `--push-force`, either way [N] (see add_spine_command).
+constexpr double kMaximumPushForce = 500.0;
+/// Latest start and longest duration of a push [s]: a simulated day, longer than any
+/// episode; only bounded so that no setting is unbounded.
+constexpr double kMaximumPushSeconds = 86400.0;
+
 struct SpineOptions {
   std::string shm_name = "/upkie";
   std::string shm_mode = "0600";
@@ -220,27 +226,32 @@ void add_spine_command(CLI::App& app) {
   command->add_option("--backend", options->backend, "Physics engine")
       ->capture_default_str()
       ->check(CLI::IsMember({"bullet", "mujoco"}));
+  // Upkie weighs 5.3 kg: 500 N (as `drive --push-force`) is about ten times its weight,
+  // beyond any push a balancer survives; larger forces only test how the physics engine
+  // diverges.
   command
       ->add_option("--push-force", options->push_force,
-                   "Push the base forward with this force in every episode [N], 0 for none")
-      ->capture_default_str();
+                   "Push the base forward (negative: backward) with this force in every "
+                   "episode [N], 0 for none")
+      ->capture_default_str()
+      ->check(finite_range(-kMaximumPushForce, kMaximumPushForce));
   command->add_option("--push-time", options->push_time, "When the push starts after a Start [s]")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0.0, kMaximumPushSeconds));
   command->add_option("--push-duration", options->push_duration, "How long the push lasts [s]")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0.0, kMaximumPushSeconds));
   command
       ->add_option("--observation-latency", options->observation_latency,
                    "Sim-to-real timing: send observations this old [s], rounded to simulation "
                    "steps (the pi3hat's are about one 1 ms cycle old)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(finite_range(0.0, 10.0));
   command
       ->add_option("--cycle-jitter", options->cycle_jitter,
                    "Sim-to-real timing, real time: start each cycle up to this late [s]")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finite_range(0.0, 1.0));
   options->view.speed = 0.0;  // the spine keeps its own pace
   add_live_view_options(*command, options->view, false);
   command->callback([options] { run_spine(*options); });

@@ -24,9 +24,13 @@ struct CliResult {
   }
 };
 
-/// Runs `upkie-rl <arguments>` through the shell (arguments are not quoted).
-inline CliResult run_cli(const std::string& arguments) {
-  const std::string command = std::string(UPKIE_RL_CLI_PATH) + " " + arguments + " 2>&1";
+/// Runs `upkie-rl <arguments>` through the shell (arguments are not quoted). With a
+/// positive `timeout_seconds`, a run still going after that long is SIGKILLed (exit code
+/// 137): a test of a refusal that hangs without its fix fails instead of hanging.
+inline CliResult run_cli(const std::string& arguments, int timeout_seconds = 0) {
+  const std::string limit =
+      timeout_seconds > 0 ? "timeout -s KILL " + std::to_string(timeout_seconds) + " " : "";
+  const std::string command = limit + std::string(UPKIE_RL_CLI_PATH) + " " + arguments + " 2>&1";
   CliResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;

@@ -3,6 +3,7 @@
 // existing files intact.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -24,10 +25,11 @@ const std::filesystem::path kModel =
     std::filesystem::path(UPKIE_RL_SOURCE_DIR) / "tests/data/policies/pendulum_bullet_seed0.ckpt";
 
 /// `arguments` fails with a status in [1, 127] (1 for errors, CLI11's own for bad flags)
-/// within 30 s, in at most three lines, naming `culprit`.
-void expect_clean_refusal(const std::string& arguments, const std::string& culprit) {
+/// within 30 s, in at most three lines, naming `culprit`. A run that hangs is killed after
+/// 60 s (status 137, a failure).
+testing::CliResult expect_clean_refusal(const std::string& arguments, const std::string& culprit) {
   const auto start = std::chrono::steady_clock::now();
-  const testing::CliResult result = run_cli(arguments);
+  const testing::CliResult result = run_cli(arguments, 60);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GE(result.exit_code, 1) << arguments << "\n" << result.output;
@@ -35,6 +37,7 @@ void expect_clean_refusal(const std::string& arguments, const std::string& culpr
   EXPECT_LE(result.lines().size(), 3u) << arguments << "\n" << result.output;
   EXPECT_NE(result.output.find(culprit), std::string::npos) << arguments << "\n" << result.output;
   EXPECT_LT(seconds, 30.0) << arguments;
+  return result;
 }
 
 TEST(ReliabilityCli, UnboundedSettingsAreRefusedBeforeAnythingStarts) {
@@ -61,6 +64,33 @@ TEST(ReliabilityCli, NonFiniteFlagsAndEmptyPathsAreRefused) {
   expect_clean_refusal("rollout --env Upkie-Bullet-Pendulum --episodes 1 --video ''", "--video");
   expect_clean_refusal("spine --spine-frequency inf", "--spine-frequency");
   expect_clean_refusal("spine --shm-mode 0777", "--shm-mode");
+}
+
+// Issue 26: NaN passed CLI::Range and CLI::NonNegativeNumber, and --push-force had no
+// bound at all; each of these ran a spine (NaN pushes failing only at push time).
+TEST(ReliabilityCli, SpineNumbersMustBeFiniteAndBounded) {
+  const std::string name = "/upkie_rl_cli_spine_flags_" + std::to_string(::getpid());
+  for (const auto& [flag, value] :
+       std::vector<std::pair<std::string, std::string>>{{"--push-force", "nan"},
+                                                        {"--push-force", "inf"},
+                                                        {"--push-force", "1e39"},
+                                                        {"--push-force", "-1e12"},
+                                                        {"--push-force", "501"},
+                                                        {"--push-time", "nan"},
+                                                        {"--push-time", "-1"},
+                                                        {"--push-duration", "nan"},
+                                                        {"--push-duration", "1e308"},
+                                                        {"--observation-latency", "nan"},
+                                                        {"--cycle-jitter", "nan"}}) {
+    const testing::CliResult result = expect_clean_refusal(
+        "spine --shm-name " + name + " --nb-substeps 1 " + flag + " " + value, flag);
+    EXPECT_LT(result.output.size(), 300u) << result.output;  // no 300-digit DBL_MAX
+  }
+  EXPECT_FALSE(std::filesystem::exists("/dev/shm" + name));
+  const testing::CliResult help = run_cli("spine --help", 60);
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_EQ(help.output.find("17976931348623157"), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("[-500, 500]"), std::string::npos) << help.output;
 }
 
 TEST(ReliabilityCli, EveryReaderRefusesACraftedCheckpointWithTheSameMessage) {
@@ -107,8 +137,7 @@ TEST(ReliabilityCli, ExportAndInfoRefuseNanWeightsAndABrokenChecksumThroughTheGa
   expect_clean_refusal("export " + flipped.string() + " --onnx " + onnx, gate_message);
   expect_clean_refusal("info " + flipped.string(), gate_message);
   expect_clean_refusal(
-      "rollout --env Upkie-Bullet-Pendulum --episodes 1 --model " + flipped.string(),
-      gate_message);
+      "rollout --env Upkie-Bullet-Pendulum --episodes 1 --model " + flipped.string(), gate_message);
   EXPECT_FALSE(std::filesystem::exists(onnx));
 }
 
