@@ -50,13 +50,47 @@ char* map(int fd, std::size_t size, const std::string& name) {
 /// Largest object mapped (as in create).
 constexpr std::size_t kMaxSize = std::size_t{1} << 31;
 
-/// Throws when `path` names an object whose spine is alive (it holds the flock).
-void refuse_live_object(const std::string& path, const std::string& name) {
-  FileDescriptor existing(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-  if (existing.get() < 0) return;  // absent, or not ours to judge: the rename decides
+/// Whether the object open as `fd` looks like a spine segment: a regular file whose size
+/// fits the layout (kHeaderSize + 2 to kMaxSize), whose request word is a protocol code and
+/// whose payload size fits the object. The layout has no magic number (it is the public
+/// Upkie protocol's), so this is what tells a stale spine segment from someone else's
+/// file; an agent that wrote junk into a spine's header makes it look foreign, which only
+/// costs its owner an `rm`.
+bool looks_like_a_spine_segment(int fd) {
+  struct stat status {};
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) return false;
+  const auto size = static_cast<std::size_t>(status.st_size);
+  if (size < SharedMemory::kHeaderSize + 2 || size > kMaxSize) return false;
+  std::uint32_t header[2] = {};
+  if (::pread(fd, header, sizeof(header), 0) != static_cast<ssize_t>(sizeof(header))) {
+    return false;
+  }
+  return header[0] <= static_cast<std::uint32_t>(Request::kError) &&
+         header[1] <= size - SharedMemory::kHeaderSize - 1;
+}
+
+/// Throws when `path` names an object that is not ours to replace: one whose spine is alive
+/// (it holds the flock), or one that is no spine's segment at all (a file of another
+/// program, a symbolic link, a directory). A stale spine segment passes and is replaced.
+void refuse_live_or_foreign_object(const std::string& path, const std::string& name) {
+  struct stat link_status {};
+  if (::lstat(path.c_str(), &link_status) != 0) return;  // absent: nothing to judge
+  const std::string remedy =
+      "; if it is a stale one of yours, remove it (rm " + path + ") or choose another name";
+  if (!S_ISREG(link_status.st_mode)) {
+    throw SpineError("shared memory " + name + " exists and is not a spine's (" + path +
+                     " is not a regular file)" + remedy);
+  }
+  FileDescriptor existing(::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC));
+  if (existing.get() < 0) return;  // not ours to read (another user's): the rename decides
   if (::flock(existing.get(), LOCK_EX | LOCK_NB) != 0) {
     throw SpineError("shared memory " + name +
                      " is in use by a running spine; stop it first or choose another name");
+  }
+  if (!looks_like_a_spine_segment(existing.get())) {
+    throw SpineError("shared memory " + name + " exists and is not a spine's (" +
+                     std::to_string(link_status.st_size) + " bytes, no valid spine header)" +
+                     remedy);
   }
 }
 
@@ -108,7 +142,7 @@ SharedMemory SharedMemory::create(const std::string& name, std::size_t size, uns
     std::memset(data, 0, kHeaderSize);  // request None, empty payload
     const std::string staging_path = std::string(kShmDirectory) + staging_name;
     const std::string final_path = std::string(kShmDirectory) + name;
-    refuse_live_object(final_path, name);
+    refuse_live_or_foreign_object(final_path, name);
     if (::rename(staging_path.c_str(), final_path.c_str()) != 0) {
       throw SpineError("cannot publish shared memory " + name + " (rename from " + staging_path +
                        "): " + errno_text());

@@ -31,13 +31,17 @@ class SharedMemory {
   /// Creates the object for a spine: shm_open(O_CREAT | O_EXCL) under a private staging
   /// name, permissions set to `mode` exactly (not filtered by the umask), ftruncate, mmap,
   /// an exclusive flock held until destruction, then an atomic rename to `name`, so agents
-  /// never see it unsized. A stale object left by a spine that died (nobody holds its lock)
-  /// is replaced; an object whose spine is alive is refused and left untouched. The request
+  /// never see it unsized. A stale object left by a spine that died (nobody holds its lock,
+  /// and it still has the spine layout: a size within it, a protocol request code and a
+  /// payload size that fits) is replaced; an object whose spine is alive, or that is no
+  /// spine segment (another program's file, a link, a directory), is refused and left
+  /// untouched, the message saying how to remove it if it is stale. The request
   /// word starts at None and the payload is empty. The destructor unlinks the name only
   /// while it still names this object.
   /// @param name POSIX name, "/" followed by up to 250 characters other than "/".
   /// @param mode Permission bits, at most 0666.
-  /// @throws SpineError naming the object and the failing call, or the live spine's name.
+  /// @throws SpineError naming the object and the failing call, or the live spine's or
+  ///         foreign object's name.
   static SharedMemory create(const std::string& name, std::size_t size = kDefaultSize,
                              unsigned mode = kDefaultMode);
 

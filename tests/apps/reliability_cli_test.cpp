@@ -7,6 +7,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -91,6 +93,18 @@ TEST(ReliabilityCli, SpineNumbersMustBeFiniteAndBounded) {
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_EQ(help.output.find("17976931348623157"), std::string::npos) << help.output;
   EXPECT_NE(help.output.find("[-500, 500]"), std::string::npos) << help.output;
+}
+
+// Issue 26: a spine replaced any unlocked object of its name, then unlinked it at exit.
+TEST(ReliabilityCli, SpineRefusesAnotherProgramsSharedMemoryObject) {
+  const std::string name = "/upkie_rl_cli_foreign_" + std::to_string(::getpid());
+  const std::filesystem::path path = "/dev/shm" + name;
+  std::ofstream(path) << "data\n";
+  expect_clean_refusal("spine --shm-name " + name + " --nb-substeps 1", "rm " + path.string());
+  std::ifstream file(path);
+  const std::string bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(bytes, "data\n");
+  std::filesystem::remove(path);
 }
 
 TEST(ReliabilityCli, EveryReaderRefusesACraftedCheckpointWithTheSameMessage) {

@@ -7,6 +7,8 @@
 
 #include <atomic>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <thread>
@@ -157,6 +159,57 @@ TEST(SharedMemory, SecondSpineOnANameInUseIsRefusedAndTouchesNothing) {
   SharedMemory agent = SharedMemory::open(name);
   EXPECT_EQ(agent.request(), static_cast<std::uint32_t>(Request::kStop));
   EXPECT_EQ(agent.size(), first.size());
+}
+
+/// Writes `bytes` to /dev/shm<name> as another program would (a plain file, mode 0644).
+std::string write_foreign_object(const std::string& name, const std::string& bytes) {
+  const std::string path = "/dev/shm" + name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+/// create(name) throws a SpineError naming the object and how to remove it.
+void expect_refused_as_foreign(const std::string& name) {
+  try {
+    SharedMemory spine = SharedMemory::create(name);
+    FAIL() << "a spine took the foreign object " << name;
+  } catch (const SpineError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("shared memory " + name + " exists and is not a spine's"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("rm /dev/shm" + name), std::string::npos) << message;
+  }
+}
+
+// Fault injection (issue 26): a spine replaced, then unlinked at exit, any unlocked object of
+// its name, another program's file included.
+TEST(SharedMemory, ForeignObjectsAreRefusedAndLeftByteIdentical) {
+  const std::string text_name = testing::unique_shm_name("foreign_text");
+  const std::string text_path = write_foreign_object(text_name, "data\n");
+  expect_refused_as_foreign(text_name);
+  EXPECT_EQ(read_bytes(text_path), "data\n");
+  // Of a plausible size, but its request word is no protocol code.
+  const std::string sized_name = testing::unique_shm_name("foreign_sized");
+  const std::string sized(SharedMemory::kDefaultSize, '\xff');
+  const std::string sized_path = write_foreign_object(sized_name, sized);
+  expect_refused_as_foreign(sized_name);
+  EXPECT_TRUE(read_bytes(sized_path) == sized);
+  // A symbolic link: neither it nor its target is replaced.
+  const std::string link_name = testing::unique_shm_name("foreign_link");
+  const std::string link_path = "/dev/shm" + link_name;
+  std::filesystem::create_symlink(text_path, link_path);
+  expect_refused_as_foreign(link_name);
+  EXPECT_TRUE(std::filesystem::is_symlink(link_path));
+  EXPECT_EQ(read_bytes(text_path), "data\n");
+  for (const std::string& path : {text_path, sized_path, link_path}) {
+    std::filesystem::remove(path);
+  }
 }
 
 TEST(SharedMemory, OwnerDoesNotUnlinkAnObjectThatIsNoLongerItsOwn) {
