@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "rl/c10d_log_silence.hpp"
+#include "rl/master_address.hpp"
 #include "rl/rank_watchdog.hpp"
 
 namespace upkie_rl {
@@ -50,7 +52,10 @@ class GlooCommunicator final : public Communicator {
  public:
   GlooCommunicator(const DistributedLaunch& launch, const CommunicatorOptions& options)
       : launch_(launch) {
+    // Our own messages name the cause; libtorch's retries would print a line each.
+    const C10dLogSilence silence;
     const std::chrono::milliseconds timeout = options.timeout;
+    wait_for_master_address(launch.master_addr, timeout, who());
     c10d::TCPStoreOptions store_options;
     store_options.port = static_cast<std::uint16_t>(launch.master_port);
     store_options.isServer = launch.rank == 0 && !launch.launcher_store;
