@@ -46,7 +46,8 @@ std::unique_ptr<VelocityCommandInput> make_task_command_input(const EnvId& train
   return nullptr;
 }
 
-RobotEnv make_robot_env(const DeployedPolicy& policy, const RunnerOptions& options) {
+RobotEnv make_robot_env(const DeployedPolicy& policy, const RunnerOptions& options,
+                        const std::atomic<bool>& interrupt) {
   const EnvId trained = parse_env_id(policy.env_id());
   const EnvId robot{EnvBackend::kSpine, trained.kind};
   const std::string name = env_id_name(robot.backend, robot.kind);
@@ -61,7 +62,9 @@ RobotEnv make_robot_env(const DeployedPolicy& policy, const RunnerOptions& optio
   RobotEnv robot_env;
   robot_env.supervisor = std::make_unique<Supervisor>(options.limits, RobotModel::default_model(),
                                                       1.0 / settings.frequency);
-  auto spine = std::make_unique<SpineBackend>(spine_backend_config(settings));
+  SpineBackendConfig spine_config = spine_backend_config(settings);
+  spine_config.open_interrupt = &interrupt;  // Ctrl-C ends the wait for the spine at once
+  auto spine = std::make_unique<SpineBackend>(spine_config);
   auto link =
       std::make_unique<SupervisedSpine>(std::move(spine), *robot_env.supervisor, options.dry_run);
   robot_env.link = link.get();
@@ -180,7 +183,7 @@ RunSummary run_policy(const RunnerOptions& options, std::atomic<bool>& interrupt
   try {
     options.limits.validate();
     DeployedPolicy policy = DeployedPolicy::load(options.model);
-    robot = make_robot_env(policy, options);
+    robot = make_robot_env(policy, options, interrupt);
     if (!options.record.empty()) {
       recorder.emplace(options.record);
       recorder->write_header(*robot.env);

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -16,6 +17,17 @@
 namespace upkie_rl {
 namespace {
 
+/// Sleeps `delay` seconds in slices of at most 50 ms; false as soon as `interrupt` is set.
+bool sleep_unless_interrupted(double delay, const std::atomic<bool>* interrupt) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(delay);
+  while (std::chrono::steady_clock::now() < end) {
+    if (interrupt != nullptr && interrupt->load()) return false;
+    std::this_thread::sleep_for(std::min<std::chrono::duration<double>>(
+        end - std::chrono::steady_clock::now(), std::chrono::milliseconds(50)));
+  }
+  return interrupt == nullptr || !interrupt->load();
+}
+
 SharedMemory open_with_retries(const SpineBackendConfig& config) {
   SharedMemory::validate_name(config.shm_name);
   if (config.open_tries < 1) throw SpineError("open_tries must be at least 1");
@@ -29,7 +41,10 @@ SharedMemory open_with_retries(const SpineBackendConfig& config) {
     if (attempt < config.open_tries) {
       spdlog::info("waiting for spine {} (attempt {} / {})", config.shm_name, attempt,
                    config.open_tries);
-      std::this_thread::sleep_for(std::chrono::duration<double>(config.open_retry_delay));
+      if (!sleep_unless_interrupted(config.open_retry_delay, config.open_interrupt)) {
+        throw SpineError("interrupted while waiting for spine " + config.shm_name +
+                         " (SIGINT or SIGTERM)");
+      }
     }
   }
   throw SpineError("spine " + config.shm_name + " did not respond after " +

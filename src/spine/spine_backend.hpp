@@ -3,6 +3,7 @@
 /// The agent side of the spine link as a Simulation backend: environments built on it
 /// drive a spine process (ours, or the real robot's) instead of an in-process simulator.
 
+#include <atomic>
 #include <chrono>
 #include <msgpack.hpp>
 #include <optional>
@@ -26,8 +27,11 @@ struct SpineBackendConfig {
   bool regulate_frequency = true;
   /// How long a request may stay unprocessed before a SpineTimeoutError [s].
   double request_timeout = 0.1;
-  int open_tries = 10;                    ///< Attempts at opening the shared memory.
-  double open_retry_delay = 1.0;          ///< Pause between two attempts [s].
+  int open_tries = 10;            ///< Attempts at opening the shared memory.
+  double open_retry_delay = 1.0;  ///< Pause between two attempts [s].
+  /// When given and set (a SIGINT or SIGTERM handler's flag), waiting for the spine ends at
+  /// once: up to open_tries seconds of attempts would otherwise ignore Ctrl-C.
+  const std::atomic<bool>* open_interrupt = nullptr;
   SpineStartParameters start_parameters;  ///< Sent with every Start.
 
   /// Declares the options shm_name, regulate_frequency, request_timeout and open_tries
@@ -44,7 +48,8 @@ struct SpineBackendConfig {
 class SpineBackend final : public Simulation {
  public:
   /// Opens the spine's shared memory, trying `open_tries` times `open_retry_delay` apart.
-  /// @throws SpineError "spine <name> did not respond ..." when it never appears.
+  /// @throws SpineError "spine <name> did not respond ..." when it never appears, or
+  ///         "interrupted while waiting for spine <name>" when open_interrupt is set.
   explicit SpineBackend(const SpineBackendConfig& config = {});
   ~SpineBackend() override;
   SpineBackend(const SpineBackend&) = delete;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "agent/agent_spine.hpp"
+#include "common/background_process.hpp"
 #include "common/shell_output.hpp"
 #include "common/temp_files.hpp"
 
@@ -139,6 +140,26 @@ TEST(AgentOptions, SecondInterruptCutsStoppingShort) {
             std::string::npos)
       << output;
   EXPECT_NE(output.find("Stop request sent"), std::string::npos) << output;
+}
+
+TEST(AgentOptions, InterruptEndsTheWaitForTheSpine) {
+  // 30 attempts 1 s apart at a spine that is not there: Ctrl-C must not wait them out.
+  testing::BackgroundProcess agent({UPKIE_RL_AGENT_PATH, "--model", kPendulum, "--shm-name",
+                                    "/upkie_rl_agent_options_absent", "--open-tries", "30"},
+                                   "agent_open_interrupt");
+  bool waiting = false;
+  for (int i = 0; i < 2000 && !waiting; ++i) {
+    waiting = agent.output().find("waiting for spine") != std::string::npos;
+    if (!waiting) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(waiting) << agent.output();
+  const auto signalled = std::chrono::steady_clock::now();
+  EXPECT_EQ(agent.wait(SIGINT), 2) << agent.output();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+  EXPECT_LT(seconds, 5.0) << agent.output();  // the remaining attempts would take 28 s
+  EXPECT_NE(agent.output().find("interrupted while waiting for spine"), std::string::npos)
+      << agent.output();
 }
 
 }  // namespace
