@@ -163,7 +163,7 @@ TEST(SharedMemory, SecondSpineOnANameInUseIsRefusedAndTouchesNothing) {
 
 /// Writes `bytes` to /dev/shm<name> as another program would (a plain file, mode 0644).
 std::string write_foreign_object(const std::string& name, const std::string& bytes) {
-  const std::string path = "/dev/shm" + name;
+  std::string path = "/dev/shm" + name;  // not const: returned by move
   std::ofstream(path, std::ios::binary) << bytes;
   return path;
 }
