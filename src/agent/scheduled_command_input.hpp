@@ -14,7 +14,9 @@ namespace upkie_rl {
 /// runner's clock (cycles times the task's period), as `upkie-rl rollout --commands` does.
 class ScheduledCommandInput final : public VelocityCommandInput {
  public:
-  /// @throws std::invalid_argument naming the file and line of a malformed row.
+  /// @throws std::invalid_argument naming the file and line of a malformed row, or of a value
+  ///         beyond any task's range (kOptionHuge); values within it are clamped to the
+  ///         trained ranges by VelocityCommander.
   explicit ScheduledCommandInput(const std::filesystem::path& path);
 
   std::optional<VelocityCommand> poll(double time) override;

@@ -1,13 +1,13 @@
 #include "apps/record_file.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <utility>
 
+#include "model/input_file.hpp"
 #include "sim/base_observer.hpp"
 
 namespace upkie_rl::apps {
@@ -156,8 +156,7 @@ RecordedStep recorded_step(const std::vector<double>& values, const RecordLayout
 }  // namespace
 
 RecordFile read_record_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw RecordFileError("cannot read the record file " + path.string());
+  std::istringstream in(read_input_file<RecordFileError>(path, "record file", kMaxRecordFileBytes));
   return read_record_file(in, path.string());
 }
 

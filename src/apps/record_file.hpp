@@ -3,6 +3,7 @@
 /// The record files of `upkie-rl rollout --record` (envs/episode_recorder.hpp) read back for
 /// `upkie-rl render` and `upkie-rl view`.
 
+#include <cstdint>
 #include <filesystem>
 #include <istream>
 #include <optional>
@@ -43,7 +44,12 @@ struct RecordFile {
   bool has_velocity() const { return !steps.empty() && steps.front().command.has_value(); }
 };
 
-/// Reads a record file written by EpisodeRecorder (any environment).
+/// Largest record file read: a row is about 400 bytes, so 1 GiB holds some 2.5 million steps
+/// (3.5 hours at 200 Hz), far beyond a rollout worth watching, and stays finite.
+inline constexpr std::uintmax_t kMaxRecordFileBytes = std::uintmax_t{1} << 30;
+
+/// Reads a record file written by EpisodeRecorder (any environment), at most
+/// kMaxRecordFileBytes, refusing a FIFO or a device.
 /// @throws RecordFileError naming the file, and the line and column at fault: a missing
 ///         column, a value that is not a number, a row of the wrong length, no ground truth
 ///         (a spine run), or no rows at all.

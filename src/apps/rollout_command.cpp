@@ -144,7 +144,8 @@ void make_env_and_controller(const RolloutOptions& options, Rollout& rollout) {
         "--commands and --plot need a velocity task (Upkie-*-Velocity), not " + options.env_id);
   }
   if (!options.commands_path.empty()) {
-    rollout.schedule.emplace(VelocityCommandSchedule::load(options.commands_path));
+    rollout.schedule.emplace(
+        VelocityCommandSchedule::load(options.commands_path, rollout.velocity->command_ranges()));
   }
   if (!options.plot_prefix.empty()) find_gnuplot();  // refuse at once, not after the work
 }

@@ -1,12 +1,12 @@
 #include "apps/sweep_outcome.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "model/atomic_file.hpp"
+#include "model/input_file.hpp"
 
 namespace upkie_rl::apps {
 
@@ -44,10 +44,12 @@ void write_sweep_outcome(const std::filesystem::path& run_dir, const SweepOutcom
 
 std::optional<SweepOutcome> read_sweep_outcome(const std::filesystem::path& run_dir) {
   const std::filesystem::path path = run_dir / kFile;
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
+  std::error_code missing;
+  if (!std::filesystem::exists(path, missing)) return std::nullopt;
+  const std::string text =
+      read_input_file<std::runtime_error>(path, "sweep outcome", kMaxSweepOutcomeBytes);
   try {
-    const nlohmann::json json = nlohmann::json::parse(in);
+    const nlohmann::json json = nlohmann::json::parse(text);
     SweepOutcome outcome;
     outcome.timesteps = json.at("timesteps").get<std::int64_t>();
     outcome.train_seconds = number_of(json.at("train_seconds"));

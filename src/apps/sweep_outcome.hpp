@@ -23,7 +23,10 @@ struct SweepOutcome {
 /// Writes `outcome` as JSON to run_dir/evaluation.json (through a temporary file).
 void write_sweep_outcome(const std::filesystem::path& run_dir, const SweepOutcome& outcome);
 
-/// Reads run_dir/evaluation.json; nothing when the run has not finished. Throws
+/// Largest evaluation.json read: ours take about 300 bytes.
+inline constexpr std::uintmax_t kMaxSweepOutcomeBytes = std::uintmax_t{1} << 20;
+
+/// Reads run_dir/evaluation.json; nothing when the run has not finished (no such file). Throws
 /// std::runtime_error naming the file when it is malformed.
 std::optional<SweepOutcome> read_sweep_outcome(const std::filesystem::path& run_dir);
 

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "envs/number_row.hpp"
+#include "envs/shared_options.hpp"
+#include "model/input_file.hpp"
+#include "model/setting_bounds.hpp"
 
 namespace upkie_rl {
 
@@ -26,9 +30,24 @@ VelocityCommandSchedule::VelocityCommandSchedule(std::vector<Row> rows) : rows_(
   }
 }
 
-VelocityCommandSchedule VelocityCommandSchedule::load(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) throw std::invalid_argument("cannot read velocity commands " + path.string());
+namespace {
+
+/// Refuses a row whose time or command is outside its range, naming line, column and value.
+void check_row(const std::string& where, const std::array<double, 3>& values,
+               const VelocityCommandRanges& ranges) {
+  check_setting(where + ": column time", values[0], 0.0, kOptionHuge);
+  check_setting(where + ": column vx (env option max_forward_velocity)", values[1],
+                -ranges.max_forward_velocity, ranges.max_forward_velocity);
+  check_setting(where + ": column wz (env option max_yaw_rate)", values[2], -ranges.max_yaw_rate,
+                ranges.max_yaw_rate);
+}
+
+}  // namespace
+
+VelocityCommandSchedule VelocityCommandSchedule::load(const std::filesystem::path& path,
+                                                      const VelocityCommandRanges& ranges) {
+  std::istringstream file(
+      read_input_file<std::invalid_argument>(path, "velocity commands", kMaxCommandFileBytes));
   std::vector<Row> rows;
   std::string line;
   int number = 0;
@@ -44,6 +63,7 @@ VelocityCommandSchedule VelocityCommandSchedule::load(const std::filesystem::pat
       throw std::invalid_argument(path.string() + ":" + std::to_string(number) +
                                   ": expected time,vx,wz (three numbers)");
     }
+    check_row(path.string() + ":" + std::to_string(number), values, ranges);
     rows.push_back({values[0], {values[1], values[2]}});
   }
   try {

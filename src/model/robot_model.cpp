@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <numeric>
 #include <sstream>
+
+#include "model/input_file.hpp"
+#include "model/robot_description_limit.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -49,13 +51,7 @@ Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
 }
 
 std::string read_file(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) {
-    throw ModelError("cannot open robot description '" + path.string() + "'");
-  }
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  return buffer.str();
+  return read_input_file<ModelError>(path, "robot description", kMaxRobotDescriptionBytes);
 }
 
 double parse_value_attribute(const TiXmlElement& element, const std::filesystem::path& path,

@@ -3,10 +3,10 @@
 #include <onnx/checker.h>
 #include <onnx/onnx_pb.h>
 
-#include <fstream>
 #include <iterator>
 #include <system_error>
 
+#include "model/input_file.hpp"
 #include "onnx/onnx_error.hpp"
 
 namespace upkie_rl {
@@ -28,25 +28,10 @@ OnnxTensorInfo tensor_info(const onnx::ValueInfoProto& value) {
   return info;
 }
 
-std::string read_limited(const std::filesystem::path& path) {
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) throw OnnxError("ONNX model " + path.string() + ": cannot read: " + error.message());
-  if (size > kMaxOnnxFileBytes) {
-    throw OnnxError("ONNX model " + path.string() + ": " + std::to_string(size) +
-                    " bytes, more than the " + std::to_string(kMaxOnnxFileBytes) +
-                    " a policy may take");
-  }
-  std::ifstream file(path, std::ios::binary);
-  std::string bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (!file.eof() && file.fail()) throw OnnxError("ONNX model " + path.string() + ": read error");
-  return bytes;
-}
-
 }  // namespace
 
 OnnxModelInfo read_onnx_model_info(const std::filesystem::path& path) {
-  const std::string bytes = read_limited(path);
+  const std::string bytes = read_input_file<OnnxError>(path, "ONNX model", kMaxOnnxFileBytes);
   onnx::ModelProto model;
   if (bytes.empty() || !model.ParseFromString(bytes) || !model.has_graph()) {
     throw OnnxError("ONNX model " + path.string() +

@@ -2,12 +2,12 @@
 
 #include <bit>
 #include <cstring>
-#include <fstream>
 #include <iterator>
 #include <limits>
 
 #include "model/atomic_file.hpp"
 #include "model/bounded_json.hpp"
+#include "model/input_file.hpp"
 #include "policy/crc32c.hpp"
 
 namespace upkie_rl {
@@ -73,23 +73,9 @@ void write_checkpoint_file(const CheckpointFile& file, const std::filesystem::pa
 }
 
 CheckpointFile read_checkpoint_file(const std::filesystem::path& path) {
-  const std::string where = "checkpoint " + path.string();
-  std::error_code status_error;
-  const auto status = std::filesystem::status(path, status_error);
-  if (std::filesystem::is_directory(status)) throw CheckpointError(where + ": is a directory");
-  // A FIFO or a device (/dev/zero) would block or never end.
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-    throw CheckpointError(where + ": not a regular file");
-  }
-  if (std::filesystem::exists(status) &&
-      std::filesystem::file_size(path, status_error) > kMaxCheckpointBytes) {
-    throw CheckpointError(where + ": larger than the limit of " +
-                          std::to_string(kMaxCheckpointBytes) + " bytes");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CheckpointError(where + ": cannot open file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return parse_checkpoint_bytes(bytes, where);
+  const std::string bytes =
+      read_input_file<CheckpointError>(path, "checkpoint", kMaxCheckpointBytes);
+  return parse_checkpoint_bytes(bytes, "checkpoint " + path.string());
 }
 
 CheckpointFile parse_checkpoint_bytes(std::string_view bytes, const std::string& where) {

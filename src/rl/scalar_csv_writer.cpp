@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/input_file.hpp"
 #include "model/number_text.hpp"
 
 namespace upkie_rl {
@@ -53,7 +54,8 @@ ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
     : path_(path), columns_(std::move(columns)) {
   std::vector<std::string> kept;
   if (resume_from_step && std::filesystem::exists(path)) {
-    std::ifstream existing(path);
+    std::istringstream existing(
+        read_input_file<std::runtime_error>(path, "scalar log", kMaxScalarLogBytes));
     std::string line;
     // An empty file (left by an older version killed while it rewrote the log) has no rows.
     if (std::getline(existing, line) && !line.empty() && line != join(columns_)) {
@@ -125,8 +127,8 @@ std::size_t ScalarTable::index(const std::string& column) const {
 }
 
 ScalarTable read_scalar_csv(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) throw std::runtime_error("cannot read " + path.string());
+  std::istringstream file(
+      read_input_file<std::runtime_error>(path, "scalar log", kMaxScalarLogBytes));
   ScalarTable table;
   std::string line;
   if (!std::getline(file, line) || line.empty()) {

@@ -21,8 +21,8 @@ class ScalarCsvWriter {
   /// `resume_from_step`, rows of an existing file up to that step are kept (rows after it
   /// belong to the part of the run being redone) and new rows are appended; the kept rows
   /// are written to a file aside that is renamed over the old one, so the existing file is
-  /// never cut in place. Otherwise the file is created anew. Throws std::runtime_error if the file cannot be written or the
-  /// existing header differs.
+  /// never cut in place. Otherwise the file is created anew. Throws std::runtime_error if the file
+  /// cannot be written or the existing header differs.
   ScalarCsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
                   std::optional<std::int64_t> resume_from_step = std::nullopt);
 
@@ -37,8 +37,13 @@ class ScalarCsvWriter {
   std::ofstream file_;
 };
 
-/// Reads a CSV written by ScalarCsvWriter: the header and the rows, NaN for empty cells.
-/// Throws std::runtime_error naming the file and line on malformed content.
+/// Largest scalar log read (progress.csv, resumed or plotted): a row takes about 300 bytes,
+/// so 1 GiB holds millions of updates.
+inline constexpr std::uintmax_t kMaxScalarLogBytes = std::uintmax_t{1} << 30;
+
+/// Reads a CSV written by ScalarCsvWriter (at most kMaxScalarLogBytes, a regular file): the header
+/// and the rows, NaN for empty cells. Throws std::runtime_error naming the file and line on
+/// malformed content.
 struct ScalarTable {
   std::vector<std::string> columns;
   std::vector<std::vector<double>> rows;

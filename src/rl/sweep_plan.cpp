@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <charconv>
-#include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "model/atomic_file.hpp"
+#include "model/input_file.hpp"
+#include "rl/config_file_limit.hpp"
 
 namespace upkie_rl {
 
@@ -66,11 +67,7 @@ std::string file_safe(const std::string& text) {
 }
 
 std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path.string() + ": cannot read (is it a sweep directory?)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return read_input_file<std::invalid_argument>(path, "sweep file", kMaxConfigFileBytes);
 }
 
 /// Writes `text` to `path` through a temporary file, so that a reader never sees half.
@@ -295,8 +292,9 @@ Sweep load_sweep(const std::filesystem::path& directory) {
   Sweep sweep;
   sweep.directory = directory;
   const std::filesystem::path plan_path = directory / kPlanFile;
+  const std::string plan_text = read_text(plan_path);  // its message names the file already
   try {
-    sweep.plan = parse_plan(read_text(plan_path));
+    sweep.plan = parse_plan(plan_text);
   } catch (const YAML::Exception& error) {
     throw std::invalid_argument(plan_path.string() + ": " + error.what());
   } catch (const std::invalid_argument& error) {

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "model/input_file.hpp"
 #include "policy/crc32c.hpp"
 
 namespace upkie_rl {
@@ -225,10 +226,8 @@ void TensorBoardWriter::write_record(const std::string& data) {
 }
 
 std::vector<TensorBoardEvent> read_event_file(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw std::runtime_error("cannot open event file " + path.string());
-  const std::string content((std::istreambuf_iterator<char>(file)),
-                            std::istreambuf_iterator<char>());
+  const std::string content =
+      read_input_file<std::runtime_error>(path, "event file", kMaxEventFileBytes);
   std::vector<TensorBoardEvent> events;
   std::size_t position = 0;
   while (position < content.size()) {

@@ -53,9 +53,12 @@ class TensorBoardWriter {
 /// Serialises an Event message (the protobuf bytes, without the record framing).
 std::string encode_event(const TensorBoardEvent& event);
 
-/// Reads every record of an event file, checking both CRCs of each. Throws
-/// std::runtime_error naming the file and the record on a bad CRC, a truncated record or
-/// a malformed message.
+/// Largest event file read back: an update's scalars take under 1 KiB.
+inline constexpr std::uintmax_t kMaxEventFileBytes = std::uintmax_t{1} << 30;
+
+/// Reads every record of an event file (at most kMaxEventFileBytes, a regular file), checking both
+/// CRCs of each. Throws std::runtime_error naming the file and the record on a bad CRC, a truncated
+/// record or a malformed message.
 std::vector<TensorBoardEvent> read_event_file(const std::filesystem::path& path);
 
 }  // namespace upkie_rl

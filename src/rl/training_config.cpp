@@ -3,15 +3,16 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 
+#include "model/input_file.hpp"
 #include "model/setting_bounds.hpp"
 #include "model/trim.hpp"
 #include "policy/network_limits.hpp"
+#include "rl/config_file_limit.hpp"
 #include "rl/hand_gradient_activations.hpp"
 #include "vec/make_vector_env.hpp"
 #include "vec/normalization_state.hpp"
@@ -321,12 +322,10 @@ TrainingConfig parse_training_config(const std::string& yaml_text) {
 }
 
 TrainingConfig load_training_config(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw std::invalid_argument("cannot read config file '" + path + "'");
-  std::stringstream text;
-  text << file.rdbuf();
+  const std::string text =
+      read_input_file<std::invalid_argument>(path, "config file", kMaxConfigFileBytes);
   try {
-    return parse_training_config(text.str());
+    return parse_training_config(text);
   } catch (const std::invalid_argument& error) {
     throw std::invalid_argument(path + ": " + error.what());
   }

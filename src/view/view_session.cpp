@@ -1,10 +1,11 @@
 #include "view/view_session.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "model/input_file.hpp"
+#include "model/robot_description_limit.hpp"
 #include "view/view_error.hpp"
 #include "view/view_frame.hpp"
 
@@ -13,11 +14,10 @@ namespace upkie_rl {
 namespace {
 
 std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in || text.str().empty()) throw ViewError("cannot read the robot description " + path);
-  return text.str();
+  std::string text =
+      read_input_file<ViewError>(path, "robot description", kMaxRobotDescriptionBytes);
+  if (text.empty()) throw ViewError("robot description " + path + ": empty file");
+  return text;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 /// Files for the tests that write and damage them: a per-process temporary folder, and the
 /// bytes of a file read and written whole.
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -19,6 +20,14 @@ inline std::filesystem::path temp_path(const std::string& name,
       std::filesystem::temp_directory_path() / (folder + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(directory);
   return directory / name;
+}
+
+/// Makes a FIFO at `path` (its folder too), replacing what was there: a file whose reader
+/// blocks until a writer comes, which none does. Returns `path`; empty if mkfifo failed.
+inline std::filesystem::path make_fifo(const std::filesystem::path& path) {
+  std::filesystem::create_directories(path.parent_path());
+  std::filesystem::remove(path);
+  return ::mkfifo(path.c_str(), 0600) == 0 ? path : std::filesystem::path();
 }
 
 inline std::string read_bytes(const std::filesystem::path& path) {

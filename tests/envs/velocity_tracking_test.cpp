@@ -3,11 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "common/child_call.hpp"
 #include "common/temp_files.hpp"
 #include "envs/episode_runner.hpp"
+#include "envs/velocity_command_sampler.hpp"
 #include "envs/velocity_command_schedule.hpp"
 
 namespace upkie_rl {
@@ -73,26 +78,68 @@ TEST(VelocityCommandSchedule, PiecewiseConstantCommands) {
   EXPECT_THROW(VelocityCommandSchedule(Rows{{0.0, {NAN, 0.0}}}), std::invalid_argument);
 }
 
+/// The velocity task's default command ranges: +-1 m/s, +-1.5 rad/s.
+const VelocityCommandRanges kRanges;
+
 TEST(VelocityCommandSchedule, LoadsACsvAndNamesTheBadLine) {
   const auto good = testing::temp_path("good.csv");
   std::ofstream(good) << "time,vx,wz\n# comment\n0,0,0\n\n2.5, 0.8 ,-0.4\n";
-  const VelocityCommandSchedule schedule = VelocityCommandSchedule::load(good);
+  const VelocityCommandSchedule schedule = VelocityCommandSchedule::load(good, kRanges);
   ASSERT_EQ(schedule.rows().size(), 2u);
   EXPECT_EQ(schedule.at(3.0), (VelocityCommand{0.8, -0.4}));
   // configs/velocity_commands.csv's layout: comments before the header.
   const auto commented = testing::temp_path("commented.csv");
   std::ofstream(commented) << "# commands\n\ntime,vx,wz\n0,0.5,1\n";
-  EXPECT_EQ(VelocityCommandSchedule::load(commented).at(0.0), (VelocityCommand{0.5, 1.0}));
+  EXPECT_EQ(VelocityCommandSchedule::load(commented, kRanges).at(0.0), (VelocityCommand{0.5, 1.0}));
   const auto bad = testing::temp_path("bad.csv");
   std::ofstream(bad) << "time,vx,wz\n0,0,0\n1,fast,0\n";
   try {
-    VelocityCommandSchedule::load(bad);
+    VelocityCommandSchedule::load(bad, kRanges);
     FAIL() << "a malformed row was accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("bad.csv:3"), std::string::npos) << error.what();
   }
-  EXPECT_THROW(VelocityCommandSchedule::load(testing::temp_path("missing.csv")),
+  EXPECT_THROW(VelocityCommandSchedule::load(testing::temp_path("missing.csv"), kRanges),
                std::invalid_argument);
+}
+
+/// What loading `text` as a command file within kRanges throws ("" if nothing).
+std::string load_error(const std::string& text) {
+  const auto path = testing::temp_path("bounds.csv");
+  testing::write_bytes(path, text);
+  try {
+    VelocityCommandSchedule::load(path, kRanges);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(VelocityCommandSchedule, RefusesValuesOutsideTheTasksRangesNamingLineColumnAndValue) {
+  const std::string path = testing::temp_path("bounds.csv").string();
+  EXPECT_EQ(load_error("time,vx,wz\n0,1,-1.5\n1,-1,1.5\n"), "");
+  EXPECT_EQ(load_error("time,vx,wz\n0,0,0\n1,1e30,0\n"),
+            path + ":3: column vx (env option max_forward_velocity): 1e+30 is outside [-1, 1]");
+  EXPECT_EQ(load_error("time,vx,wz\n0,1e39,0\n"),
+            path + ":2: column vx (env option max_forward_velocity): 1e+39 is outside [-1, 1]");
+  EXPECT_EQ(load_error("0,0,-1.6\n"),
+            path + ":1: column wz (env option max_yaw_rate): -1.6 is outside [-1.5, 1.5]");
+  EXPECT_EQ(load_error("0,0,nan\n"),
+            path +
+                ":1: column wz (env option max_yaw_rate): nan is not a finite number; "
+                "expected one in [-1.5, 1.5]");
+  EXPECT_EQ(load_error("0,0,0\n1e10,0,0\n"), path + ":2: column time: 1e+10 is outside [0, 1e+09]");
+  EXPECT_EQ(load_error("-1,0,0\n"), path + ":1: column time: -1 is outside [0, 1e+09]");
+}
+
+TEST(VelocityCommandSchedule, RefusesADeviceAndAFifoPromptly) {
+  const auto fifo = testing::make_fifo(testing::temp_path("commands.fifo"));
+  ASSERT_FALSE(fifo.empty());
+  for (const std::filesystem::path& path : {std::filesystem::path("/dev/zero"), fifo}) {
+    EXPECT_EQ(testing::child_call_error([&] { VelocityCommandSchedule::load(path, kRanges); }),
+              "velocity commands " + path.string() +
+                  ": not a regular file (a FIFO, a device or a socket)");
+  }
 }
 
 }  // namespace
