@@ -67,6 +67,10 @@ std::string file_safe(const std::string& text) {
 }
 
 std::string read_text(const std::filesystem::path& path) {
+  std::error_code missing;
+  if (!std::filesystem::exists(path, missing)) {
+    throw std::invalid_argument(path.string() + ": cannot read (is it a sweep directory?)");
+  }
   return read_input_file<std::invalid_argument>(path, "sweep file", kMaxConfigFileBytes);
 }
 
