@@ -52,12 +52,12 @@ std::optional<std::string> read_input_file(const std::filesystem::path& path,
   bytes.clear();
   struct stat status {};
   // stat first: a device or a FIFO is refused without being opened at all.
-  if (::stat(path.c_str(), &status) != 0) return lowercase_error(errno);
+  if (::stat(path.c_str(), &status) != 0) return "cannot open: " + lowercase_error(errno);
   if (std::string problem = status_problem(status, max_bytes); !problem.empty()) return problem;
   // Non-blocking: should the path become a FIFO between stat and open, open does not wait
   // for a writer; fstat then refuses it.
   const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
-  if (file.get() < 0) return lowercase_error(errno);
+  if (file.get() < 0) return "cannot open: " + lowercase_error(errno);
   if (::fstat(file.get(), &status) != 0) return lowercase_error(errno);
   if (std::string problem = status_problem(status, max_bytes); !problem.empty()) return problem;
   bytes.resize(static_cast<std::size_t>(status.st_size));

@@ -14,8 +14,8 @@
 namespace upkie_rl {
 
 /// Reads the whole of `path` into `bytes` if it is a regular file of at most `max_bytes`;
-/// otherwise returns why not ("no such file or directory", "is a directory", "not a regular
-/// file (a FIFO, a device or a socket)", "N bytes, more than the limit of M bytes", a read
+/// otherwise returns why not ("cannot open: no such file or directory", "is a directory", "not a
+/// regular file (a FIFO, a device or a socket)", "N bytes, more than the limit of M bytes", a read
 /// error) and leaves `bytes` empty. Never blocks on a FIFO (checked before and after a
 /// non-blocking open), and reads at most `max_bytes` + 1 bytes even if the file grows.
 std::optional<std::string> read_input_file(const std::filesystem::path& path,

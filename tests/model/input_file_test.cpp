@@ -41,7 +41,7 @@ TEST(InputFile, ReadsARegularFileWholeUpToItsLimit) {
 TEST(InputFile, NamesAMissingFileAndADirectory) {
   const auto missing = temp_path("missing.txt", "upkie_rl_input_file");
   EXPECT_EQ(read_error(missing, 10),
-            "test file " + missing.string() + ": no such file or directory");
+            "test file " + missing.string() + ": cannot open: no such file or directory");
   const auto directory = missing.parent_path();
   EXPECT_EQ(read_error(directory, 10), "test file " + directory.string() + ": is a directory");
 }

@@ -77,7 +77,7 @@ void expect_refused(const std::filesystem::path& path, const std::string& reason
 }
 
 TEST(OnnxModelInfo, RefusesMissingEmptyForeignAndTruncatedFiles) {
-  expect_refused(testing::temp_path("missing.onnx"), "cannot read");
+  expect_refused(testing::temp_path("missing.onnx"), "cannot open");
   const std::filesystem::path empty = testing::temp_path("empty.onnx");
   testing::write_bytes(empty, "");
   expect_refused(empty, "not an ONNX model");
