@@ -113,14 +113,14 @@ sanitize: deps
 sanitize-thread: deps
 	cmake -S . -B $(TSAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUPKIE_RL_SANITIZE_THREAD=ON -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(TSAN_DIR) -j $(JOBS)
-	# Without the Gloo collectives (Communicator, DistributedTrain): libtorch and libgloo are
-	# not built with TSan, which then reports their own threads' handovers (a work's condition
-	# variable notified while its waiter frees it, tensors sent by Gloo's I/O thread, mutexes
-	# unlocked from another thread). They run in `make test` and `make sanitize` (ASan).
+	# Without the Gloo collectives (Communicator, DistributedTrain, RankAgreement): libtorch
+	# and libgloo are not built with TSan, which then reports their own threads' handovers (a
+	# work's condition variable notified while its waiter frees it, tensors sent by Gloo's I/O
+	# thread, mutexes unlocked from another thread; RankAgreement's broadcast gave the first). They run in `make test` and `make sanitize` (ASan).
 	# tests/tsan_suppressions.txt: the other uninstrumented libraries TSan misreads (Mesa).
 	cd $(TSAN_DIR) && TSAN_OPTIONS="halt_on_error=1 suppressions=$(abspath tests/tsan_suppressions.txt)" \
 	  ctest --output-on-failure -j $(JOBS) \
-	  -E '^(Communicator|DistributedTrain)\.'
+	  -E '^(Communicator|DistributedTrain|RankAgreement)\.'
 
 # libFuzzer + ASan on the spine's message decoding, server cycle and shared-memory segment,
 # the checkpoint gate past the CRC, record files, the viewer's messages, environment
