@@ -153,7 +153,7 @@ std::unique_ptr<TrainingRun> open_run(const TrainOptions& options,
   const std::filesystem::path run_dir = options.run_dir.empty()
                                             ? default_run_dir(options.config_path)
                                             : std::filesystem::path(options.run_dir);
-  return std::make_unique<TrainingRun>(config, run_dir, communicator);
+  return std::make_unique<TrainingRun>(config, run_dir, communicator, options.force_run_dir);
 }
 
 /// The line on stderr that says what is trained, on how many ranks.
@@ -243,8 +243,9 @@ void add_train_command(CLI::App& app) {
   command->add_option("--resume", options->resume, "Continue a run from one of its checkpoints")
       ->check(CLI::ExistingFile);
   command->add_flag("--force-run-dir", options->force_run_dir,
-                    "With --resume: continue in --run-dir even when it is another run's "
-                    "non-empty directory");
+                    "Train in --run-dir even when it is a non-empty directory that is not "
+                    "an upkie-rl run (its config.yaml and progress.csv are replaced) or, with "
+                    "--resume, another run's");
   command->add_flag("--quiet", options->quiet, "No progress bar");
   options->view.speed = 0.0;  // the training never waits for the viewer
   add_live_view_options(*command, options->view, false);

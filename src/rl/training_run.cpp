@@ -177,9 +177,32 @@ std::vector<std::string> TrainingRun::logged_tags() {
           "time/update_seconds"};
 }
 
+namespace {
+
+/// `run_dir`, unless rank 0 would start a new run there among a user's files: a non-empty
+/// directory that is not an upkie-rl run (its config.yaml or progress.csv would be
+/// overwritten). Checked before the lock creates anything.
+const std::filesystem::path& checked_fresh_run_dir(const std::filesystem::path& run_dir,
+                                                   const Communicator* communicator,
+                                                   bool allow_non_run_dir) {
+  std::error_code error;
+  const bool writer = communicator == nullptr || communicator->rank() == 0;
+  if (writer && !allow_non_run_dir && std::filesystem::is_directory(run_dir, error) &&
+      !std::filesystem::is_empty(run_dir, error) && !is_run_directory(run_dir)) {
+    throw std::invalid_argument("run directory " + run_dir.string() +
+                                " is not empty and is not an upkie-rl run (no .lock); choose a "
+                                "new or empty one, or pass --force-run-dir to train there");
+  }
+  return run_dir;
+}
+
+}  // namespace
+
 TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir,
-                         std::shared_ptr<Communicator> communicator)
-    : TrainingRun(ResumeTag{}, config, run_dir, std::move(communicator)) {
+                         std::shared_ptr<Communicator> communicator, bool allow_non_run_dir)
+    : TrainingRun(ResumeTag{}, config,
+                  checked_fresh_run_dir(run_dir, communicator.get(), allow_non_run_dir),
+                  std::move(communicator)) {
   if (!writes_outputs()) return;
   if (std::filesystem::exists(run_dir_ / "config.yaml")) {
     if (holds_checkpoints(run_dir_)) {
@@ -197,6 +220,7 @@ TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::pa
     }
   }
   std::filesystem::create_directories(run_dir_);
+  lock_->note_created(run_dir_ / "config.yaml");
   std::ofstream file(run_dir_ / "config.yaml");
   file << to_yaml(config_);
   if (!file) throw std::runtime_error("cannot write " + (run_dir_ / "config.yaml").string());
@@ -287,6 +311,7 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
   }
   run->resumed_at_ = run->ppo_->num_timesteps();
   if (run->writes_outputs() && !std::filesystem::exists(run->run_dir_ / "config.yaml")) {
+    run->lock_->note_created(run->run_dir_ / "config.yaml");
     std::ofstream(run->run_dir_ / "config.yaml") << to_yaml(config);
   }
   return run;
@@ -336,6 +361,7 @@ std::filesystem::path TrainingRun::train(
   std::optional<TensorBoardWriter> events;
   std::optional<ScalarCsvWriter> csv;
   if (writes_outputs()) {
+    lock_->keep();  // the run has started: a failure from here on leaves it to resume
     events.emplace(run_dir_);
     std::vector<std::string> tags = logged_tags();
     for (const std::string_view name : env_->reward_term_names()) {

@@ -60,8 +60,14 @@ class TrainingRun {
   /// (environment i of rank r takes seed + r·num_envs + i), the normalisation statistics
   /// are merged over the ranks after each iteration, and rank 0 alone writes the run
   /// directory (config, logs, checkpoints, final model). Timesteps count every rank's.
+  ///
+  /// A non-empty `run_dir` that is not an upkie-rl run (is_run_directory: a user's files)
+  /// is refused with std::invalid_argument, touching nothing, unless `allow_non_run_dir`.
+  /// A start refused after the directory was created (a bad environment option, a viewer
+  /// that cannot start) removes what it created when the TrainingRun is destroyed before
+  /// train().
   TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir,
-              std::shared_ptr<Communicator> communicator = nullptr);
+              std::shared_ptr<Communicator> communicator = nullptr, bool allow_non_run_dir = false);
 
   /// Continues the run saved in `checkpoint`, in `run_dir` (default: the run directory the
   /// checkpoint belongs to). Throws CheckpointError on a bad checkpoint,
@@ -120,7 +126,7 @@ class TrainingRun {
   TrainingConfig config_;
   std::filesystem::path run_dir_;
   std::unique_ptr<RunDirectoryLock> lock_;  // rank 0's, from construction to destruction
-  VecNormalize* normalize_ = nullptr;  // owned by env_
+  VecNormalize* normalize_ = nullptr;       // owned by env_
   std::unique_ptr<VectorEnv> env_;
   std::unique_ptr<Ppo> ppo_;
   std::shared_ptr<Communicator> communicator_;

@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 
+#include "apps/clean_refusal.hpp"
 #include "apps/cli_runner.hpp"
 #include "common/temp_files.hpp"
 #include "policy/checkpoint_file.hpp"
@@ -20,27 +21,12 @@
 namespace upkie_rl {
 namespace {
 
+using testing::expect_clean_refusal;
 using testing::run_cli;
 
 const std::string kConfig = std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml";
 const std::filesystem::path kModel =
     std::filesystem::path(UPKIE_RL_SOURCE_DIR) / "tests/data/policies/pendulum_bullet_seed0.ckpt";
-
-/// `arguments` fails with a status in [1, 127] (1 for errors, CLI11's own for bad flags)
-/// within 30 s, in at most three lines, naming `culprit`. A run that hangs is killed after
-/// 60 s (status 137, a failure).
-testing::CliResult expect_clean_refusal(const std::string& arguments, const std::string& culprit) {
-  const auto start = std::chrono::steady_clock::now();
-  const testing::CliResult result = run_cli(arguments, 60);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_GE(result.exit_code, 1) << arguments << "\n" << result.output;
-  EXPECT_LE(result.exit_code, 127) << arguments << "\n" << result.output;
-  EXPECT_LE(result.lines().size(), 3u) << arguments << "\n" << result.output;
-  EXPECT_NE(result.output.find(culprit), std::string::npos) << arguments << "\n" << result.output;
-  EXPECT_LT(seconds, 30.0) << arguments;
-  return result;
-}
 
 TEST(ReliabilityCli, UnboundedSettingsAreRefusedBeforeAnythingStarts) {
   const std::filesystem::path run_dir = testing::temp_path("never_made", "upkie_rl_cli_bounds");

@@ -121,6 +121,7 @@ TEST(RunSafety, RunKilledBeforeItsFirstCheckpointStartsOver) {
                            "ppo.total_timesteps=16", "policy.actor_hidden_sizes=[8]",
                            "policy.critic_hidden_sizes=[8]"});
   // What a trainer killed during its first rollout leaves.
+  testing::write_bytes(run / ".lock", "12345");
   testing::write_bytes(run / "config.yaml", to_yaml(config));
   testing::write_bytes(run / "progress.csv", "time/total_timesteps\n");
   testing::write_bytes(run / "events.out.tfevents.1.host", "x");

@@ -1,0 +1,78 @@
+// Fault injection (issue 26) through the real command line, second audit: a fresh training
+// never writes among a user's files, a refused start leaves no run directory behind.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "apps/clean_refusal.hpp"
+#include "apps/cli_runner.hpp"
+#include "common/temp_files.hpp"
+
+namespace upkie_rl {
+namespace {
+
+using testing::expect_clean_refusal;
+using testing::run_cli;
+
+const std::string kTrain =
+    "train --quiet --config " + std::string(UPKIE_RL_SOURCE_DIR) +
+    "/configs/pendulum.yaml --set env.id=Upkie-Mock-Pendulum --set env.num_envs=2"
+    " --set env.threads=0 --set ppo.n_steps=64 --set ppo.batch_size=32 --set ppo.n_epochs=1"
+    " --set ppo.total_timesteps=128 --set policy.actor_hidden_sizes=[8]"
+    " --set policy.critic_hidden_sizes=[8]";
+
+std::filesystem::path fresh_directory(const std::string& name) {
+  const auto path = testing::temp_path(name, "upkie_rl_hostile_cli");
+  std::filesystem::remove_all(path);
+  return path;
+}
+
+std::size_t entries(const std::filesystem::path& directory) {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(directory),
+                                                std::filesystem::directory_iterator()));
+}
+
+TEST(HostileCliInput, FreshTrainingAmongAUsersFilesIsRefusedAndTouchesNothing) {
+  for (const std::string name : {"config.yaml", "progress.csv", "notes.txt"}) {
+    const auto user_dir = fresh_directory("user_" + name);
+    std::filesystem::create_directories(user_dir);
+    const std::string bytes = "the user's own " + name + "\n";
+    testing::write_bytes(user_dir / name, bytes);
+    expect_clean_refusal(kTrain + " --run-dir " + user_dir.string(), "not an upkie-rl run");
+    EXPECT_EQ(testing::read_bytes(user_dir / name), bytes) << name;
+    EXPECT_EQ(entries(user_dir), 1u) << name;  // no .lock, no config.yaml
+  }
+  // Asked for explicitly, it trains there.
+  const auto forced = fresh_directory("user_forced");
+  std::filesystem::create_directories(forced);
+  testing::write_bytes(forced / "config.yaml", "mine: 1\n");
+  const testing::CliResult result =
+      run_cli(kTrain + " --force-run-dir --run-dir " + forced.string());
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(testing::read_bytes(forced / "config.yaml"), "mine: 1\n");
+}
+
+TEST(HostileCliInput, RefusedStartsLeaveNoRunDirectoryBehind) {
+  const auto parent = fresh_directory("refused_parent");
+  const auto run_dir = parent / "run";
+  for (const auto& [flags, culprit] : std::vector<std::pair<std::string, std::string>>{
+           {"--set env.options.frequency=nan", "frequency"},
+           {"--set env.options.max_episode_steps=-1", "max_episode_steps"},
+           {"--set env.options.bogus=1", "bogus"},
+           {"--view --view-port 0 --view-env 5", "environment 5"},
+           {"--view --view-port 0 --view-host 999.1.1.1", "999.1.1.1"}}) {
+    expect_clean_refusal(kTrain + " " + flags + " --run-dir " + run_dir.string(), culprit);
+    EXPECT_FALSE(std::filesystem::exists(parent)) << flags;  // nor the parent it created
+  }
+  // An empty directory of the user's stays, empty.
+  std::filesystem::create_directories(run_dir);
+  expect_clean_refusal(kTrain + " --view --view-port 0 --view-env 5 --run-dir " + run_dir.string(),
+                       "environment 5");
+  EXPECT_TRUE(std::filesystem::is_directory(run_dir));
+  EXPECT_EQ(entries(run_dir), 0u);
+}
+
+}  // namespace
+}  // namespace upkie_rl
