@@ -20,6 +20,7 @@
 #include "apps/commands.hpp"
 #include "apps/controller_option.hpp"
 #include "apps/gnuplot_figure.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/policy_controller.hpp"
 #include "apps/robustness_grid.hpp"
 #include "apps/tracking_report.hpp"
@@ -399,8 +400,10 @@ void add_evaluate_command(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
   command->add_flag("--exact-start", options->exact_start, kExactStartHelp);
-  command->add_option("--output", options->output,
-                      "Directory for table.txt, summary.json and heatmap_<label>.png");
+  command
+      ->add_option("--output", options->output,
+                   "Directory for table.txt, summary.json and heatmap_<label>.png")
+      ->check(kNonEmptyPath);
   command->callback([options] { run_evaluate(*options); });
 }
 

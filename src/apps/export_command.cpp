@@ -7,6 +7,7 @@
 #include <string>
 
 #include "apps/commands.hpp"
+#include "apps/option_checks.hpp"
 #include "onnx/onnx_export.hpp"
 
 namespace upkie_rl::apps {
@@ -29,7 +30,9 @@ void add_export_command(CLI::App& app) {
                    "Trained model (model_*.ckpt, a checkpoint, or an imported .ckpt)")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("--onnx", options->onnx, "ONNX file to write")->required();
+  command->add_option("--onnx", options->onnx, "ONNX file to write")
+      ->required()
+      ->check(kNonEmptyPath);
   command->callback([options] {
     export_onnx_file(options->model, options->onnx);
     std::cout << "wrote " << options->onnx << std::endl;

@@ -12,6 +12,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/gnuplot_figure.hpp"
+#include "apps/option_checks.hpp"
 #include "rl/rolling_mean.hpp"
 #include "rl/scalar_csv_writer.hpp"
 
@@ -152,9 +153,11 @@ void add_plot_command(CLI::App& app) {
   command->add_option("--window", options->window, "Trailing-mean window, in updates")
       ->check(CLI::Range(1, 1'000'000))
       ->capture_default_str();
-  command->add_option("--output", options->output_dir,
-                      "Directory for the figures (default: the run directory; required for "
-                      "several runs)");
+  command
+      ->add_option("--output", options->output_dir,
+                   "Directory for the figures (default: the run directory; required for "
+                   "several runs)")
+      ->check(kNonEmptyPath);
   command->callback([options] { run_plot(*options); });
 }
 

@@ -336,9 +336,11 @@ void add_rollout_command(CLI::App& app) {
                    "Velocity tasks: scripted commands, a CSV of rows time,vx,wz ([s], [m/s], "
                    "[rad/s]), each held until the next row's time")
       ->check(CLI::ExistingFile);
-  command->add_option("--plot", options->plot_prefix,
-                      "Velocity tasks: draw commanded against measured velocities of episode 0 "
-                      "in PREFIX_forward_velocity.png and PREFIX_yaw_rate.png");
+  command
+      ->add_option("--plot", options->plot_prefix,
+                   "Velocity tasks: draw commanded against measured velocities of episode 0 "
+                   "in PREFIX_forward_velocity.png and PREFIX_yaw_rate.png")
+      ->check(kNonEmptyPath);
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
   command->add_flag("--exact-start", options->exact_start, kExactStartHelp);
   command->add_flag("--info", options->info,

@@ -20,6 +20,7 @@
 #include "apps/child_process.hpp"
 #include "apps/commands.hpp"
 #include "apps/interrupt_handlers.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/policy_controller.hpp"
 #include "apps/progress_bar.hpp"
 #include "apps/sweep_outcome.hpp"
@@ -324,9 +325,11 @@ void add_sweep_command(CLI::App& app) {
       "sweep",
       "Independent trainings over seeds and settings, then a summary table and their return "
       "curves");
-  command->add_option("directory", options->directory,
-                      "An existing sweep: run its unfinished runs (or one with --run, or only "
-                      "the summary with --summary)");
+  command
+      ->add_option("directory", options->directory,
+                   "An existing sweep: run its unfinished runs (or one with --run, or only "
+                   "the summary with --summary)")
+      ->check(kNonEmptyPath);
   command->add_option("--config", options->config_path, "Base training configuration (YAML)")
       ->check(CLI::ExistingFile);
   command->add_option("--seeds", options->seeds,
@@ -338,9 +341,11 @@ void add_sweep_command(CLI::App& app) {
                    "for every run)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  command->add_option("--output", options->out,
-                      "Directory of the new sweep (default: runs/sweep-<config>-<date>-<time>)");
-  command->add_option("--out", options->out)->group("");  // the former spelling
+  command
+      ->add_option("--output", options->out,
+                   "Directory of the new sweep (default: runs/sweep-<config>-<date>-<time>)")
+      ->check(kNonEmptyPath);
+  command->add_option("--out", options->out)->check(kNonEmptyPath)->group("");  // former spelling
   command
       ->add_option("--jobs", options->jobs,
                    "Runs at once here (default: cores / env.threads, at least 1)")

@@ -235,9 +235,11 @@ void add_train_command(CLI::App& app) {
   command->add_option("--set", options->overrides,
                       "Override a configuration key, e.g. --set ppo.total_timesteps=200000 "
                       "(repeatable)");
-  command->add_option("--run-dir", options->run_dir,
-                      "Run directory (default: runs/<config name>-<date>-<time>; with --resume, "
-                      "the checkpoint's run)");
+  command
+      ->add_option("--run-dir", options->run_dir,
+                   "Run directory (default: runs/<config name>-<date>-<time>; with --resume, "
+                   "the checkpoint's run)")
+      ->check(kNonEmptyPath);
   options->seed_option =
       command->add_option("--seed", options->seed, "Random seed (overrides the config's)");
   command->add_option("--resume", options->resume, "Continue a run from one of its checkpoints")

@@ -15,6 +15,7 @@
 #include "apps/commands.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/live_view.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/record_file.hpp"
 #include "apps/velocity_view.hpp"
 #include "envs/registry.hpp"
@@ -144,8 +145,10 @@ void add_view_command(CLI::App& app) {
       "rest); --html writes the replay as one self-contained file");
   command->add_option("record", options->record_path, "Record file (CSV) to replay")
       ->check(CLI::ExistingFile);
-  command->add_option("--html", options->html_path,
-                      "Write a self-contained HTML replay to this file instead of serving");
+  command
+      ->add_option("--html", options->html_path,
+                   "Write a self-contained HTML replay to this file instead of serving")
+      ->check(kNonEmptyPath);
   add_view_address_options(*command, options->host, options->port, true);
   command->add_option("--title", options->title, "Title shown in the page (default: the file)");
   command->callback([options] { run_view(*options); });

@@ -74,5 +74,19 @@ TEST(HostileCliInput, RefusedStartsLeaveNoRunDirectoryBehind) {
   EXPECT_EQ(entries(run_dir), 0u);
 }
 
+TEST(HostileCliInput, EmptyOutputPathsAreRefused) {
+  expect_clean_refusal("view --html '' " + std::string(UPKIE_RL_SOURCE_DIR) + "/CMakeLists.txt",
+                       "--html");
+  expect_clean_refusal("rollout --env Upkie-Mock-Velocity --max-steps 5 --plot ''", "--plot");
+  expect_clean_refusal("evaluate --env Upkie-Mock-Pendulum --controller zero --output ''",
+                       "--output");
+  expect_clean_refusal("sweep --plan --config " + std::string(UPKIE_RL_SOURCE_DIR) +
+                           "/configs/pendulum.yaml --seeds 0:1 --output ''",
+                       "--output");
+  expect_clean_refusal(
+      "train --config " + std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml --run-dir ''",
+      "--run-dir");
+}
+
 }  // namespace
 }  // namespace upkie_rl
