@@ -137,6 +137,7 @@ void add_drive_command(CLI::App& app) {
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value (repeatable); no time limit by default");
   command->add_option("--seed", options->loop.seed, "Seed of the first episode")
+      ->check(kSeed)
       ->capture_default_str();
   command
       ->add_option("--record", options->record_path,

@@ -387,6 +387,7 @@ void add_evaluate_command(CLI::App& app) {
       ->check(CLI::Range(1, 1'000'000))
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of episode 0 of every cell (then seed + e)")
+      ->check(kSeed)
       ->capture_default_str();
   command
       ->add_option("--max-steps", options->max_steps,

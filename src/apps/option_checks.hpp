@@ -4,8 +4,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <string>
 
 namespace upkie_rl::apps {
@@ -32,5 +35,20 @@ inline CLI::Validator finite_range(double min, double max) {
 inline const CLI::Validator kNonEmptyPath(
     [](std::string& value) { return value.empty() ? std::string("empty path") : std::string(); },
     "PATH");
+
+/// A seed option's check: decimal digits naming a number in [0, 2^64 - 1], the range of the
+/// configuration's `seed`. CLI11 alone turns "-1" and 2^64 into 2^64 - 1 without a word.
+inline const CLI::Validator kSeed(
+    [](std::string& text) {
+      const std::string refusal = text + " is not a whole number in [0, " +
+                                  std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
+      if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+        return refusal;
+      }
+      errno = 0;
+      static_cast<void>(std::strtoull(text.c_str(), nullptr, 10));
+      return errno == ERANGE ? refusal : std::string();
+    },
+    "SEED in [0, 2^64 - 1]");
 
 }  // namespace upkie_rl::apps

@@ -319,6 +319,7 @@ void add_rollout_command(CLI::App& app) {
       ->check(CLI::Range(1, 1'000'000))
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of the first episode; episode e uses seed + e")
+      ->check(kSeed)
       ->capture_default_str();
   command
       ->add_option("--max-steps", options->max_steps,

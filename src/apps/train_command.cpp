@@ -241,7 +241,8 @@ void add_train_command(CLI::App& app) {
                    "the checkpoint's run)")
       ->check(kNonEmptyPath);
   options->seed_option =
-      command->add_option("--seed", options->seed, "Random seed (overrides the config's)");
+      command->add_option("--seed", options->seed, "Random seed (overrides the config's)")
+          ->check(kSeed);
   command->add_option("--resume", options->resume, "Continue a run from one of its checkpoints")
       ->check(CLI::ExistingFile);
   command->add_flag("--force-run-dir", options->force_run_dir,

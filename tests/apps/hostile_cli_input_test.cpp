@@ -88,5 +88,18 @@ TEST(HostileCliInput, EmptyOutputPathsAreRefused) {
       "--run-dir");
 }
 
+TEST(HostileCliInput, SeedsOutsideTheirRangeAreRefusedNotWrapped) {
+  for (const std::string seed : {"-1", "18446744073709551616", "1e3", "nan"}) {
+    expect_clean_refusal("rollout --env Upkie-Mock-Pendulum --max-steps 5 --seed " + seed,
+                         "--seed: " + seed);
+    expect_clean_refusal("evaluate --env Upkie-Mock-Pendulum --controller zero --seed " + seed,
+                         "--seed: " + seed);
+    expect_clean_refusal(kTrain + " --seed " + seed, "--seed: " + seed);
+  }
+  EXPECT_EQ(run_cli("rollout --env Upkie-Mock-Pendulum --max-steps 5 --seed 18446744073709551615")
+                .exit_code,
+            0);
+}
+
 }  // namespace
 }  // namespace upkie_rl
