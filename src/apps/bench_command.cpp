@@ -10,6 +10,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/controller_option.hpp"
+#include "apps/option_checks.hpp"
 #include "apps/policy_controller.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/registry.hpp"
@@ -105,15 +106,15 @@ void add_bench_command(CLI::App& app) {
       app.add_subcommand("bench", "Measure environment steps per second of a vector environment");
   command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
   command->add_option("--num-envs", options->num_envs, "Number of environments")
-      ->check(CLI::Range(1, 4096))
+      ->check(finite_range(1, 4096))
       ->capture_default_str();
   command
       ->add_option("--threads", options->threads,
                    "0: synchronous; otherwise a thread pool of this many workers")
-      ->check(CLI::Range(0, 1024))
+      ->check(finite_range(0, 1024))
       ->capture_default_str();
   command->add_option("--steps", options->steps, "Vector steps to time")
-      ->check(CLI::Range(1, 1'000'000'000))
+      ->check(finite_range(1, 1'000'000'000))
       ->capture_default_str();
   command->add_option("--controller", options->controller, kControllerHelp)->capture_default_str();
   command->add_option("--env-option", options->env_options,

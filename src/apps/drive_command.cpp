@@ -104,10 +104,10 @@ void add_drive_view_options(CLI::App& command, DriveOptions& options) {
   command.add_option("--host", options.view.host, "Address the page is served on")
       ->capture_default_str();
   command.add_option("--port", options.view.port, "Port of the page; 0 picks a free one")
-      ->check(CLI::Range(0, 65535))
+      ->check(finite_range(0, 65535))
       ->capture_default_str();
   command.add_option("--wait", options.view.wait_clients, "Wait for this many browsers first")
-      ->check(CLI::Range(0, 1000))
+      ->check(finite_range(0, 1000))
       ->capture_default_str();
   command.add_option("--speed", options.view.speed, "Simulated seconds per wall-clock second")
       ->check(finite_range(0.05, 10.0))

@@ -384,7 +384,7 @@ void add_evaluate_command(CLI::App& app) {
                       "[N], mass, friction, lag [s], delay [steps], pitch [rad], or any "
                       "numeric environment option");
   command->add_option("--episodes", options->episodes, "Episodes per cell and controller")
-      ->check(CLI::Range(1, 1'000'000))
+      ->check(finite_range(1, 1'000'000))
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of episode 0 of every cell (then seed + e)")
       ->check(kSeed)
@@ -392,12 +392,12 @@ void add_evaluate_command(CLI::App& app) {
   command
       ->add_option("--max-steps", options->max_steps,
                    "Success: not terminated within this many steps (or the env's time limit)")
-      ->check(CLI::Range(1, 1'000'000'000))
+      ->check(finite_range(1, 1'000'000'000))
       ->capture_default_str();
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value for every cell (repeatable)");
   command->add_option("--threads", options->threads, "Worker threads (0: one per core)")
-      ->check(CLI::Range(0, 1024))
+      ->check(finite_range(0, 1024))
       ->capture_default_str();
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
   command->add_flag("--exact-start", options->exact_start, kExactStartHelp);

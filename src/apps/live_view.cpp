@@ -17,12 +17,12 @@ void add_view_address_options(CLI::App& command, std::string& host, int& port,
                               bool hidden_aliases) {
   command.add_option("--view-host", host, "Address the viewer listens on")->capture_default_str();
   command.add_option("--view-port", port, "Port of the viewer; 0 picks a free one")
-      ->check(CLI::Range(0, 65535))
+      ->check(finite_range(0, 65535))
       ->capture_default_str();
   if (hidden_aliases) {
     // Former spellings of `upkie-rl view`, accepted and left out of --help.
     command.add_option("--host", host)->group("");
-    command.add_option("--port", port)->check(CLI::Range(0, 65535))->group("");
+    command.add_option("--port", port)->check(finite_range(0, 65535))->group("");
   }
 }
 
@@ -33,12 +33,12 @@ void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pac
   command
       .add_option("--view-wait", options.wait_clients,
                   "Wait for this many browsers before the first step")
-      ->check(CLI::Range(0, 1000))
+      ->check(finite_range(0, 1000))
       ->capture_default_str();
   command
       .add_option("--view-max-connections", options.max_connections,
                   "Open connections the viewer accepts; more are closed at once")
-      ->check(CLI::Range(1, 65536))
+      ->check(finite_range(1, 65536))
       ->capture_default_str();
   command
       .add_option("--view-idle-timeout", options.idle_timeout,

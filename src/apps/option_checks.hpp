@@ -51,4 +51,18 @@ inline const CLI::Validator kSeed(
     },
     "SEED in [0, 2^64 - 1]");
 
+/// A frame size option's parse: WIDTHxHEIGHT, two whole numbers and nothing else
+/// ("640x480x3" is refused, not read as 640x480). Returns false when `text` is not one.
+inline bool parse_frame_size(const std::string& text, int& width, int& height) {
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos || x == 0 || x + 1 == text.size() ||
+      text.find_first_not_of("0123456789x") != std::string::npos ||
+      text.find('x', x + 1) != std::string::npos || x > 9 || text.size() - x - 1 > 9) {
+    return false;
+  }
+  width = std::stoi(text.substr(0, x));
+  height = std::stoi(text.substr(x + 1));
+  return true;
+}
+
 }  // namespace upkie_rl::apps

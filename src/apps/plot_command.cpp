@@ -151,7 +151,7 @@ void add_plot_command(CLI::App& app) {
   command->add_option("run_dirs", options->run_dirs, "Run directories of `upkie-rl train`")
       ->required();
   command->add_option("--window", options->window, "Trailing-mean window, in updates")
-      ->check(CLI::Range(1, 1'000'000))
+      ->check(finite_range(1, 1'000'000))
       ->capture_default_str();
   command
       ->add_option("--output", options->output_dir,

@@ -316,7 +316,7 @@ void add_rollout_command(CLI::App& app) {
                    "deterministic policy with its frozen normalisation; replaces --controller")
       ->check(CLI::ExistingFile);
   command->add_option("--episodes", options->episodes, "Number of episodes")
-      ->check(CLI::Range(1, 1'000'000))
+      ->check(finite_range(1, 1'000'000))
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of the first episode; episode e uses seed + e")
       ->check(kSeed)
@@ -324,7 +324,7 @@ void add_rollout_command(CLI::App& app) {
   command
       ->add_option("--max-steps", options->max_steps,
                    "Also end an episode after this many steps (the env's own limit applies)")
-      ->check(CLI::Range(1, 1'000'000'000))
+      ->check(finite_range(1, 1'000'000'000))
       ->capture_default_str();
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value (repeatable)");

@@ -349,11 +349,11 @@ void add_sweep_command(CLI::App& app) {
   command
       ->add_option("--jobs", options->jobs,
                    "Runs at once here (default: cores / env.threads, at least 1)")
-      ->check(CLI::Range(1, 1024));
+      ->check(finite_range(1, 1024));
   command
       ->add_option("--eval-episodes", options->evaluation_episodes,
                    "Episodes of each run's final evaluation")
-      ->check(CLI::Range(1, 100'000))
+      ->check(finite_range(1, 100'000))
       ->capture_default_str();
   command->add_flag("--plan", options->plan_only,
                     "Write the sweep directory and list its runs and the commands that run "
@@ -362,7 +362,7 @@ void add_sweep_command(CLI::App& app) {
       ->add_option("--run", options->run_index,
                    "Train and evaluate run I of the sweep only (for a launcher's tasks, "
                    "e.g. a Slurm job array)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0, static_cast<double>(kMaxSweepRuns - 1)));
   command->add_flag("--summary", options->summary_only,
                     "Only write the summary of the runs finished so far");
   command->callback([options] { run_sweep(*options); });

@@ -21,6 +21,7 @@
 #include "rl/distributed_launch.hpp"
 #include "rl/training_config.hpp"
 #include "rl/training_run.hpp"
+#include "vec/make_vector_env.hpp"
 
 namespace upkie_rl::apps {
 
@@ -259,7 +260,7 @@ void add_train_command(CLI::App& app) {
       ->check(finite_range(1.0, 86400.0))
       ->capture_default_str();
   command->add_option("--view-env", options->view_env, "Environment of the run --view shows")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_range(0, static_cast<double>(kMaxVectorEnvs - 1)))
       ->capture_default_str();
   command->callback([options] { run_train(*options); });
 }

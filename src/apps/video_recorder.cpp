@@ -48,12 +48,7 @@ void add_video_options(CLI::App& command, VideoOptions& options) {
   command.add_option_function<std::string>(
       "--video-size",
       [&options](const std::string& size) {
-        const std::size_t x = size.find('x');
-        try {
-          if (x == std::string::npos) throw std::invalid_argument(size);
-          options.width = std::stoi(size.substr(0, x));
-          options.height = std::stoi(size.substr(x + 1));
-        } catch (const std::exception&) {
+        if (!parse_frame_size(size, options.width, options.height)) {
           throw CLI::ValidationError("--video-size", "expected WIDTHxHEIGHT, got " + size);
         }
       },

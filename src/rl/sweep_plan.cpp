@@ -230,9 +230,9 @@ SweepPlan make_sweep_plan(const TrainingConfig& base, std::vector<std::uint64_t>
   plan.axes = std::move(axes);
   std::size_t combinations = 1;
   for (const SweepAxis& axis : plan.axes) combinations *= axis.values.size();
-  if (combinations * plan.seeds.size() > 10'000) {
+  if (combinations * plan.seeds.size() > kMaxSweepRuns) {
     throw std::invalid_argument("a sweep of " + std::to_string(combinations * plan.seeds.size()) +
-                                " runs: at most 10,000");
+                                " runs: at most " + std::to_string(kMaxSweepRuns));
   }
   for (std::size_t combination = 0; combination < combinations; ++combination) {
     std::vector<std::string> overrides;

@@ -22,6 +22,9 @@
 
 namespace upkie_rl {
 
+/// Runs a sweep may hold (a plan of more is refused; `--run` takes 0 to this - 1).
+inline constexpr std::size_t kMaxSweepRuns = 10'000;
+
 /// One overridden key and the values the sweep gives it.
 struct SweepAxis {
   std::string key;                  ///< A dotted config key, e.g. ppo.learning_rate_initial.

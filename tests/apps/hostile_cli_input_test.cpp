@@ -101,5 +101,21 @@ TEST(HostileCliInput, SeedsOutsideTheirRangeAreRefusedNotWrapped) {
             0);
 }
 
+TEST(HostileCliInput, NumericFlagsRefuseNanAndNameTheirRangeShortly) {
+  for (const auto& [arguments, culprit] : std::vector<std::pair<std::string, std::string>>{
+           {kTrain + " --view-env -1", "--view-env: -1 is not a finite number in [0, 4095]"},
+           {kTrain + " --view-env nan", "--view-env: nan"},
+           {"sweep /nonexistent --run -1", "--run: -1 is not a finite number in [0, 9999]"},
+           {"bench --env Upkie-Mock-Pendulum --num-envs nan", "--num-envs: nan"},
+           {"plot /nonexistent --window inf", "--window: inf"},
+           {"rollout --env Upkie-Mock-Pendulum --view --view-wait nan", "--view-wait: nan"},
+           {"rollout --env Upkie-Mock-Pendulum --max-steps 5 --video x.gif --video-size 640x480x3",
+            "--video-size"}}) {
+    expect_clean_refusal(arguments, culprit);
+    // No 300-digit DBL_MAX in the message.
+    EXPECT_EQ(run_cli(arguments).output.find("17976931348623157"), std::string::npos) << arguments;
+  }
+}
+
 }  // namespace
 }  // namespace upkie_rl
