@@ -8,10 +8,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iomanip>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace upkie_rl::apps {
 
@@ -46,16 +49,80 @@ std::string terminal_line(const std::string& gnuplot, int width, int height) {
                             : "set terminal png truecolor" + size + "\n";
 }
 
-void run_gnuplot(const std::string& gnuplot, const std::string& text) {
-  const std::string command = gnuplot + " 2>&1";
+/// The last line gnuplot printed that says what went wrong (its errors end with the
+/// reason, e.g. "line 12: x range is invalid"), or empty.
+std::string gnuplot_reason(const std::string& log_path) {
+  FILE* log = std::fopen(log_path.c_str(), "r");
+  if (log == nullptr) return {};
+  std::string reason;
+  std::array<char, 512> line{};
+  while (std::fgets(line.data(), line.size(), log) != nullptr) {
+    std::string text(line.data());
+    const std::size_t start = text.find_first_not_of(" \t");
+    const std::size_t end = text.find_last_not_of(" \t\r\n");
+    if (start != std::string::npos && end != std::string::npos && text.find("line ") == start) {
+      reason = text.substr(start, end - start + 1);
+    }
+  }
+  std::fclose(log);
+  return reason;
+}
+
+/// Figures drawn aside (`<figure>.tmp.<pid>`) and renamed over their files only once gnuplot
+/// succeeded: a failed drawing leaves no empty PNG and the former figures as they were.
+class FiguresAside {
+ public:
+  FiguresAside() = default;
+  FiguresAside(const FiguresAside&) = delete;
+  FiguresAside& operator=(const FiguresAside&) = delete;
+  ~FiguresAside() {
+    std::error_code error;
+    for (const auto& [aside, output] : figures_) std::filesystem::remove(aside, error);
+  }
+  /// The file gnuplot writes for `output`.
+  std::string add(const std::filesystem::path& output) {
+    std::filesystem::path aside = output;
+    aside += ".tmp." + std::to_string(::getpid());
+    figures_.emplace_back(aside, output);
+    return aside.string();
+  }
+  /// The names of the figures, for messages.
+  std::string names() const {
+    std::string names;
+    for (const auto& [aside, output] : figures_) {
+      names += (names.empty() ? "" : ", ") + output.filename().string();
+    }
+    return names;
+  }
+  void commit() {
+    for (const auto& [aside, output] : figures_) std::filesystem::rename(aside, output);
+    figures_.clear();
+  }
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> figures_;
+};
+
+/// Runs `text` through gnuplot, its output to a log aside, and renames the figures over
+/// their files when it succeeded; else throws naming the figures and gnuplot's reason.
+void run_gnuplot(const std::string& gnuplot, const std::string& text, FiguresAside& figures) {
+  const std::string log_path =
+      (std::filesystem::temp_directory_path() / ("upkie_rl_gnuplot." + std::to_string(::getpid())))
+          .string();
+  const std::string command = gnuplot + " >'" + log_path + "' 2>&1";
   FILE* pipe = popen(command.c_str(), "w");
   if (pipe == nullptr) throw std::runtime_error("cannot start " + gnuplot);
   const std::size_t written = fwrite(text.data(), 1, text.size(), pipe);
   const int status = pclose(pipe);
+  const std::string reason = gnuplot_reason(log_path);
+  std::error_code error;
+  std::filesystem::remove(log_path, error);
   if (written != text.size() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error("gnuplot failed (exit status " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+    throw std::runtime_error("gnuplot failed to draw " + figures.names() + " (exit status " +
+                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")" +
+                             (reason.empty() ? std::string() : ": " + reason));
   }
+  figures.commit();
 }
 
 /// Axis settings shared by the line figures: the x axis ends at the first and last data, and
@@ -102,6 +169,7 @@ std::string find_gnuplot() {
 
 void draw_trend_figures(const std::vector<TrendFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
+  FiguresAside aside;
   std::ostringstream script;
   script << terminal_line(gnuplot, 900, 540);
   script << "set grid\nset datafile missing 'NaN'\nset format x '%.1s%c'\n" << kLineAxes;
@@ -114,7 +182,7 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
       script << figure.x[i] << ' ' << figure.raw[i] << ' ' << figure.smoothed[i] << '\n';
     }
     script << "EOD\n";
-    script << "set output " << quoted(figure.output.string()) << '\n';
+    script << "set output " << quoted(aside.add(figure.output)) << '\n';
     script << "set title " << quoted(figure.title) << '\n';
     script << "set xlabel " << quoted(figure.x_label) << '\n';
     script << "set ylabel " << quoted(figure.y_label) << '\n';
@@ -126,11 +194,12 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
            << quoted(figure.smoothed_label) << '\n';
     script << "unset output\n";
   }
-  run_gnuplot(gnuplot, script.str());
+  run_gnuplot(gnuplot, script.str(), aside);
 }
 
 void draw_curves_figure(const CurvesFigure& figure) {
   const std::string gnuplot = find_gnuplot();
+  FiguresAside aside;
   // A qualitative palette (matplotlib's tab10), repeated past ten groups.
   static constexpr std::array<const char*, 10> kColours = {
       "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
@@ -161,7 +230,7 @@ void draw_curves_figure(const CurvesFigure& figure) {
           << " lc rgb '" << (curve.faint ? "#66" + colour.substr(1) : colour) << "' "
           << (titled ? "title " + quoted(curve.group) : std::string("notitle"));
   }
-  script << "set output " << quoted(figure.output.string()) << '\n';
+  script << "set output " << quoted(aside.add(figure.output)) << '\n';
   script << "set title " << quoted(figure.title) << '\n';
   script << "set xlabel " << quoted(figure.x_label) << '\n';
   script << "set ylabel " << quoted(figure.y_label) << '\n';
@@ -173,11 +242,12 @@ void draw_curves_figure(const CurvesFigure& figure) {
     script << "plot " << plots.str() << '\n';
   }
   script << "unset output\n";
-  run_gnuplot(gnuplot, script.str());
+  run_gnuplot(gnuplot, script.str(), aside);
 }
 
 void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
+  FiguresAside aside;
   std::ostringstream script;
   script << terminal_line(gnuplot, 900, 600);
   // Labels are file and controller names: underscores are not subscripts.
@@ -199,7 +269,7 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
       }
     }
     script << "EOD\n";
-    script << "set output " << quoted(figure.output.string()) << '\n';
+    script << "set output " << quoted(aside.add(figure.output)) << '\n';
     script << "set title " << quoted(figure.title) << '\n';
     script << "set xlabel " << quoted(figure.x_label) << '\n';
     script << "set ylabel " << quoted(figure.y_label) << '\n';
@@ -221,7 +291,7 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
            << block << " using 1:2:(sprintf('%.0f', $3)) with labels font ',10'\n";
     script << "unset output\n";
   }
-  run_gnuplot(gnuplot, script.str());
+  run_gnuplot(gnuplot, script.str(), aside);
 }
 
 }  // namespace upkie_rl::apps

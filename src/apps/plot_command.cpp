@@ -4,6 +4,8 @@
 /// semi-transparent with their trailing mean; several: each run's trailing mean in its own
 /// colour, named in the legend, over its raw values.
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -83,10 +85,22 @@ std::string smoothing_label(std::size_t window) {
          std::to_string(window / 2) + ")";
 }
 
+bool has_a_value(const std::vector<double>& values) {
+  return std::any_of(values.begin(), values.end(), [](double value) { return !std::isnan(value); });
+}
+
+/// Draws the figures of one run. A quantity the log has no value of yet (an episode
+/// return before any episode ended) is not drawn: gnuplot cannot draw an empty series,
+/// and the former figure, if any, stays. Throws naming them after drawing the others.
 void plot_one_run(const RunLog& run, std::size_t window, const std::filesystem::path& output) {
   std::vector<TrendFigure> figures;
+  std::string undrawn;
   for (const LoggedQuantity& quantity : kFigures) {
     if (!run.has(quantity.column)) continue;  // older logs may lack a column
+    if (!has_a_value(run.column(quantity.column))) {
+      undrawn += (undrawn.empty() ? "" : ", ") + std::string(quantity.file);
+      continue;
+    }
     TrendFigure figure;
     figure.output = output / quantity.file;
     figure.title = quantity.title;
@@ -98,9 +112,15 @@ void plot_one_run(const RunLog& run, std::size_t window, const std::filesystem::
     figure.smoothed_label = smoothing_label(window);
     figures.push_back(std::move(figure));
   }
-  draw_trend_figures(figures);
+  if (!figures.empty()) draw_trend_figures(figures);
   for (const TrendFigure& figure : figures) {
     std::cout << "wrote " << figure.output.string() << std::endl;
+  }
+  if (!undrawn.empty()) {
+    throw std::runtime_error(undrawn + " not drawn: progress.csv of " + run.name +
+                             " has no value of them in its " +
+                             std::to_string(run.table.rows.size()) +
+                             " updates yet (no episode has ended); train longer, then plot again");
   }
 }
 
@@ -115,6 +135,7 @@ void plot_runs(const std::vector<RunLog>& runs, std::size_t window,
     for (const RunLog& run : runs) {
       if (!run.has(quantity.column)) continue;
       const std::vector<double> raw = run.column(quantity.column);
+      if (!has_a_value(raw)) continue;  // an empty curve; "no data yet" when all are
       figure.curves.push_back({run.name, run.column(kStepColumn), raw, true});
       figure.curves.push_back({run.name, run.column(kStepColumn), rolling_mean(raw, window)});
     }

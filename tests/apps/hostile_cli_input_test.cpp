@@ -117,5 +117,22 @@ TEST(HostileCliInput, NumericFlagsRefuseNanAndNameTheirRangeShortly) {
   }
 }
 
+TEST(HostileCliInput, PlotOfAShortRunNamesTheFiguresItCannotDrawAndKeepsTheFormerOnes) {
+  const auto run_dir = fresh_directory("short_run");
+  std::filesystem::create_directories(run_dir);
+  // Two updates, no episode ended: no return nor length to draw.
+  testing::write_bytes(run_dir / "progress.csv",
+                       "time/total_timesteps,rollout/ep_rew_mean,rollout/ep_len_mean,train/loss,"
+                       "train/approx_kl\n64,,,4.5,0.001\n128,,,0.5,0.002\n");
+  testing::write_bytes(run_dir / "return.png", "former figure");
+  expect_clean_refusal("plot " + run_dir.string(), "return.png, length.png not drawn");
+  EXPECT_EQ(testing::read_bytes(run_dir / "return.png"), "former figure");
+  EXPECT_FALSE(std::filesystem::exists(run_dir / "length.png"));
+  EXPECT_GT(std::filesystem::file_size(run_dir / "loss.png"), 0u);
+  for (const auto& entry : std::filesystem::directory_iterator(run_dir)) {
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+  }
+}
+
 }  // namespace
 }  // namespace upkie_rl
