@@ -34,9 +34,10 @@ def integer_argument(
         raise TypeError(
             f"{name}: {value!r} is not an integer; expected one in [{minimum}, {maximum}]"
         )
-    if not minimum <= value <= maximum:
-        raise out_of_range(f"{name}: {int(value)} is outside [{minimum}, {maximum}]")
-    return int(value)
+    integer = int(value)
+    if not minimum <= integer <= maximum:
+        raise out_of_range(f"{name}: {integer} is outside [{minimum}, {maximum}]")
+    return integer
 
 
 def seed_argument(seed: Any) -> Optional[int]:
