@@ -384,7 +384,7 @@ void add_evaluate_command(CLI::App& app) {
                       "[N], mass, friction, lag [s], delay [steps], pitch [rad], or any "
                       "numeric environment option");
   command->add_option("--episodes", options->episodes, "Episodes per cell and controller")
-      ->check(finite_range(1, 1'000'000))
+      ->check(finite_range(1, kMaxEvaluationEpisodes))
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of episode 0 of every cell (then seed + e)")
       ->check(kSeed)
