@@ -25,17 +25,11 @@ void set_physics(const EnvSettings& settings, PhysicsConfig& config) {
   config.inertia_source = settings.inertia_source;
 }
 
-MujocoConfig mujoco_config(const EnvId& id, const EnvSettings& settings) {
+/// The robot's MuJoCo physics (tires, wheel damping: MujocoConfig's defaults, the same for
+/// every task and for the simulation spine) at the rate of `settings`.
+MujocoConfig mujoco_config(const EnvSettings& settings) {
   MujocoConfig config;
   set_physics(settings, config);
-  // The velocity task drives on its wheels' speed loop, which chatters when its damping is
-  // explicit (MujocoConfig::implicit_wheel_damping), and on tires that must roll without
-  // slipping: MuJoCo's rolling friction (contact dimension 6) shares the friction cone with
-  // the sliding friction, and the driven tires slipped by a third (MujocoConfig::
-  // tire_condim). The other tasks keep the physics their checkpoints were trained with.
-  const bool velocity = id.kind == EnvKind::kVelocity;
-  config.implicit_wheel_damping = velocity;
-  if (velocity) config.tire_condim = 3;
   return config;
 }
 
@@ -53,7 +47,7 @@ std::unique_ptr<Simulation> make_simulation(const EnvId& id, const EnvSettings& 
       return std::make_unique<BulletSimulation>(model, config);
     }
     case EnvBackend::kMujoco: {
-      const MujocoConfig config = mujoco_config(id, settings);
+      const MujocoConfig config = mujoco_config(settings);
       physics_steps_per_step = config.nb_substeps;
       return std::make_unique<MujocoSimulation>(model, config, mujoco_model);
     }
@@ -76,7 +70,7 @@ EnvFactory make_env_factory(const std::string& id, const EnvOptions& options) {
   const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
   std::shared_ptr<const MujocoModel> mujoco_model;
   if (parsed.backend == EnvBackend::kMujoco) {
-    const MujocoConfig config = mujoco_config(parsed, settings);
+    const MujocoConfig config = mujoco_config(settings);
     config.validate();
     mujoco_model = build_mujoco_model(*model, config);
   }

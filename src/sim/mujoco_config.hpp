@@ -13,23 +13,24 @@ struct MujocoConfig : PhysicsConfig {
   /// Iterations of MuJoCo's Newton constraint solver (it converges in 2-4 on Upkie; the
   /// cap only matters in hard impacts).
   int solver_iterations = 20;
-  /// Contact dimensionality of the tires: 6 adds MuJoCo's torsional and rolling friction
-  /// (the URDF's rolling friction, as Bullet has); 3 is sliding friction only (cheaper).
-  /// With 6, MuJoCo's rolling friction is a constraint in the same friction cone as the
-  /// sliding one: a rolling tire is at the cone's edge, so it slides as well. A driven tire
-  /// then slips forward by about a third (the wheels turn 1.45 times as fast as they roll:
-  /// an effective radius of 0.035 m for 0.050 m at 0.35 m/s; elliptic cones: 0.031 m;
-  /// Bullet, whose rolling friction is a separate constraint: 0.051 m). The velocity task,
-  /// which drives, uses 3 (0.050 m); the other tasks keep 6.
-  int tire_condim = 6;
+  /// Contact dimensionality of the tires: 3 is sliding friction only; 6 adds MuJoCo's
+  /// torsional and rolling friction (the URDF's rolling friction, as Bullet has). With 6,
+  /// MuJoCo's rolling friction is a constraint in the same friction cone as the sliding
+  /// one: a rolling tire is at the cone's edge, so it slides as well. A driven tire then
+  /// slips forward by about a third (the wheels turn 1.45 times as fast as they roll: an
+  /// effective radius of 0.035 m for 0.050 m at 0.35 m/s; elliptic cones: 0.031 m; Bullet,
+  /// whose rolling friction is a separate constraint: 0.051 m). So the robot's tires are 3
+  /// (0.050 m), for every task and for the simulation spine: one robot, one physics; 6
+  /// remains for comparisons (bench/sim_bench.cpp).
+  int tire_condim = 3;
   /// The wheels' velocity-loop damping integrated implicitly, as MuJoCo's Euler integrator
   /// does joint damping (the rest of the servo law stays explicit). Evaluated explicitly
   /// once per 1 ms physics step, the damping kd·kd_scale against the wheel's own spin
-  /// inertia (kd·dt/I ≈ 6, above the explicit limit of 2) makes the wheel's speed chatter
+  /// inertia (kd·dt/I ≈ 3.8, above the explicit limit of 2) makes the wheel's speed chatter
   /// at its torque limit while the tire slips a little: 9.7 rad/s of standard deviation
-  /// standing still, 1.8 rad/s implicit. Off by default: the tasks trained before keep
-  /// their physics; the velocity task turns it on.
-  bool implicit_wheel_damping = false;
+  /// standing still, 1.8 rad/s implicit. On for the robot, every task and the spine alike;
+  /// off only to measure the difference (tests/sim/mujoco_wheel_damping_test.cpp).
+  bool implicit_wheel_damping = true;
 
   /// @throws std::invalid_argument naming the first setting out of its domain.
   void validate() const;

@@ -23,6 +23,7 @@ namespace upkie_rl::testing {
 inline const std::string kPolicies = std::string(UPKIE_RL_TEST_DATA_DIR) + "/policies/";
 inline const std::string kPendulum = kPolicies + "pendulum_bullet_seed0.ckpt";
 inline const std::string kServosBalance = kPolicies + "servos_balance_mujoco_seed0.ckpt";
+inline const std::string kVelocity = kPolicies + "velocity_mujoco_seed0.ckpt";
 /// The spine protocol's Stop request word.
 constexpr std::uint32_t kStopRequest = 3;
 
