@@ -11,7 +11,7 @@ DEBIAN_PACKAGES=(
   libmsgpack-cxx-dev libboost-dev nlohmann-json3-dev libcli11-dev libyaml-cpp-dev
   libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox fonts-liberation
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
-  python3-dev pybind11-dev  # the upkie_rl Python extension module
+  python3-dev  # the upkie_rl Python extension module (pybind11 from the registry, below)
   libonnx-dev  # ONNX export: the ONNX project's protobuf classes and checker
   python3-yaml  # upkie_rl.sb3_convert reads and writes training configurations
   # offscreen rendering without display or GPU (EGL, Mesa's llvmpipe), videos (H.264, GIF)
@@ -120,27 +120,32 @@ if [ "${#missing_no_deps[@]}" -gt 0 ]; then
   "$PYTHON" -m pip install "${pip_flags[@]}" --no-deps "${missing_no_deps[@]}"
 fi
 
-# The newest Gymnasium that pyproject.toml allows, in a venv of its own that sees Debian's
-# interpreter's packages (numpy, torch, pytest, mujoco, moviepy): `make test-python` runs
-# the Python tests against it too. Installed once: remove the venv to take a newer release.
+# The newest Gymnasium that pyproject.toml allows, with the newest NumPy 2, in a venv of its
+# own that sees Debian's interpreter's packages (torch, pytest, mujoco, moviepy): `make
+# test-python` runs the Python tests against it too, so that the package is tested under
+# NumPy 1.26 (Debian's interpreter) and NumPy 2 (here). Installed once: remove the venv to
+# take newer releases.
 repo_dir="$(cd "$(dirname "$0")/.." && pwd)"
 newest_venv="${GYMNASIUM_NEWEST_VENV:-$repo_dir/.venv-gymnasium-newest}"
 gymnasium_requirement="$("$PYTHON" -c "import sys, tomllib
 project = tomllib.load(open(sys.argv[1], 'rb'))['project']
 print(next(d for d in project['dependencies'] if d.startswith('gymnasium')))" "$repo_dir/pyproject.toml")"
 if [ ! -x "$newest_venv/bin/python" ]; then
-  echo "install-deps: creating $newest_venv (newest $gymnasium_requirement)"
+  echo "install-deps: creating $newest_venv (newest $gymnasium_requirement, numpy>=2)"
   "$PYTHON" -m venv --system-site-packages "$newest_venv"
 fi
-# Gymnasium must be the venv's own, not Debian's interpreter's 1.0.0 seen through it.
+# Gymnasium and NumPy must be the venv's own, not Debian's interpreter's (Gymnasium 1.0.0,
+# NumPy 1.26) seen through it; NumPy a 2.x.
 if ! "$newest_venv/bin/python" - <<'PYTHON_CHECK' 2>/dev/null; then
 import sys, importlib.metadata as metadata
-installed = metadata.distribution("gymnasium")
-sys.exit(0 if installed.locate_file("").as_posix().startswith(sys.prefix) else 1)
+def own(name):
+    return metadata.distribution(name).locate_file("").as_posix().startswith(sys.prefix)
+numpy_major = int(metadata.version("numpy").split(".")[0])
+sys.exit(0 if own("gymnasium") and own("numpy") and numpy_major >= 2 else 1)
 PYTHON_CHECK
-  echo "install-deps: installing $gymnasium_requirement (newest) in $newest_venv"
+  echo "install-deps: installing $gymnasium_requirement and numpy>=2 (newest) in $newest_venv"
   "$newest_venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-    --upgrade --upgrade-strategy only-if-needed "$gymnasium_requirement"
+    --upgrade --upgrade-strategy only-if-needed "$gymnasium_requirement" "numpy>=2"
 else
   echo "install-deps: newest Gymnasium venv present ($newest_venv)"
 fi

@@ -11,6 +11,9 @@ namespace upkie_rl::python {
 /// (low, high, names) of a Box space, low and high as float32 arrays.
 pybind11::tuple space_to_python(const BoxSpace& space);
 
+/// Raises ImportError unless NumPy reads the arrays this module makes as it wrote them
+/// (numpy_layout_check.cpp); call it first.
+void check_numpy_layout();
 /// The upkie_rl::Error hierarchy as Python classes under `upkie_rl.Error`, and their
 /// translation; call it before the other bindings.
 void bind_errors(pybind11::module_& module);

@@ -55,6 +55,8 @@ void bind_registry(py::module_& module) {
 
 PYBIND11_MODULE(_core, module) {
   module.doc() = "upkie-rl environments in C++ (thin bindings; see the upkie_rl package).";
+  // Wrong numbers with no error are worse than no module (array_checks.hpp).
+  upkie_rl::python::check_numpy_layout();
   // Errors keep their C++ meaning: bad input is ValueError (std::invalid_argument), the
   // upkie_rl::Error hierarchy maps onto upkie_rl.Error (error_bindings.cpp).
   upkie_rl::python::bind_errors(module);

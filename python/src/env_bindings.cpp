@@ -28,7 +28,7 @@ class PyEnv {
   PyEnv(const std::string& id, const EnvOptions& options) : env_(make_env(id, options)) {}
 
   py::array_t<float> reset(std::optional<std::uint64_t> seed) {
-    py::array_t<float> observation(static_cast<py::ssize_t>(observation_size()));
+    py::array_t<float> observation = new_array<float>({as_size(observation_size())}, "observation");
     std::span<float> out(observation.mutable_data(), observation_size());
     {
       py::gil_scoped_release release;
@@ -40,7 +40,7 @@ class PyEnv {
 
   py::tuple step(const FloatArray& action) {
     check_shape(action, 0, env_->action_space().size(), "action");
-    py::array_t<float> observation(static_cast<py::ssize_t>(observation_size()));
+    py::array_t<float> observation = new_array<float>({as_size(observation_size())}, "observation");
     std::span<float> out(observation.mutable_data(), observation_size());
     std::span<const float> in(action.data(), env_->action_space().size());
     StepResult result;
@@ -66,7 +66,8 @@ class PyEnv {
   }
 
   py::array_t<float> neutral_action() const {
-    py::array_t<float> action(static_cast<py::ssize_t>(env_->action_space().size()));
+    py::array_t<float> action =
+        new_array<float>({as_size(env_->action_space().size())}, "neutral action");
     env_->neutral_action(std::span<float>(action.mutable_data(), env_->action_space().size()));
     return action;
   }
@@ -91,8 +92,10 @@ class PyEnv {
 }  // namespace
 
 py::tuple space_to_python(const BoxSpace& space) {
-  py::array_t<float> low(static_cast<py::ssize_t>(space.size()), space.low.data());
-  py::array_t<float> high(static_cast<py::ssize_t>(space.size()), space.high.data());
+  py::array_t<float> low = new_array<float>({as_size(space.size())}, "space low");
+  py::array_t<float> high = new_array<float>({as_size(space.size())}, "space high");
+  std::copy(space.low.begin(), space.low.end(), low.mutable_data());
+  std::copy(space.high.begin(), space.high.end(), high.mutable_data());
   return py::make_tuple(std::move(low), std::move(high), space.names);
 }
 

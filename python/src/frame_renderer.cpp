@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "array_checks.hpp"
 #include "render/render_error.hpp"
 
 namespace py = pybind11;
@@ -28,7 +29,7 @@ py::array_t<std::uint8_t> FrameRenderer::render(const Observation* observation, 
   }
   const std::span<const std::uint8_t> frame =
       renderer_->render(robot_pose(*observation), overlay ? "time\npitch" : "", values);
-  py::array_t<std::uint8_t> image({height, width, 3});
+  py::array_t<std::uint8_t> image = new_array<std::uint8_t>({height, width, 3}, "frame");
   std::copy(frame.begin(), frame.end(), image.mutable_data());
   return image;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "array_checks.hpp"
 #include "bindings.hpp"
 #include "onnx/onnx_error.hpp"
 #include "onnx/onnx_export.hpp"
@@ -32,7 +33,8 @@ py::tuple read_model_checkpoint(const std::string& path) {
   CheckpointFile file = read_checked_checkpoint(path);  // The gate of every command.
   py::dict tensors;
   for (auto& [name, tensor] : file.tensors) {
-    py::array_t<float> array(tensor.shape);
+    py::array_t<float> array = new_array<float>(
+        std::vector<py::ssize_t>(tensor.shape.begin(), tensor.shape.end()), name.c_str());
     std::copy(tensor.values.begin(), tensor.values.end(), array.mutable_data());
     tensors[py::str(name)] = array;
   }
@@ -48,6 +50,7 @@ void write_model_checkpoint(const std::string& path, const std::string& header,
   for (const auto& [name, value] : tensors) {
     const auto array =
         py::cast<py::array_t<float, py::array::c_style | py::array::forcecast>>(value);
+    check_layout(array, sizeof(float), "tensor");
     FloatTensor tensor;
     for (py::ssize_t i = 0; i < array.ndim(); ++i) tensor.shape.push_back(array.shape(i));
     tensor.values.assign(array.data(), array.data() + array.size());

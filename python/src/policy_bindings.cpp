@@ -22,7 +22,8 @@ class PyPolicy {
 
   py::array_t<float> act(const FloatArray& observation) {
     check_shape(observation, 0, policy_.observation_space().size(), "observation");
-    py::array_t<float> action(static_cast<py::ssize_t>(policy_.action_space().size()));
+    py::array_t<float> action =
+        new_array<float>({as_size(policy_.action_space().size())}, "action");
     run(observation, action, false);
     return action;
   }
@@ -31,8 +32,8 @@ class PyPolicy {
     const auto rows =
         static_cast<std::size_t>(observations.ndim() == 2 ? observations.shape(0) : 0);
     check_shape(observations, rows, policy_.observation_space().size(), "observations");
-    py::array_t<float> actions(
-        {static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(policy_.action_space().size())});
+    py::array_t<float> actions =
+        new_array<float>({as_size(rows), as_size(policy_.action_space().size())}, "actions");
     run(observations, actions, true);
     return actions;
   }

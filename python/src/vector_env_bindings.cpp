@@ -31,7 +31,7 @@ AutoresetMode parse_autoreset_mode(const std::string& mode) {
 /// A copy of `values` as a numpy array of `shape`.
 template <typename T, typename Source>
 py::array_t<T> to_numpy(const Source* values, std::vector<py::ssize_t> shape) {
-  py::array_t<T> array(shape);
+  py::array_t<T> array = new_array<T>(std::move(shape), "array");
   std::copy(values, values + array.size(), array.mutable_data());
   return array;
 }
