@@ -12,7 +12,7 @@ bool PerturbationSettings::any() const {
          torque_control_noise != 0.0 || torque_measurement_noise != 0.0 ||
          imu_accelerometer_bias != 0.0 || imu_accelerometer_noise != 0.0 ||
          imu_gyroscope_bias != 0.0 || imu_gyroscope_noise != 0.0 || floor_friction != 1.0 ||
-         floor_friction_variation != 0.0 || push.enabled();
+         floor_friction_variation != 0.0 || torque_limit_scale != 1.0 || push.enabled();
 }
 
 PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double scale) const {
@@ -34,6 +34,7 @@ PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double
   imu.gyroscope_noise = scale * imu_gyroscope_noise;
   variation.floor_friction_scale =
       floor_friction * (1.0 + uniform_symmetric(generator, scale * floor_friction_variation));
+  variation.torque_limit_scale = torque_limit_scale;  // fixed: no draw
   variation.noise_seed = generator();
   return variation;
 }
@@ -58,6 +59,8 @@ void PerturbationSettings::declare_options(OptionTable& table) {
                  "std of gyroscope white noise (it reaches the pitch rate) [rad/s]");
   table.add_real("floor_friction", &floor_friction, 0.01, 100.0,
                  "factor on the tire-floor friction");
+  table.add_real("torque_limit_scale", &torque_limit_scale, 0.1, 2.0,
+                 "factor on every servo's torque limit (0.8: a motor 20 % weaker)");
   table.add_real("floor_friction_variation", &floor_friction_variation, 0.0, 0.99,
                  "tire-floor friction times 1 + U(-it, it), drawn at reset");
   table.add_real("push_force", &push.force, 0.0, kOptionHuge,

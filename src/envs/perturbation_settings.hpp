@@ -49,6 +49,7 @@ struct PerturbationSettings {
   double imu_gyroscope_noise = 0.0;       ///< Std of the white noise [rad/s].
   double floor_friction = 1.0;            ///< Fixed factor on the tire-floor friction.
   double floor_friction_variation = 0.0;  ///< ε: friction × (1 + U(-ε, ε)).
+  double torque_limit_scale = 1.0;        ///< Fixed factor on every servo's torque limit.
   PushSettings push;
 
   /// Whether any setting differs from the nominal robot and world.

@@ -31,6 +31,15 @@ struct MujocoConfig : PhysicsConfig {
   /// standing still, 1.8 rad/s implicit. On for the robot, every task and the spine alike;
   /// off only to measure the difference (tests/sim/mujoco_wheel_damping_test.cpp).
   bool implicit_wheel_damping = true;
+  /// With tire_condim 3, the tires' rolling resistance as a torque of its own on each
+  /// wheel against its rolling, up to the URDF's rolling_friction [m] × the tire's normal
+  /// force, outside the friction cone, as Bullet's separate rolling friction constraint:
+  /// the tires neither roll freely (as with 3 alone) nor slip (as with 6). On for the
+  /// robot, so that both engines carry the one description's tires: without it a limp robot
+  /// released upright rolled upright for 5 s instead of falling in about 1 s, and the fixed
+  /// pendulum law of tests/sim/physics_behaviour_test.cpp drifted and fell after 6 s where
+  /// it holds 0.015 rad on Bullet (0.014 rad with it; tests/sim/mujoco_tire_test.cpp).
+  bool tire_rolling_resistance = true;
 
   /// @throws std::invalid_argument naming the first setting out of its domain.
   void validate() const;

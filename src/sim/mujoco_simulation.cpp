@@ -2,12 +2,19 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "sim/tire_contact.hpp"
 
 namespace upkie_rl {
 namespace {
+
+/// Rolling speed below which the rolling resistance grows in proportion [rad/s]: at
+/// 0.1 rad/s (5 mm/s on the ground) its slope, 0.01 m x 26 N / 0.1 rad/s = 2.6 N.m.s/rad
+/// per wheel, against the robot's inertia seen by a wheel (m r² ≈ 0.013 kg.m²), gives
+/// 0.2 per 1 ms step: well inside explicit stability (2).
+constexpr double kRollingSpeedScale = 0.1;
 
 const MujocoConfig& validated(const MujocoConfig& config) {
   config.validate();
@@ -120,7 +127,7 @@ void MujocoSimulation::apply_servo_torques(const ServoAction& action, bool brake
     // damping); adding damping·v now leaves the servo's torque, its damping implicit. Not
     // while the torque is at its limit, where the law does not depend on v.
     const ServoCommand& command = action[servo];
-    const double limit = servo_torque_limit(command, model().servo_limits(servo).effort);
+    const double limit = servo_torque_limit(command, torque_limit(servo));
     const bool linear = !braked && std::abs(applied_torques_[servo]) < limit;
     const double damping = linear ? servo_gains().kd * command.kd_scale : 0.0;
     varied_model_->dof_damping[dof] = damping;
@@ -128,10 +135,42 @@ void MujocoSimulation::apply_servo_torques(const ServoAction& action, bool brake
   }
 }
 
+void MujocoSimulation::apply_rolling_resistance() {
+  if (!config_.tire_rolling_resistance || config_.tire_condim == 6) return;
+  const mjModel* m = episode_model_;
+  mjData* d = data_.get();
+  const MujocoRobotIndex& index = compiled_->index;
+  for (std::size_t side = 0; side < 2; ++side) {
+    const int geom = index.tire_geoms[side];
+    const int body = m->geom_bodyid[geom];
+    // The normal force the tire carries, summed over its contacts of the last step.
+    double normal_force = 0.0;
+    for (int i = 0; i < d->ncon; ++i) {
+      const mjContact& contact = d->contact[i];
+      if ((contact.geom1 != geom && contact.geom2 != geom) || contact.exclude != 0) continue;
+      mjtNum force[6];
+      mj_contactForce(m, d, i, force);
+      normal_force += std::max(0.0, force[0]);
+    }
+    // A torque against the wheel's rolling (its angular velocity about its axis, relative
+    // to the static floor), up to rolling_friction [m] x the normal force, as Bullet's
+    // rolling friction constraint; saturated linearly below kRollingSpeedScale so that it
+    // stays smooth and stable when evaluated once per step.
+    const int joint = m->dof_jntid[index.servo_dof[side == 0 ? kLeftWheel : kRightWheel]];
+    const mjtNum* axis = d->xaxis + 3 * joint;
+    const mjtNum* angular_velocity = d->cvel + 6 * body;
+    const double rolling = mju_dot3(angular_velocity, axis);
+    const double limit = m->geom_friction[3 * geom + 2] * normal_force;
+    const double torque = -limit * std::clamp(rolling / kRollingSpeedScale, -1.0, 1.0);
+    for (int i = 0; i < 3; ++i) d->xfrc_applied[6 * body + 3 + i] = torque * axis[i];
+  }
+}
+
 void MujocoSimulation::step_physics(const ServoAction& action, bool braked) {
   mjData* d = data_.get();
   const MujocoRobotIndex& index = compiled_->index;
   apply_servo_torques(action, braked);
+  apply_rolling_resistance();
   // xfrc_applied acts at the body's centre of mass, as Bullet's base force.
   for (int i = 0; i < 3; ++i) d->xfrc_applied[6 * index.root_body + i] = base_force()[i];
   mj_step(episode_model_, d);

@@ -46,6 +46,9 @@ class MujocoSimulation final : public PhysicsSimulation {
   /// The torque of each servo for `action` into qfrc_applied; with implicit wheel damping,
   /// the wheels' damping term moved into the own model's dof_damping.
   void apply_servo_torques(const ServoAction& action, bool braked);
+  /// The tires' rolling resistance (MujocoConfig::tire_rolling_resistance) into
+  /// xfrc_applied, from the contact forces of the last step.
+  void apply_rolling_resistance();
 
   void step_physics(const ServoAction& action, bool braked) override;
   void measure(MeasuredJoints& joints, MeasuredBase& base) const override;

@@ -67,6 +67,12 @@ class PhysicsSimulation : public Simulation {
   /// @throws std::invalid_argument on a setting out of its domain.
   PhysicsSimulation(const RobotModel& model, const PhysicsConfig& config);
 
+  /// The torque limit of `servo` in this episode [N.m]: its effort times the variation's
+  /// torque_limit_scale.
+  double torque_limit(std::size_t servo) const {
+    return model().servo_limits(servo).effort * variation_.torque_limit_scale;
+  }
+
   /// Torque on joint `servo` in this physics step: the servo law of `command` (or the brake)
   /// at the measured state plus the episode's torque-control noise, which is what the
   /// servo applies and reports (recorded in applied_torques_), plus the joint's friction.

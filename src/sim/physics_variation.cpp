@@ -39,6 +39,8 @@ void PhysicsVariation::validate() const {
         torque_measurement_noise);
   check(std::isfinite(floor_friction_scale) && floor_friction_scale > 0.0,
         "floor_friction_scale (must be positive)", floor_friction_scale);
+  check(std::isfinite(torque_limit_scale) && torque_limit_scale > 0.0,
+        "torque_limit_scale (must be positive)", torque_limit_scale);
   imu.validate();
 }
 

@@ -29,6 +29,9 @@ struct PhysicsVariation {
   double torque_measurement_noise = 0.0;
   /// Factor on the friction coefficient between the tires and the floor.
   double floor_friction_scale = 1.0;
+  /// Factor on every servo's torque limit (its URDF effort): below 1, a weaker motor, a
+  /// drained battery or a hot winding.
+  double torque_limit_scale = 1.0;
   ImuUncertainty imu;
   /// Seeds the noise drawn during the episode (torques, IMU).
   std::uint64_t noise_seed = 0;

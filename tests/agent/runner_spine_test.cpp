@@ -30,6 +30,7 @@ using testing::expect_supervised_stop;
 using testing::kPendulum;
 using testing::kServosBalance;
 using testing::kStopRequest;
+using testing::kVelocity;
 using testing::Spine;
 using testing::start_agent;
 using testing::temp_path;
@@ -45,9 +46,9 @@ void expect_balances(const std::string& model, const std::string& backend, int d
   const int status = agent->wait();
   const std::string output = agent->output();
   EXPECT_EQ(status, 0) << output;
-  EXPECT_NE(output.find("running -> stopping: duration of " + std::to_string(duration) +
-                        " s reached"),
-            std::string::npos)
+  EXPECT_NE(
+      output.find("running -> stopping: duration of " + std::to_string(duration) + " s reached"),
+      std::string::npos)
       << output;
   EXPECT_NE(output.find("5 of 5 stop cycles answered"), std::string::npos) << output;
   // duration x frequency cycles at most; a loaded 2-core machine runs some late.

@@ -104,16 +104,19 @@ TEST(VelocityBalancerDesign, IdentifiedModelAndSteadyStateOnMujoco) {
   // Of 6 x 499: the hand-set law falls now and then on tires that grip (1342 kept,
   // measured; over 2000 when MuJoCo's tires slipped).
   EXPECT_GT(standing.samples, 1000);
-  EXPECT_NEAR(standing.A(0, 1), env->timestep(), 0.3 * env->timestep());  // θ integrates θ̇
+  // θ integrates θ̇: 0.013 for a 0.02 s step (measured) since the tires' rolling resistance
+  // damps the pitch rate within the step (0.16 of it is left after one, A(1, 1)).
+  EXPECT_GT(standing.A(0, 1), 0.5 * env->timestep());
+  EXPECT_LT(standing.A(0, 1), 1.3 * env->timestep());
   EXPECT_LT(standing.B(1), 0.0);  // the wheels speeding up tip the body backward
   EXPECT_GT(standing.B(2), 0.0);  // and the (filtered) wheel velocity follows the command
   const VelocityBalancerGains first = velocity_balancer_for(standing, env->timestep(), {});
   EXPECT_GT(first.feedback[0], 0.0);  // leaning forward drives forward
   // Driving at up to 0.8 m/s under the first design, as the second round.
-  const VelocityBalanceModel model = identify_velocity_balance(*env, first, 0.8, 1000, 4);
-  // Of 4 x 499: the first design falls now and then (1996 kept, measured; 533 when
-  // MuJoCo's tires slipped).
-  EXPECT_GT(model.samples, 400);
+  const VelocityBalanceModel model = identify_velocity_balance(*env, first, 0.8, 1000, 10);
+  // Of 10 x 499: the first design falls now and then (1250 kept, measured, on the tires
+  // with rolling resistance; 1996 of 4 x 499 on free-rolling ones, 533 when they slipped).
+  EXPECT_GT(model.samples, 600);
   const VelocityBalancerGains gains = velocity_balancer_for(model, env->timestep(), {});
   // Driving at v needs about v of ground velocity command (0.999, measured) and a slight
   // forward lean (0.015 rad per m/s: the velocity task's MuJoCo tires have no rolling
@@ -177,11 +180,11 @@ TEST(VelocityBalancer, TracksARampedCommandWithItsAccelerationFeedforward) {
   const double with_feedforward = ramp_tracking_error(kMujocoBaseline);
   ASSERT_EQ(std::string(kMujocoBaseline).rfind(law, 0), 0u);
   const double without = ramp_tracking_error(law);
-  // Measured: 0.116 m/s with it, 0.227 m/s without (the ramp's start and end, where the
-  // robot must lean first, make most of either; 0.185 and 0.257 m/s when MuJoCo's tires
-  // slipped).
-  EXPECT_LT(with_feedforward, 0.15);
-  EXPECT_LT(with_feedforward, 0.85 * without);
+  // Measured: 0.151 m/s with it on the tires with rolling resistance (0.116 on
+  // free-rolling ones, 0.185 when they slipped), at least 15 % below the law without it (the
+  // ramp's start and end, where the robot must lean first, make most of either).
+  EXPECT_LT(with_feedforward, 0.18);
+  EXPECT_LT(with_feedforward, 0.85 * without) << with_feedforward << " against " << without;
 }
 
 /// Mean measured forward velocity and yaw rate of `controller` on MuJoCo over [from, to)
