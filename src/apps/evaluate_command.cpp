@@ -18,16 +18,19 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/contender_evaluation.hpp"
 #include "apps/controller_option.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/option_checks.hpp"
 #include "apps/policy_controller.hpp"
 #include "apps/robustness_grid.hpp"
+#include "apps/suite_evaluation.hpp"
 #include "apps/tracking_report.hpp"
 #include "envs/builtin_controllers.hpp"
 #include "envs/episode_runner.hpp"
 #include "envs/evaluation_start.hpp"
 #include "envs/registry.hpp"
+#include "model/robot_model.hpp"
 
 namespace upkie_rl::apps {
 
@@ -38,153 +41,18 @@ struct EvaluateOptions {
   std::vector<std::string> models;       // [label=]path
   std::vector<std::string> controllers;  // [label=]spec
   std::string grid;
-  int episodes = 10;
-  std::uint64_t seed = 0;
-  int max_steps = 300;
+  std::string suite;  // a suite's name or file, instead of --env and --grid
+  EpisodePlan plan;
   std::vector<std::string> env_options;
-  int threads = 0;
   bool json = false;
   bool exact_start = false;
   std::string output;
 };
 
-/// One controller under evaluation.
-struct Contender {
-  std::string label;
-  std::string model;   // path, or empty for a built-in controller
-  std::string spec;    // built-in controller, resolved (lqr designed)
-  EnvOptions options;  // the environment's options for it, before the cell's
-};
-
-struct CellResult {
-  int successes = 0;
-  double mean_return = 0.0;
-  double mean_length = 0.0;
-  bool identical = false;  ///< Every episode had the same return and length.
-  EpisodeSummary summary;  ///< All of it (tracking figures of velocity tasks).
-};
-
-/// "label=value" splits at the first '=' when a label is given; else the label is derived.
-std::pair<std::string, std::string> labelled(const std::string& item, bool is_model) {
-  const std::size_t equal = item.find('=');
-  if (equal != std::string::npos && equal > 0) {
-    return {item.substr(0, equal), item.substr(equal + 1)};
-  }
-  return {is_model ? std::filesystem::path(item).stem().string() : item, item};
-}
-
-std::vector<Contender> make_contenders(const EvaluateOptions& options, const EnvOptions& base) {
-  std::vector<Contender> contenders;
-  for (const std::string& item : options.models) {
-    auto [label, path] = labelled(item, true);
-    if (!std::filesystem::exists(path)) throw std::invalid_argument("model " + path + " not found");
-    contenders.push_back({label, path, "", options_for_model(path, options.env_id, base)});
-  }
-  for (const std::string& item : options.controllers) {
-    auto [label, spec] = labelled(item, false);
-    const std::string resolved =
-        resolve_controller_spec(spec, design_env_factory(options.env_id, base));
-    if (resolved != spec) std::cout << label << ": " << resolved << std::endl;
-    contenders.push_back({label, "", resolved, base});
-  }
-  if (contenders.empty()) {
-    throw std::invalid_argument("nothing to evaluate: give --model and/or --controller");
-  }
-  for (std::size_t i = 0; i < contenders.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j) {
-      if (contenders[i].label == contenders[j].label)
-        contenders[i].label += "_" + std::to_string(i);
-    }
-  }
-  return contenders;
-}
-
-/// Runs the episodes of one cell: success = the episode was not terminated (it reached the
-/// time limit or max_steps).
-CellResult evaluate_cell(const EvaluateOptions& options, const Contender& contender,
-                         const EnvFactory& make_cell_env) {
-  std::unique_ptr<Env> env = make_cell_env();
-  std::unique_ptr<Controller> controller = contender.model.empty()
-                                               ? make_builtin_controller(contender.spec, *env)
-                                               : make_policy_controller(contender.model, *env);
-  std::vector<float> observation(env->observation_space().size());
-  std::vector<float> action(env->action_space().size());
-  std::vector<EpisodeOutcome> outcomes;
-  for (int episode = 0; episode < options.episodes; ++episode) {
-    outcomes.push_back(run_episode(*env, *controller,
-                                   options.seed + static_cast<std::uint64_t>(episode),
-                                   options.max_steps, observation, action));
-  }
-  const EpisodeSummary summary = summarize_episodes(outcomes);
-  std::vector<double> returns;
-  std::vector<int> lengths;
-  for (const EpisodeOutcome& outcome : outcomes) {
-    returns.push_back(outcome.total_reward);
-    lengths.push_back(outcome.length);
-  }
-  CellResult result;
-  result.identical = !identical_episodes_warning(returns, lengths).empty();
-  result.successes = summary.successes;
-  result.mean_return = summary.mean_return;
-  result.mean_length = summary.mean_length;
-  result.summary = summary;
-  return result;
-}
-
-/// Evaluates every (contender, cell) pair on `threads` threads, cell k of contender c in the
-/// environments of factories[c][k]; results[c][k].
-std::vector<std::vector<CellResult>> evaluate_all(
-    const EvaluateOptions& options, const std::vector<Contender>& contenders,
-    const std::vector<std::vector<EnvFactory>>& factories) {
-  const std::size_t num_cells = factories.front().size();
-  std::vector<std::vector<CellResult>> results(contenders.size(),
-                                               std::vector<CellResult>(num_cells));
-  const std::size_t tasks = contenders.size() * num_cells;
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  const auto work = [&] {
-    for (std::size_t task = next++; task < tasks; task = next++) {
-      const std::size_t c = task / num_cells;
-      const std::size_t k = task % num_cells;
-      try {
-        results[c][k] = evaluate_cell(options, contenders[c], factories[c][k]);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = tasks;  // the others stop after their current cell
-      }
-    }
-  };
-  const unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                               : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> workers;
-  for (unsigned t = 1; t < std::min<std::size_t>(threads, tasks); ++t) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
-  if (failure) std::rethrow_exception(failure);
-  return results;
-}
-
 std::string percent(int successes, int episodes) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(0) << 100.0 * successes / episodes << '%';
   return out.str();
-}
-
-/// The episodes of every cell as one summary (tracking errors pooled over their steps).
-EpisodeSummary pooled_summary(const std::vector<CellResult>& results) {
-  EpisodeSummary pooled;
-  int falls = 0;
-  for (const CellResult& cell : results) {
-    pooled.episodes += cell.summary.episodes;
-    pooled.successes += cell.summary.successes;
-    falls += cell.summary.episodes - cell.summary.successes;
-    pooled.tracking += cell.summary.tracking;
-  }
-  pooled.has_tracking = pooled.tracking.active;
-  pooled.fall_rate = pooled.episodes > 0 ? static_cast<double>(falls) / pooled.episodes : 0.0;
-  return pooled;
 }
 
 /// The grid of one contender: rows the first axis (or one row), columns the second.
@@ -229,9 +97,9 @@ nlohmann::json summary_json(const EvaluateOptions& options,
                             const std::vector<std::vector<std::size_t>>& cells,
                             const std::vector<std::vector<CellResult>>& results) {
   nlohmann::json summary = {{"env", options.env_id},
-                            {"episodes_per_cell", options.episodes},
-                            {"seed", options.seed},
-                            {"max_steps", options.max_steps}};
+                            {"episodes_per_cell", options.plan.episodes},
+                            {"seed", options.plan.seed},
+                            {"max_steps", options.plan.max_steps}};
   summary["axes"] = nlohmann::json::array();
   for (const GridAxis& axis : axes)
     summary["axes"].push_back({{"name", axis.name}, {"values", axis.values}});
@@ -254,7 +122,7 @@ nlohmann::json summary_json(const EvaluateOptions& options,
       nlohmann::json cell_json = {
           {"values", values},
           {"successes", cell.successes},
-          {"success_rate", static_cast<double>(cell.successes) / options.episodes},
+          {"success_rate", static_cast<double>(cell.successes) / options.plan.episodes},
           {"mean_return", cell.mean_return},
           {"mean_length", cell.mean_length}};
       add_tracking_json(cell_json, cell.summary);
@@ -263,7 +131,7 @@ nlohmann::json summary_json(const EvaluateOptions& options,
     add_tracking_json(entry, pooled_summary(results[c]));
     entry["successes"] = successes;
     entry["success_rate"] =
-        static_cast<double>(successes) / static_cast<double>(options.episodes * cells.size());
+        static_cast<double>(successes) / static_cast<double>(options.plan.episodes * cells.size());
     summary["controllers"].push_back(entry);
   }
   return summary;
@@ -315,29 +183,49 @@ void write_outputs(const std::filesystem::path& directory, const std::string& ta
             << figures.size() << " heat map(s) in " << directory.string() << std::endl;
 }
 
-/// One warning on stderr when the episodes of some cell were all the same.
-void warn_identical_cells(const EvaluateOptions& options,
-                          const std::vector<std::vector<CellResult>>& results) {
-  if (options.episodes < 2) return;
-  std::size_t identical = 0;
-  std::size_t cells = 0;
-  for (const auto& contender : results) {
-    for (const CellResult& cell : contender) identical += cell.identical ? 1 : 0;
-    cells += contender.size();
+/// `--suite`: the worlds of a suite file instead of a grid on one env.
+/// Which of the plan's flags were given (they override a suite's own figures).
+struct GivenFlags {
+  bool episodes = false;
+  bool seed = false;
+  bool max_steps = false;
+};
+
+void run_suite_evaluation(const EvaluateOptions& options, const GivenFlags& given) {
+  if (!options.env_id.empty() || !options.grid.empty()) {
+    throw std::invalid_argument(
+        "--suite names its environments and worlds: give it without "
+        "--env and --grid");
   }
-  if (identical == 0) return;
-  std::cerr << "upkie-rl: warning: in " << identical << " of " << cells << " cells, all "
-            << options.episodes
-            << " episodes were identical: their environment starts every episode from the same "
-               "state (add an initial-state randomisation, or leave out --exact-start)"
-            << std::endl;
+  if (!options.output.empty()) find_gnuplot();  // refuse at once, not after the work
+  // The shipped suites are in the checkout the tool was built from (models/upkie/upkie.urdf
+  // is three levels below its root).
+  const std::filesystem::path source_dir =
+      RobotModel::default_urdf_path().parent_path().parent_path().parent_path();
+  const EvaluationSuite suite =
+      read_evaluation_suite(find_suite_file(options.suite, source_dir), world_check());
+  SuiteRequest request;
+  request.models = options.models;
+  request.controllers = options.controllers;
+  request.base = parse_env_options(options.env_options);
+  request.exact_start = options.exact_start;
+  request.threads = options.plan.threads;
+  if (given.episodes) request.episodes = options.plan.episodes;
+  if (given.seed) request.seed = options.plan.seed;
+  if (given.max_steps) request.max_steps = options.plan.max_steps;
+  const SuiteResults run = run_suite(suite, request);
+  std::cout << suite_table(run);
+  if (!options.output.empty()) write_suite_outputs(options.output, run);
+  if (options.json) std::cout << suite_json(run).dump() << std::endl;
 }
 
 void run_evaluate(const EvaluateOptions& options) {
+  if (options.env_id.empty()) throw std::invalid_argument("--env is required (or --suite)");
   const std::vector<GridAxis> axes = parse_grid(options.grid);
   const EnvOptions base = parse_env_options(options.env_options);
   if (!options.output.empty()) find_gnuplot();  // refuse at once, not after the work
-  const std::vector<Contender> contenders = make_contenders(options, base);
+  const std::vector<Contender> contenders =
+      make_contenders(options.env_id, options.models, options.controllers, base);
   const std::vector<std::vector<std::size_t>> cells = grid_cells(axes);
   // Every cell's options are checked, by making its factory, before any episode runs.
   std::vector<std::vector<EnvFactory>> factories(contenders.size());
@@ -351,17 +239,17 @@ void run_evaluate(const EvaluateOptions& options) {
       factories[c].push_back(make_env_factory(options.env_id, all));
     }
   }
-  const auto results = evaluate_all(options, contenders, factories);
+  const auto results = evaluate_all(options.plan, contenders, factories);
   std::ostringstream table;
   for (std::size_t c = 0; c < contenders.size(); ++c) {
-    print_table(table, contenders[c], axes, results[c], options.episodes);
+    print_table(table, contenders[c], axes, results[c], options.plan.episodes);
   }
   std::cout << table.str();
-  warn_identical_cells(options, results);
+  warn_identical_cells(options.plan, results);
   const nlohmann::json summary = summary_json(options, contenders, axes, cells, results);
   if (!options.output.empty()) {
-    write_outputs(options.output, table.str(), summary, contenders, axes, results, options.episodes,
-                  options.env_id);
+    write_outputs(options.output, table.str(), summary, contenders, axes, results,
+                  options.plan.episodes, options.env_id);
   }
   if (options.json) std::cout << summary.dump() << std::endl;
 }
@@ -373,7 +261,10 @@ void add_evaluate_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "evaluate",
       "Success rate and mean return of controllers and policies over a grid of perturbations");
-  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
+  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)");
+  command->add_option("--suite", options->suite,
+                      "A suite of named worlds instead of --env and --grid: a file, or the name "
+                      "of one in configs/suites/ (reality); docs/reality.md");
   command->add_option("--model", options->models,
                       "[label=]trained model (repeatable): deterministic policy, with the task "
                       "options it was trained with");
@@ -383,20 +274,28 @@ void add_evaluate_command(CLI::App& app) {
                       "Up to two axes name=start:stop:step or name=value, comma-separated: push "
                       "[N], mass, friction, lag [s], delay [steps], pitch [rad], or any "
                       "numeric environment option");
-  command->add_option("--episodes", options->episodes, "Episodes per cell and controller")
-      ->check(finite_range(1, kMaxEvaluationEpisodes))
-      ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of episode 0 of every cell (then seed + e)")
-      ->check(kSeed)
-      ->capture_default_str();
-  command
-      ->add_option("--max-steps", options->max_steps,
-                   "Success: not terminated within this many steps (or the env's time limit)")
-      ->check(finite_range(1, 1'000'000'000))
-      ->capture_default_str();
+  CLI::Option* episodes = command
+                              ->add_option("--episodes", options->plan.episodes,
+                                           "Episodes per cell and controller (a suite's own "
+                                           "unless given)")
+                              ->check(finite_range(1, kMaxEvaluationEpisodes))
+                              ->capture_default_str();
+  CLI::Option* seed =
+      command
+          ->add_option("--seed", options->plan.seed,
+                       "Seed of episode 0 of every cell (then seed + e; a suite's own unless "
+                       "given)")
+          ->check(kSeed)
+          ->capture_default_str();
+  CLI::Option* max_steps =
+      command
+          ->add_option("--max-steps", options->plan.max_steps,
+                       "Success: not terminated within this many steps (or the env's time limit)")
+          ->check(finite_range(1, 1'000'000'000))
+          ->capture_default_str();
   command->add_option("--env-option", options->env_options,
                       "Environment option key=value for every cell (repeatable)");
-  command->add_option("--threads", options->threads, "Worker threads (0: one per core)")
+  command->add_option("--threads", options->plan.threads, "Worker threads (0: one per core)")
       ->check(finite_range(0, 1024))
       ->capture_default_str();
   command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
@@ -405,7 +304,14 @@ void add_evaluate_command(CLI::App& app) {
       ->add_option("--output", options->output,
                    "Directory for table.txt, summary.json and heatmap_<label>.png")
       ->check(kNonEmptyPath);
-  command->callback([options] { run_evaluate(*options); });
+  command->callback([options, episodes, seed, max_steps] {
+    if (options->suite.empty()) {
+      run_evaluate(*options);
+    } else {
+      run_suite_evaluation(*options,
+                           {episodes->count() > 0, seed->count() > 0, max_steps->count() > 0});
+    }
+  });
 }
 
 }  // namespace upkie_rl::apps

@@ -28,7 +28,8 @@ std::string VelocityCommandRanges::problem() const {
         std::pair{"command_resample_time_min", resample_time_min},
         std::pair{"command_resample_time_max", resample_time_max},
         std::pair{"command_max_acceleration", max_acceleration},
-        std::pair{"command_max_yaw_acceleration", max_yaw_acceleration}}) {
+        std::pair{"command_max_yaw_acceleration", max_yaw_acceleration},
+        std::pair{"command_start_delay", start_delay}}) {
     std::string negative = negative_problem(option, value);
     if (!negative.empty()) return negative;
   }
@@ -62,6 +63,9 @@ void VelocityCommandRanges::declare_options(OptionTable& table) {
   table.add_real("command_max_yaw_acceleration", &max_yaw_acceleration, 0.0, kOptionHuge,
                  "the followed yaw rate moves toward the drawn or set command at most this fast "
                  "[rad/s^2], 0 for steps");
+  table.add_real("command_start_delay", &start_delay, 0.0, kOptionHuge,
+                 "the command is zero for this long after reset, then the random commands "
+                 "start [s] (a robot run starts standing still)");
   table.add_rule([this] { return problem(); });
 }
 
@@ -72,6 +76,11 @@ VelocityCommandSampler::VelocityCommandSampler(const VelocityCommandRanges& rang
 
 void VelocityCommandSampler::reset(const std::uint64_t* seed) {
   if (seed != nullptr) generator_.seed(*seed);
+  if (ranges_.start_delay > 0.0) {
+    command_ = VelocityCommand{};
+    time_left_ = ranges_.start_delay;  // advance() draws the first command after it
+    return;
+  }
   draw();
 }
 

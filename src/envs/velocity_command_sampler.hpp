@@ -28,6 +28,10 @@ struct VelocityCommandRanges {
   /// The same for the yaw rate [rad/s²]; 0 (default): steps, since turning asks for no
   /// lean (a differential wheel speed) and the controllers follow its steps.
   double max_yaw_acceleration = 0.0;
+  /// The command is zero for this long after each reset, then the draws start [s]: a robot
+  /// run starts standing still with no command (the reality suite's worlds use 1 s). 0
+  /// (default): the first command is drawn at reset.
+  double start_delay = 0.0;
 
   /// What is wrong, naming the option at fault: a negative or non-finite value, a
   /// probability above 1, or resample_time_min above resample_time_max; "" if nothing.
@@ -37,7 +41,7 @@ struct VelocityCommandRanges {
 
   /// Declares the options max_forward_velocity, max_yaw_rate, zero_command_probability,
   /// command_resample_time_min, command_resample_time_max, command_max_acceleration and
-  /// command_max_yaw_acceleration, and problem() as their rule.
+  /// command_max_yaw_acceleration, command_start_delay, and problem() as their rule.
   void declare_options(OptionTable& table);
 };
 
@@ -48,7 +52,8 @@ class VelocityCommandSampler {
   /// @throws std::invalid_argument as VelocityCommandRanges::validate.
   explicit VelocityCommandSampler(const VelocityCommandRanges& ranges);
 
-  /// Re-seeds the generator (when `seed` is set) and draws the episode's first command.
+  /// Re-seeds the generator (when `seed` is set) and draws the episode's first command,
+  /// or holds a zero command for the ranges' start_delay first.
   void reset(const std::uint64_t* seed);
 
   /// Advances time by `dt` [s]; returns true when a new command was drawn.

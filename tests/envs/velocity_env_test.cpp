@@ -90,6 +90,30 @@ TEST(VelocityCommandSampler, WithoutResamplingOneCommandPerEpisode) {
   EXPECT_EQ(sampler.command(), first);
 }
 
+// A robot run starts standing still: with command_start_delay the command is zero for that
+// long, then the draws are those of an undelayed sampler from the same seed.
+TEST(VelocityCommandSampler, StartDelayHoldsZeroThenDrawsTheSameSequence) {
+  VelocityCommandRanges delayed_ranges;
+  delayed_ranges.zero_command_probability = 0.0;
+  VelocityCommandRanges plain_ranges = delayed_ranges;
+  delayed_ranges.start_delay = 1.0;
+  VelocityCommandSampler delayed(delayed_ranges), plain(plain_ranges);
+  const std::uint64_t seed = 5;
+  delayed.reset(&seed);
+  plain.reset(&seed);
+  EXPECT_EQ(delayed.command(), VelocityCommand{});
+  int steps = 0;
+  while (!delayed.advance(0.02)) {
+    EXPECT_EQ(delayed.command(), VelocityCommand{});
+    ++steps;
+  }
+  EXPECT_NEAR(steps, 49, 1);  // the 50th step of 20 ms ends the 1 s hold (rounding: 51st)
+  EXPECT_EQ(delayed.command(), plain.command());
+  EXPECT_NE(plain.command(), VelocityCommand{});
+  delayed_ranges.start_delay = -1.0;
+  EXPECT_THROW(VelocityCommandSampler{delayed_ranges}, std::invalid_argument);
+}
+
 TEST(VelocityReward, TermsAtPerfectTrackingAndAtOneKernelWidth) {
   VelocityReward reward;
   const std::array<float, 6> action{0.5f, 0, 0, 0, 0, 0};
