@@ -12,7 +12,8 @@ bool PerturbationSettings::any() const {
          torque_control_noise != 0.0 || torque_measurement_noise != 0.0 ||
          imu_accelerometer_bias != 0.0 || imu_accelerometer_noise != 0.0 ||
          imu_gyroscope_bias != 0.0 || imu_gyroscope_noise != 0.0 || floor_friction != 1.0 ||
-         floor_friction_variation != 0.0 || torque_limit_scale != 1.0 || push.enabled();
+         floor_friction_variation != 0.0 || slope_pitch != 0.0 || slope_roll != 0.0 ||
+         payload_mass != 0.0 || torque_limit_scale != 1.0 || push.enabled();
 }
 
 PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double scale) const {
@@ -35,6 +36,11 @@ PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double
   variation.floor_friction_scale =
       floor_friction * (1.0 + uniform_symmetric(generator, scale * floor_friction_variation));
   variation.torque_limit_scale = torque_limit_scale;  // fixed: no draw
+  // Fixed values: no draws, so that a seed gives the same draws with or without them.
+  variation.slope_pitch = degrees_to_radians(slope_pitch);
+  variation.slope_roll = degrees_to_radians(slope_roll);
+  variation.payload_mass = payload_mass;
+  variation.payload_offset = Eigen::Vector3d(payload_offset_x, payload_offset_y, payload_offset_z);
   variation.noise_seed = generator();
   return variation;
 }
@@ -63,6 +69,21 @@ void PerturbationSettings::declare_options(OptionTable& table) {
                  "factor on every servo's torque limit (0.8: a motor 20 % weaker)");
   table.add_real("floor_friction_variation", &floor_friction_variation, 0.0, 0.99,
                  "tire-floor friction times 1 + U(-it, it), drawn at reset");
+  table.add_real("slope_pitch", &slope_pitch, -kMaxSlopeDegrees, kMaxSlopeDegrees,
+                 "floor slope about the robot's initial lateral axis, positive facing uphill "
+                 "(gravity tilted; the IMU reads it as on a real slope) [deg]");
+  table.add_real("slope_roll", &slope_roll, -kMaxSlopeDegrees, kMaxSlopeDegrees,
+                 "floor slope about the robot's initial forward axis, positive when the floor "
+                 "rises to its left [deg]");
+  table.add_real("payload_mass", &payload_mass, 0.0, kMaxPayloadMass,
+                 "point mass rigidly attached to the base [kg]");
+  const std::string offset_help = "payload offset from the base's centre of mass, ";
+  table.add_real("payload_offset_x", &payload_offset_x, -kMaxPayloadOffset, kMaxPayloadOffset,
+                 offset_help + "forward [m]");
+  table.add_real("payload_offset_y", &payload_offset_y, -kMaxPayloadOffset, kMaxPayloadOffset,
+                 offset_help + "left [m]");
+  table.add_real("payload_offset_z", &payload_offset_z, -kMaxPayloadOffset, kMaxPayloadOffset,
+                 offset_help + "up [m]");
   table.add_real("push_force", &push.force, 0.0, kOptionHuge,
                  "largest push on the base [N], 0 for no pushes");
   table.add_real("push_force_min", &push.force_min, 0.0, kOptionHuge,

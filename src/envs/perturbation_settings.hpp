@@ -36,7 +36,8 @@ struct PushSettings {
 
 /// Ranges of the perturbations, all off by default. Randomised values are drawn at each
 /// reset from the environment's seeded generator; "randomisation bounds" (everything but
-/// the fixed factors mass_scale and floor_friction) are multiplied by the curriculum scale.
+/// the fixed values mass_scale, floor_friction, the slopes and the payload) are multiplied
+/// by the curriculum scale.
 struct PerturbationSettings {
   double mass_scale = 1.0;                ///< Fixed factor on every body's mass and inertia.
   double inertia_variation = 0.0;         ///< ε: each body's mass and inertia × (1 + U(-ε, ε)).
@@ -50,6 +51,16 @@ struct PerturbationSettings {
   double floor_friction = 1.0;            ///< Fixed factor on the tire-floor friction.
   double floor_friction_variation = 0.0;  ///< ε: friction × (1 + U(-ε, ε)).
   double torque_limit_scale = 1.0;        ///< Fixed factor on every servo's torque limit.
+  /// Fixed floor slope about the robot's initial lateral axis [deg], positive when it faces
+  /// uphill (PhysicsVariation::slope_pitch).
+  double slope_pitch = 0.0;
+  /// Fixed floor slope about the robot's initial forward axis [deg], positive when the
+  /// floor rises to its left (PhysicsVariation::slope_roll).
+  double slope_roll = 0.0;
+  double payload_mass = 0.0;      ///< Fixed point mass on the base [kg].
+  double payload_offset_x = 0.0;  ///< Its offset from the base's centre of mass, forward [m].
+  double payload_offset_y = 0.0;  ///< Left [m].
+  double payload_offset_z = 0.0;  ///< Up [m].
   PushSettings push;
 
   /// Whether any setting differs from the nominal robot and world.

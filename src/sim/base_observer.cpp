@@ -26,4 +26,12 @@ void observe_base(const MeasuredBase& base, SimBaseObservation& sim_base,
   base_orientation.rotation_base_to_world = rotation_base_to_world;
 }
 
+void observe_attitude(const MeasuredBase& base, BaseOrientationObservation& base_orientation) {
+  const Eigen::Matrix3d rotation_base_to_world = base.pose_in_world.linear();
+  base_orientation.pitch = base_pitch(Eigen::Quaterniond(rotation_base_to_world));
+  base_orientation.angular_velocity =
+      rotation_base_to_world.transpose() * base.angular_velocity_in_world;
+  base_orientation.rotation_base_to_world = rotation_base_to_world;
+}
+
 }  // namespace upkie_rl

@@ -19,4 +19,8 @@ double base_yaw(const Eigen::Matrix3d& rotation_base_to_world);
 void observe_base(const MeasuredBase& base, SimBaseObservation& sim_base,
                   BaseOrientationObservation& base_orientation);
 
+/// Fills `base_orientation` (the attitude the robot's IMU gives) from the measured base,
+/// whose world frame must have its z axis against gravity.
+void observe_attitude(const MeasuredBase& base, BaseOrientationObservation& base_orientation);
+
 }  // namespace upkie_rl

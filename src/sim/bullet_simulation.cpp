@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/mass_properties.hpp"
 #include "sim/tire_contact.hpp"
 
 namespace upkie_rl {
@@ -85,8 +86,8 @@ struct BulletWorld {
 
 namespace {
 
-void configure_solver(btMultiBodyDynamicsWorld& world, double gravity) {
-  world.setGravity(btVector3(0.0, 0.0, -gravity));
+void configure_solver(btMultiBodyDynamicsWorld& world, const Eigen::Vector3d& gravity) {
+  world.setGravity(to_bullet(gravity));
   // Bullet physics-server defaults, which PyBullet and the reference simulation use.
   btContactSolverInfo& info = world.getSolverInfo();
   info.m_numIterations = 50;
@@ -137,14 +138,27 @@ double mass_scale(const RigidBodyTree& tree, int body, const PhysicsVariation& v
   return variation.mass_scale[mass_scale_index(body, servo_bodies, parent_of)];
 }
 
+/// The root body's mass properties in this episode: scaled by its mass_scale, then with
+/// the payload, if any, at its offset from the body's centre of mass.
+MassProperties root_mass_properties(const RigidBodyTree& tree, const PhysicsVariation& variation) {
+  const RigidBody& root = tree.bodies().front();
+  const double scale = mass_scale(tree, 0, variation);
+  const MassProperties scaled{scale * root.mass, root.principal_frame,
+                              scale * root.principal_inertia};
+  if (!variation.has_payload()) return scaled;
+  return with_point_mass(scaled, variation.payload_mass,
+                         root.principal_frame.translation() + variation.payload_offset);
+}
+
 /// Sets up the multibody's links: body b > 0 is link b - 1, link frames are the bodies'
-/// principal frames.
+/// principal frames (the root's is `root_com`, this episode's).
 void setup_links(btMultiBody& multibody, const RigidBodyTree& tree, const RobotModel& model,
-                 const PhysicsVariation& variation) {
+                 const PhysicsVariation& variation, const Eigen::Isometry3d& root_com) {
   const auto& bodies = tree.bodies();
   for (int b = 1; b < static_cast<int>(bodies.size()); ++b) {
     const RigidBody& body = bodies[b];
-    const Eigen::Isometry3d& parent_com = bodies[body.parent_body].principal_frame;
+    const Eigen::Isometry3d& parent_com =
+        body.parent_body == 0 ? root_com : bodies[body.parent_body].principal_frame;
     const Eigen::Isometry3d& com = body.principal_frame;
     const Eigen::Isometry3d joint_in_parent_com = parent_com.inverse() * body.joint_pose_in_parent;
     const Eigen::Matrix3d rotation_parent_com_to_com =
@@ -171,15 +185,14 @@ void setup_links(btMultiBody& multibody, const RigidBodyTree& tree, const RobotM
 }
 
 /// The collider of body `b`: one compound of its collision shapes, placed in its principal
-/// frame, with the body's contact parameters; the world keeps the shapes.
+/// frame `com`, with the body's contact parameters; the world keeps the shapes.
 std::unique_ptr<btMultiBodyLinkCollider> make_collider(BulletWorld& bullet, const RigidBody& body,
-                                                       int b) {
+                                                       int b, const Eigen::Isometry3d& com) {
   auto compound = std::make_unique<btCompoundShape>();
   for (const auto& collision : body.collisions) {
     auto child = make_shape(collision.shape);
     compound->addChildShape(
-        to_bullet(Eigen::Isometry3d(body.principal_frame.inverse() * collision.shape.pose_in_link)),
-        child.get());
+        to_bullet(Eigen::Isometry3d(com.inverse() * collision.shape.pose_in_link)), child.get());
     bullet.shapes.push_back(std::move(child));
   }
   auto collider = std::make_unique<btMultiBodyLinkCollider>(bullet.multibody.get(), b - 1);
@@ -201,7 +214,8 @@ void add_colliders(BulletWorld& bullet, const RigidBodyTree& tree, const RobotMo
   const auto& bodies = tree.bodies();
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     if (bodies[b].collisions.empty()) continue;
-    std::unique_ptr<btMultiBodyLinkCollider> collider = make_collider(bullet, bodies[b], b);
+    const Eigen::Isometry3d& com = b == 0 ? bullet.base_com_in_base : bodies[b].principal_frame;
+    std::unique_ptr<btMultiBodyLinkCollider> collider = make_collider(bullet, bodies[b], b, com);
     bullet.world.addCollisionObject(collider.get(), btBroadphaseProxy::DefaultFilter,
                                     btBroadphaseProxy::AllFilter);
     if (b == 0) {
@@ -232,16 +246,14 @@ void add_joint_limits(BulletWorld& bullet, const RobotModel& model) {
 
 void add_robot(BulletWorld& bullet, const RigidBodyTree& tree, const RobotModel& model,
                const PhysicsVariation& variation) {
-  const RigidBody& root = tree.bodies().front();
   const int num_links = static_cast<int>(tree.bodies().size()) - 1;
-  const double root_scale = mass_scale(tree, 0, variation);
+  const MassProperties root = root_mass_properties(tree, variation);
   bullet.multibody =
-      std::make_unique<btMultiBody>(num_links, root_scale * root.mass,
-                                    to_bullet(Eigen::Vector3d(root_scale * root.principal_inertia)),
+      std::make_unique<btMultiBody>(num_links, root.mass, to_bullet(root.principal_inertia),
                                     /*fixedBase=*/false, /*canSleep=*/false);
   btMultiBody& multibody = *bullet.multibody;
   bullet.base_com_in_base = root.principal_frame;
-  setup_links(multibody, tree, model, variation);
+  setup_links(multibody, tree, model, variation, root.principal_frame);
   multibody.finalizeMultiDof();
   multibody.setHasSelfCollision(false);
   multibody.setCanSleep(false);
@@ -278,7 +290,7 @@ const Observation& BulletSimulation::reset(const ResetState& state) {
   validate_reset_state(state);
   world_.reset();  // the old world goes first: the new one must not share its memory pools
   world_ = std::make_unique<BulletWorld>();
-  configure_solver(world_->world, config_.gravity);
+  configure_solver(world_->world, start_floor_slope(state));
   if (config_.floor) add_ground(*world_, variation().floor_friction_scale);
   add_robot(*world_, tree_, *model_, variation());
 
@@ -360,6 +372,23 @@ bool BulletSimulation::floor_contact(bool tires) const {
     }
   }
   return false;
+}
+
+RobotMassDistribution BulletSimulation::mass_distribution() const {
+  const btMultiBody& multibody = *world_->multibody;
+  RobotMassDistribution distribution;
+  distribution.base = {multibody.getBaseMass(), world_->base_com_in_base,
+                       to_eigen(multibody.getBaseInertia())};
+  // The base and the links are placed at their centres of mass (principal frames).
+  distribution.total_mass = multibody.getBaseMass();
+  Eigen::Vector3d weighted = multibody.getBaseMass() * to_eigen(multibody.getBasePos());
+  for (int link = 0; link < multibody.getNumLinks(); ++link) {
+    const double mass = multibody.getLink(link).m_mass;
+    distribution.total_mass += mass;
+    weighted += mass * to_eigen(multibody.localPosToWorld(link, btVector3(0.0, 0.0, 0.0)));
+  }
+  distribution.center_of_mass = weighted / distribution.total_mass;
+  return distribution;
 }
 
 bool BulletSimulation::tire_touches_floor() const { return floor_contact(/*tires=*/true); }

@@ -33,6 +33,8 @@ class BulletSimulation final : public PhysicsSimulation {
   /// @throws std::invalid_argument on a non-finite state.
   const Observation& reset(const ResetState& state) override;
 
+  RobotMassDistribution mass_distribution() const override;
+
   const PhysicsConfig& physics_config() const override { return config_; }
   const BulletConfig& config() const { return config_; }
   const RobotModel& model() const override { return *model_; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sim/mass_properties.hpp"
 #include "sim/tire_contact.hpp"
 
 namespace upkie_rl {
@@ -42,7 +43,69 @@ MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
 
 MujocoSimulation::~MujocoSimulation() = default;
 
-void MujocoSimulation::apply_model_variation() {
+namespace {
+
+/// The mass properties of body `body` of `model` (its inertial frame in its body frame).
+MassProperties body_mass_properties(const mjModel* model, int body) {
+  MassProperties properties;
+  properties.mass = model->body_mass[body];
+  const mjtNum* quat = model->body_iquat + 4 * body;
+  properties.principal_frame.linear() =
+      Eigen::Quaterniond(quat[0], quat[1], quat[2], quat[3]).normalized().toRotationMatrix();
+  for (int i = 0; i < 3; ++i) {
+    properties.principal_frame.translation()[i] = model->body_ipos[3 * body + i];
+    properties.principal_inertia[i] = model->body_inertia[3 * body + i];
+  }
+  return properties;
+}
+
+void set_body_mass_properties(mjModel* model, int body, const MassProperties& properties) {
+  model->body_mass[body] = properties.mass;
+  const Eigen::Quaterniond rotation(properties.principal_frame.linear());
+  const double quat[4] = {rotation.w(), rotation.x(), rotation.y(), rotation.z()};
+  for (int i = 0; i < 4; ++i) model->body_iquat[4 * body + i] = quat[i];
+  for (int i = 0; i < 3; ++i) {
+    model->body_ipos[3 * body + i] = properties.principal_frame.translation()[i];
+    model->body_inertia[3 * body + i] = properties.principal_inertia[i];
+  }
+}
+
+/// Writes `variation` into `varied`, a copy of `nominal`: masses and inertias scaled, the
+/// payload on the base, the tires' friction, and `gravity`.
+void vary_model(mjModel* varied, const mjModel* nominal, const MujocoRobotIndex& index,
+                const PhysicsVariation& variation, const Eigen::Vector3d& gravity) {
+  const auto parent_of = [nominal, &index](int body) {
+    return body == index.root_body ? -1 : nominal->body_parentid[body];
+  };
+  for (int body = index.root_body; body < nominal->nbody; ++body) {
+    const double scale = variation.mass_scale[mass_scale_index(body, index.servo_body, parent_of)];
+    varied->body_mass[body] = scale * nominal->body_mass[body];
+    for (int i = 0; i < 3; ++i) {
+      varied->body_inertia[3 * body + i] = scale * nominal->body_inertia[3 * body + i];
+    }
+  }
+  // The base's inertial frame, which an earlier episode's payload may have moved.
+  const int root = index.root_body;
+  for (int i = 0; i < 3; ++i) varied->body_ipos[3 * root + i] = nominal->body_ipos[3 * root + i];
+  for (int i = 0; i < 4; ++i) varied->body_iquat[4 * root + i] = nominal->body_iquat[4 * root + i];
+  if (variation.has_payload()) {
+    const MassProperties base = body_mass_properties(varied, root);
+    set_body_mass_properties(
+        varied, root,
+        with_point_mass(base, variation.payload_mass,
+                        base.principal_frame.translation() + variation.payload_offset));
+  }
+  // The tires have contact priority: their friction is the contact's.
+  for (const int tire : index.tire_geoms) {
+    varied->geom_friction[3 * tire] =
+        variation.floor_friction_scale * nominal->geom_friction[3 * tire];
+  }
+  for (int i = 0; i < 3; ++i) varied->opt.gravity[i] = gravity[i];
+}
+
+}  // namespace
+
+void MujocoSimulation::apply_model_variation(const Eigen::Vector3d& gravity) {
   const PhysicsVariation& variation = this->variation();
   const mjModel* nominal = compiled_->model.get();
   if (!variation.changes_model() && !config_.implicit_wheel_damping) {
@@ -68,27 +131,13 @@ void MujocoSimulation::apply_model_variation() {
     return;
   }
   holds_variation_ = true;
-  const auto parent_of = [nominal, &index](int body) {
-    return body == index.root_body ? -1 : nominal->body_parentid[body];
-  };
-  for (int body = index.root_body; body < nominal->nbody; ++body) {
-    const double scale = variation.mass_scale[mass_scale_index(body, index.servo_body, parent_of)];
-    varied->body_mass[body] = scale * nominal->body_mass[body];
-    for (int i = 0; i < 3; ++i) {
-      varied->body_inertia[3 * body + i] = scale * nominal->body_inertia[3 * body + i];
-    }
-  }
-  // The tires have contact priority: their friction is the contact's.
-  for (const int tire : index.tire_geoms) {
-    varied->geom_friction[3 * tire] =
-        variation.floor_friction_scale * nominal->geom_friction[3 * tire];
-  }
+  vary_model(varied, nominal, index, variation, gravity);
   mj_setConst(varied, data_.get());  // masses enter derived constants (subtree masses...)
 }
 
 const Observation& MujocoSimulation::reset(const ResetState& state) {
   validate_reset_state(state);
-  apply_model_variation();
+  apply_model_variation(start_floor_slope(state));
   const mjModel* m = episode_model_;
   mjData* d = data_.get();
   const MujocoRobotIndex& index = compiled_->index;
@@ -217,6 +266,25 @@ bool floor_contact(const mjData* d, const MujocoRobotIndex& index, bool tires) {
 }
 
 }  // namespace
+
+RobotMassDistribution MujocoSimulation::mass_distribution() const {
+  const mjModel* m = episode_model_;
+  mjData* d = data_.get();
+  // The body positions of the current joint positions. A step recomputes them from qpos
+  // before anything else, and nothing reads them between steps: the trajectory is unchanged.
+  mj_kinematics(m, d);
+  const int root = compiled_->index.root_body;
+  RobotMassDistribution distribution;
+  distribution.base = body_mass_properties(m, root);
+  Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+  for (int body = root; body < m->nbody; ++body) {
+    distribution.total_mass += m->body_mass[body];
+    weighted += m->body_mass[body] *
+                Eigen::Vector3d(d->xipos[3 * body], d->xipos[3 * body + 1], d->xipos[3 * body + 2]);
+  }
+  distribution.center_of_mass = weighted / distribution.total_mass;
+  return distribution;
+}
 
 bool MujocoSimulation::tire_touches_floor() const {
   return floor_contact(data_.get(), compiled_->index, /*tires=*/true);

@@ -33,6 +33,8 @@ class MujocoSimulation final : public PhysicsSimulation {
   /// @throws std::invalid_argument on a non-finite state.
   const Observation& reset(const ResetState& state) override;
 
+  RobotMassDistribution mass_distribution() const override;
+
   const PhysicsConfig& physics_config() const override { return config_; }
   const MujocoConfig& config() const { return config_; }
   const RobotModel& model() const override { return *model_; }
@@ -40,9 +42,9 @@ class MujocoSimulation final : public PhysicsSimulation {
 
  private:
   /// Points episode_model_ at the shared model, or at the simulation's own copy given the
-  /// masses and floor friction of variation() (always the copy with implicit wheel
-  /// damping, whose damping changes with the servo commands).
-  void apply_model_variation();
+  /// masses, payload and floor friction of variation() and `gravity` (always the copy with
+  /// implicit wheel damping, whose damping changes with the servo commands).
+  void apply_model_variation(const Eigen::Vector3d& gravity);
   /// The torque of each servo for `action` into qfrc_applied; with implicit wheel damping,
   /// the wheels' damping term moved into the own model's dof_damping.
   void apply_servo_torques(const ServoAction& action, bool braked);

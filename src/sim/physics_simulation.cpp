@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/base_observer.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
@@ -19,7 +20,9 @@ enum NoiseStream : std::uint64_t { kTorqueNoise = 0, kImuNoise = 1 };
 }  // namespace
 
 PhysicsSimulation::PhysicsSimulation(const RobotModel& model, const PhysicsConfig& config)
-    : servo_gains_(config.servo_gains), sensors_(model, config) {}
+    : servo_gains_(config.servo_gains),
+      floor_slope_(make_floor_slope(0.0, 0.0, 0.0, config.gravity)),
+      sensors_(model, config) {}
 
 const Observation& PhysicsSimulation::step(const ServoAction& action) {
   validate_servo_action(action);
@@ -57,6 +60,14 @@ const Observation& PhysicsSimulation::advance(const ServoAction& action, bool br
     throw;
   }
   return observation_;
+}
+
+const Eigen::Vector3d& PhysicsSimulation::start_floor_slope(const ResetState& state) {
+  const double heading = base_yaw(state.orientation_base_in_world.normalized().toRotationMatrix());
+  floor_slope_ = make_floor_slope(variation_.slope_pitch, variation_.slope_roll, heading,
+                                  physics_config().gravity);
+  sensors_.set_floor_slope(floor_slope_);
+  return floor_slope_.gravity_in_floor;
 }
 
 const Observation& PhysicsSimulation::observe_reset() {

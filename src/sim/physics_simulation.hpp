@@ -7,6 +7,8 @@
 #include <random>
 
 #include "model/robot_model.hpp"
+#include "sim/floor_slope.hpp"
+#include "sim/mass_properties.hpp"
 #include "sim/measured_state.hpp"
 #include "sim/physics_config.hpp"
 #include "sim/physics_variation.hpp"
@@ -15,6 +17,14 @@
 #include "sim/simulation.hpp"
 
 namespace upkie_rl {
+
+/// How the robot's mass is distributed, as an engine simulates it (variation included).
+struct RobotMassDistribution {
+  double total_mass = 0.0;                                   ///< Whole robot [kg].
+  Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();  ///< Whole robot, world [m].
+  /// The base body (the base link and every link welded to it), in the base link frame.
+  MassProperties base;
+};
 
 /// A simulation that integrates rigid-body physics with the servo law at each physics step.
 /// The agent step is the same for every engine: it holds the commands for nb_substeps
@@ -54,6 +64,13 @@ class PhysicsSimulation : public Simulation {
   void set_base_force(const Eigen::Vector3d& force_in_world);
   const Eigen::Vector3d& base_force() const { return base_force_; }
 
+  /// The floor slope of the current episode (see start_floor_slope).
+  const FloorSlope& floor_slope() const { return floor_slope_; }
+
+  /// The robot's mass, centre of mass and base body as the engine has them now, in its
+  /// world frame (the floor's): what the episode's variation made of the model.
+  virtual RobotMassDistribution mass_distribution() const = 0;
+
   /// Settings it was built with.
   virtual const PhysicsConfig& physics_config() const = 0;
   virtual const RobotModel& model() const = 0;
@@ -89,6 +106,12 @@ class PhysicsSimulation : public Simulation {
   /// Whether a part other than a tire touches the floor (floor_contact.non_wheel).
   virtual bool non_tire_touches_floor() const = 0;
 
+  /// Starts the floor slope of variation() for the episode that `state` starts: tilted
+  /// about the heading of its base, and the one the observers measure against until the
+  /// next reset. Engines call it in their reset, before they set the episode's gravity.
+  /// @return Gravity in the engine's world frame [m/s^2]: exactly (0, 0, -g) on a flat floor.
+  const Eigen::Vector3d& start_floor_slope(const ResetState& state);
+
   /// Ends an engine's reset (which builds the variation() into its model): clears the base
   /// force, seeds the episode's noise and observes the state it set, at time 0.
   const Observation& observe_reset();
@@ -101,6 +124,7 @@ class PhysicsSimulation : public Simulation {
   ServoGains servo_gains_;
   PhysicsVariation variation_;
   Eigen::Vector3d base_force_ = Eigen::Vector3d::Zero();
+  FloorSlope floor_slope_;
   std::mt19937_64 torque_noise_{0};
   SimulatedSensors sensors_;
   Observation observation_;

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/number_text.hpp"
+
 namespace upkie_rl {
 namespace {
 
@@ -16,13 +18,15 @@ void check(bool valid, const std::string& what, double value) {
 
 bool finite_non_negative(double value) { return std::isfinite(value) && value >= 0.0; }
 
+bool within(double value, double bound) { return std::isfinite(value) && std::abs(value) <= bound; }
+
 }  // namespace
 
 bool PhysicsVariation::changes_model() const {
   for (const double scale : mass_scale) {
     if (scale != 1.0) return true;
   }
-  return floor_friction_scale != 1.0;
+  return floor_friction_scale != 1.0 || tilts_floor() || has_payload();
 }
 
 void PhysicsVariation::validate() const {
@@ -41,6 +45,20 @@ void PhysicsVariation::validate() const {
         "floor_friction_scale (must be positive)", floor_friction_scale);
   check(std::isfinite(torque_limit_scale) && torque_limit_scale > 0.0,
         "torque_limit_scale (must be positive)", torque_limit_scale);
+  // Named as the environment options; the slopes are in radians here.
+  const double max_slope = degrees_to_radians(kMaxSlopeDegrees);
+  const std::string slope_domain =
+      " [rad] (must be within +-" + shortest_text(kMaxSlopeDegrees) + " deg)";
+  check(within(slope_pitch, max_slope), "slope_pitch" + slope_domain, slope_pitch);
+  check(within(slope_roll, max_slope), "slope_roll" + slope_domain, slope_roll);
+  check(finite_non_negative(payload_mass) && payload_mass <= kMaxPayloadMass,
+        "payload_mass (must be in [0, " + shortest_text(kMaxPayloadMass) + "] kg)", payload_mass);
+  for (int axis = 0; axis < 3; ++axis) {
+    check(within(payload_offset[axis], kMaxPayloadOffset),
+          std::string("payload_offset_") + "xyz"[axis] + " (must be within +-" +
+              shortest_text(kMaxPayloadOffset) + " m)",
+          payload_offset[axis]);
+  }
   imu.validate();
 }
 

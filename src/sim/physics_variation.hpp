@@ -3,13 +3,26 @@
 /// PhysicsVariation: what differs from the nominal robot and world in one episode (domain
 /// randomisation), set on a physics simulation before its reset.
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <numbers>
 
 #include "model/robot_model.hpp"
 #include "sim/imu_uncertainty.hpp"
 
 namespace upkie_rl {
+
+/// Largest floor slope, about either axis [deg]: beyond it Upkie's tires (friction 1) still
+/// hold, but a balancing policy meets slopes no real floor of its world has.
+inline constexpr double kMaxSlopeDegrees = 15.0;
+/// An angle in radians [rad] from degrees [deg] (the one conversion of the slopes).
+constexpr double degrees_to_radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
+/// Largest payload on the base [kg], about half the robot's mass.
+inline constexpr double kMaxPayloadMass = 3.0;
+/// Largest payload offset from the base's centre of mass, along each axis [m].
+inline constexpr double kMaxPayloadOffset = 0.2;
 
 /// Physical parameters of one episode. The default is the nominal robot, bit for bit: a
 /// simulation with the default variation gives the same trajectory as one never varied.
@@ -32,15 +45,34 @@ struct PhysicsVariation {
   /// Factor on every servo's torque limit (its URDF effort): below 1, a weaker motor, a
   /// drained battery or a hot winding.
   double torque_limit_scale = 1.0;
+  /// Floor slope about the robot's lateral axis at reset [rad], positive when it faces
+  /// uphill. Simulated as a flat floor under tilted gravity (see FloorSlope).
+  double slope_pitch = 0.0;
+  /// Floor slope about the robot's forward axis at reset [rad], positive when the floor
+  /// rises to its left (it drifts or tips to its right).
+  double slope_roll = 0.0;
+  /// Point mass rigidly attached to the base [kg], added to the base body's mass, centre
+  /// of mass and inertia (after mass_scale, which does not scale it).
+  double payload_mass = 0.0;
+  /// Position of the payload from the base body's centre of mass, in the base frame (x
+  /// forward, y left, z up) [m].
+  Eigen::Vector3d payload_offset = Eigen::Vector3d::Zero();
   ImuUncertainty imu;
   /// Seeds the noise drawn during the episode (torques, IMU).
   std::uint64_t noise_seed = 0;
 
-  /// Whether the masses or the floor friction differ from the nominal model.
+  /// Whether the floor is tilted (gravity is, in the simulation).
+  bool tilts_floor() const { return slope_pitch != 0.0 || slope_roll != 0.0; }
+  /// Whether a payload is attached to the base.
+  bool has_payload() const { return payload_mass != 0.0; }
+
+  /// Whether the masses, the floor friction or the gravity differ from the nominal model.
   bool changes_model() const;
 
   /// @throws std::invalid_argument naming the first value out of its domain (scales must be
-  ///         positive, frictions and deviations non-negative, everything finite).
+  ///         positive, frictions and deviations non-negative, slopes within
+  ///         ±kMaxSlopeDegrees, the payload within kMaxPayloadMass and kMaxPayloadOffset,
+  ///         everything finite).
   void validate() const;
 };
 

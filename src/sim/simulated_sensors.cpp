@@ -29,7 +29,8 @@ SimulatedSensors::SimulatedSensors(const RobotModel& model, const PhysicsConfig&
     : imu_(model, config.physics_timestep, config.gravity), odometry_(model) {}
 
 void SimulatedSensors::observe_without_imu(const MeasuredJoints& joints, const MeasuredBase& base,
-                                           bool floor_contact, Observation& observation) const {
+                                           const MeasuredBase& level, bool floor_contact,
+                                           Observation& observation) const {
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     ServoObservation& measured = observation.servo[servo];
     measured.position = joints.position[servo];
@@ -40,6 +41,7 @@ void SimulatedSensors::observe_without_imu(const MeasuredJoints& joints, const M
   }
   observation.has_sim = true;
   observe_base(base, observation.sim_base, observation.base_orientation);
+  if (slope_.tilted) observe_attitude(level, observation.base_orientation);
   odometry_.observe(observation.servo, observation.wheel_odometry);
   observation.floor_contact.contact = floor_contact;
 }
@@ -52,8 +54,10 @@ void SimulatedSensors::reset(const MeasuredJoints& joints, const MeasuredBase& b
     observation.servo[servo].position = joints.position[servo];
   }
   odometry_.reset(observation.servo);
-  observe_without_imu(joints, base, floor_contact, observation);
-  imu_.reset(base, observation.imu);
+  MeasuredBase scratch;
+  const MeasuredBase& level = level_base(base, scratch);
+  observe_without_imu(joints, base, level, floor_contact, observation);
+  imu_.reset(level, observation.imu);
   add_imu_uncertainty(observation);
 }
 
@@ -62,6 +66,17 @@ void SimulatedSensors::set_imu_uncertainty(const ImuUncertainty& uncertainty,
   uncertainty.validate();
   imu_uncertainty_ = uncertainty;
   imu_noise_.seed(noise_seed);
+}
+
+const MeasuredBase& SimulatedSensors::level_base(const MeasuredBase& base,
+                                                 MeasuredBase& scratch) const {
+  if (!slope_.tilted) return base;
+  const Eigen::Matrix3d& rotation = slope_.rotation_floor_to_level;
+  scratch.pose_in_world.linear() = rotation * base.pose_in_world.linear();
+  scratch.pose_in_world.translation() = rotation * base.pose_in_world.translation();
+  scratch.linear_velocity_in_world = rotation * base.linear_velocity_in_world;
+  scratch.angular_velocity_in_world = rotation * base.angular_velocity_in_world;
+  return scratch;
 }
 
 void SimulatedSensors::add_imu_uncertainty(Observation& observation) {
@@ -75,8 +90,10 @@ void SimulatedSensors::add_imu_uncertainty(Observation& observation) {
 void SimulatedSensors::observe(const MeasuredJoints& joints, const MeasuredBase& base,
                                bool floor_contact, Observation& observation) {
   check_finite(joints, base, observation.time);
-  observe_without_imu(joints, base, floor_contact, observation);
-  imu_.observe(base, observation.imu);
+  MeasuredBase scratch;
+  const MeasuredBase& level = level_base(base, scratch);
+  observe_without_imu(joints, base, level, floor_contact, observation);
+  imu_.observe(level, observation.imu);
   add_imu_uncertainty(observation);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "envs/action_lag.hpp"
+#include "envs/perturbation_settings.hpp"
 #include "envs/registry.hpp"
 
 namespace upkie_rl {
@@ -61,6 +62,12 @@ const EnvOptions kEverythingOff = {{"mass_scale", "1"},
                                    {"imu_gyroscope_noise", "0"},
                                    {"floor_friction", "1"},
                                    {"floor_friction_variation", "0"},
+                                   {"slope_pitch", "0"},
+                                   {"slope_roll", "0"},
+                                   {"payload_mass", "0"},
+                                   {"payload_offset_x", "0"},
+                                   {"payload_offset_y", "0"},
+                                   {"payload_offset_z", "0"},
                                    {"push_force", "0"},
                                    {"observation_noise", "0"},
                                    {"action_lag_max", "0"},
@@ -198,6 +205,59 @@ TEST_P(EnginePerturbations, InconsistentSettingsAreRefusedWithTheirNames) {
   EXPECT_NE(message({{"push_direction", "up"}}).find("not one of"), std::string::npos);
 }
 
+TEST_P(EnginePerturbations, OnASlopeThePolicyReadsThePitchOfARealSlope) {
+  // The pendulum starts upright on the floor: facing up an 8 deg slope, it leans 8 deg
+  // back from the vertical, which its first observation (the IMU's pitch) reads.
+  auto env = make_env(id(), {{"slope_pitch", "8"}});
+  std::vector<float> observation(4);
+  env->reset(3, observation);
+  EXPECT_NEAR(observation[0], -8.0 * M_PI / 180.0, 1e-6);
+  EXPECT_NEAR(env->full_observation()->base_orientation.pitch, -8.0 * M_PI / 180.0, 1e-12);
+  // Upright in the floor's frame, the ground truth.
+  EXPECT_TRUE(env->full_observation()->sim_base.orientation.isApprox(Eigen::Quaterniond::Identity(),
+                                                                     1e-12));
+}
+
+TEST_P(EnginePerturbations, APayloadChangesTheEpisode) {
+  const Trace nominal = pd_trace(id(), {}, 3, 100);
+  const Trace loaded = pd_trace(id(), {{"payload_mass", "2"}, {"payload_offset_x", "0.1"}}, 3, 100);
+  // The same start, to rounding (Bullet places the base by its centre of mass, which the
+  // payload moves), then another episode.
+  for (std::size_t i = 0; i < nominal.observations.front().size(); ++i) {
+    EXPECT_NEAR(nominal.observations.front()[i], loaded.observations.front()[i], 1e-6f) << i;
+  }
+  EXPECT_GT(std::abs(nominal.observations.back()[0] - loaded.observations.back()[0]), 1e-3f);
+}
+
+TEST_P(EnginePerturbations, BadSlopesAndPayloadsAreRefusedWithTheirNames) {
+  const auto message = [&](const EnvOptions& options) {
+    try {
+      make_env(id(), options);
+    } catch (const std::invalid_argument& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  for (const auto& [name, value] :
+       std::vector<std::pair<std::string, std::string>>{{"slope_pitch", "15.5"},
+                                                        {"slope_roll", "-20"},
+                                                        {"slope_pitch", "nan"},
+                                                        {"payload_mass", "-0.5"},
+                                                        {"payload_mass", "3.1"},
+                                                        {"payload_mass", "nan"},
+                                                        {"payload_offset_x", "0.25"},
+                                                        {"payload_offset_y", "-inf"},
+                                                        {"payload_offset_z", "nan"}}) {
+    EXPECT_NE(message({{name, value}}).find(name), std::string::npos) << name << "=" << value;
+  }
+  EXPECT_EQ(message({{"slope_pitch", "-15"},
+                     {"slope_roll", "15"},
+                     {"payload_mass", "3"},
+                     {"payload_offset_x", "0.2"},
+                     {"payload_offset_y", "-0.2"}}),
+            "");
+}
+
 TEST_P(EnginePerturbations, EveryKindTakesThem) {
   for (const char* kind : {"Servos", "Gyropod", "ServosTask"}) {
     auto env = make_env(id(kind), kEverythingOn);
@@ -212,8 +272,44 @@ TEST_P(EnginePerturbations, EveryKindTakesThem) {
 
 INSTANTIATE_TEST_SUITE_P(Engines, EnginePerturbations, ::testing::Values("Bullet", "MuJoCo"));
 
+TEST(Perturbations, SlopesAndPayloadsAreFixedAndDrawNothing) {
+  // The same generator state with and without them: every randomised value, and what the
+  // generator draws next, stay the same, so that a seed gives the same episode otherwise.
+  PerturbationSettings randomised;
+  randomised.inertia_variation = 0.2;
+  randomised.joint_friction = 0.01;
+  randomised.imu_gyroscope_bias = 0.01;
+  randomised.floor_friction_variation = 0.3;
+  PerturbationSettings fixed = randomised;
+  fixed.slope_pitch = 8.0;
+  fixed.slope_roll = -5.0;
+  fixed.payload_mass = 2.5;
+  fixed.payload_offset_x = 0.1;
+  fixed.payload_offset_y = -0.2;
+  fixed.payload_offset_z = 0.05;
+  EXPECT_TRUE(fixed.any());
+  std::mt19937_64 first(9);
+  std::mt19937_64 second(9);
+  const PhysicsVariation a = randomised.sample(first, 1.0);
+  const PhysicsVariation b = fixed.sample(second, 1.0);
+  EXPECT_EQ(a.mass_scale, b.mass_scale);
+  EXPECT_EQ(a.joint_friction, b.joint_friction);
+  EXPECT_EQ(a.imu.gyroscope_bias, b.imu.gyroscope_bias);
+  EXPECT_EQ(a.floor_friction_scale, b.floor_friction_scale);
+  EXPECT_EQ(a.noise_seed, b.noise_seed);
+  EXPECT_EQ(first(), second());
+  // The fixed values, in the variation's units (radians), whatever the curriculum scale.
+  const PhysicsVariation unscaled = fixed.sample(second, 0.0);
+  EXPECT_DOUBLE_EQ(unscaled.slope_pitch, 8.0 * M_PI / 180.0);
+  EXPECT_DOUBLE_EQ(unscaled.slope_roll, -5.0 * M_PI / 180.0);
+  EXPECT_EQ(unscaled.payload_mass, 2.5);
+  EXPECT_EQ(unscaled.payload_offset, Eigen::Vector3d(0.1, -0.2, 0.05));
+}
+
 TEST(Perturbations, OnlyPhysicsBackendsOfferPhysicalOnes) {
   EXPECT_THROW(make_env("Upkie-Mock-Pendulum", {{"push_force", "10"}}), std::invalid_argument);
+  EXPECT_THROW(make_env("Upkie-Mock-Pendulum", {{"slope_pitch", "5"}}), std::invalid_argument);
+  EXPECT_THROW(make_env("Upkie-Mock-Pendulum", {{"payload_mass", "1"}}), std::invalid_argument);
   // Observation noise and action lag are wrappers: every backend has them.
   EXPECT_NO_THROW(make_env("Upkie-Mock-Pendulum", {{"observation_noise", "0.1"}}));
 }

@@ -76,6 +76,10 @@ TEST_P(PhysicsVariationTest, DefaultVariationIsTheNominalRobotBitForBit) {
   variation.mass_scale.fill(1.3);
   variation.floor_friction_scale = 0.5;
   variation.torque_control_noise = 0.1;
+  variation.slope_pitch = 0.1;
+  variation.slope_roll = -0.05;
+  variation.payload_mass = 2.0;
+  variation.payload_offset = Eigen::Vector3d(0.1, -0.05, 0.2);
   varied->set_variation(variation);
   run(*varied, 20, 0.3);
   varied->set_variation(PhysicsVariation{});
@@ -84,6 +88,9 @@ TEST_P(PhysicsVariationTest, DefaultVariationIsTheNominalRobotBitForBit) {
   for (std::size_t i = 0; i < expected.size(); ++i) {
     ASSERT_TRUE(same_motion(expected[i], actual[i])) << "step " << i;
     ASSERT_TRUE(same_measurements(expected[i], actual[i])) << "step " << i;
+    ASSERT_EQ(expected[i].imu.orientation.coeffs(), actual[i].imu.orientation.coeffs()) << i;
+    ASSERT_EQ(expected[i].imu.raw_linear_acceleration, actual[i].imu.raw_linear_acceleration) << i;
+    ASSERT_EQ(expected[i].base_orientation.pitch, actual[i].base_orientation.pitch) << i;
   }
 }
 
