@@ -21,6 +21,7 @@
 #include "apps/tracking_report.hpp"
 #include "apps/velocity_view.hpp"
 #include "apps/video_recorder.hpp"
+#include "envs/env_settings.hpp"
 #include "envs/episode_runner.hpp"
 #include "envs/evaluation_start.hpp"
 #include "envs/registry.hpp"
@@ -170,7 +171,11 @@ void open_outputs(const RolloutOptions& options, Rollout& rollout) {
   // before the first episode.
   if (!options.record_path.empty()) rollout.recorder.emplace(options.record_path);
   if (!options.video.path.empty()) {
-    rollout.video.emplace(RobotModel::default_model(), options.video);
+    // The frames show the floor the episodes ran on.
+    VideoOptions video = options.video;
+    video.bumps =
+        parse_env_settings(parse_env_id(options.env_id), options.env_id, rollout.env_options).bumps;
+    rollout.video.emplace(RobotModel::default_model(), video);
   }
   if (rollout.recorder) rollout.recorder->write_header(env);
   if (rollout.view) rollout.view->wait_for_browsers();

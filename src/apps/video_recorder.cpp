@@ -11,6 +11,7 @@ RenderConfig render_config(const VideoOptions& options) {
   RenderConfig config;
   config.width = options.width;
   config.height = options.height;
+  config.bumps = options.bumps;
   return config;
 }
 

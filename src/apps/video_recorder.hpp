@@ -33,6 +33,7 @@ struct VideoOptions {
   int width = 640;
   int height = 480;
   bool overlay = true;  ///< Caption (episode, time, return, pitch) on the frames.
+  FloorBumps bumps{};   ///< The simulated world's bumps, drawn on the floor.
 };
 
 /// The renderer's settings of a video's frames.

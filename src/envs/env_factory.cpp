@@ -15,7 +15,8 @@
 namespace upkie_rl {
 namespace {
 
-/// The physics settings of `settings`, common to Bullet and MuJoCo.
+/// The physics settings of `settings`, common to Bullet and MuJoCo: rates, inertias and
+/// the world's bumps.
 void set_physics(const EnvSettings& settings, PhysicsConfig& config) {
   config.nb_substeps =
       settings.nb_substeps > 0
@@ -23,6 +24,7 @@ void set_physics(const EnvSettings& settings, PhysicsConfig& config) {
           : std::max(1, static_cast<int>(std::lround(1000.0 / settings.frequency)));
   config.physics_timestep = 1.0 / (settings.frequency * config.nb_substeps);
   config.inertia_source = settings.inertia_source;
+  config.bumps = settings.bumps;
 }
 
 /// The robot's MuJoCo physics (tires, wheel damping: MujocoConfig's defaults, the same for

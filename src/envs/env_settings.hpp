@@ -20,6 +20,7 @@
 #include "envs/velocity_task.hpp"
 #include "model/inertia_source.hpp"
 #include "model/option_table.hpp"
+#include "sim/floor_bumps.hpp"
 #include "sim/simulation.hpp"
 #include "spine/spine_backend.hpp"
 
@@ -43,7 +44,10 @@ struct EnvSettings {
   InertiaSource inertia_source = InertiaSource::kBulletBoxRule;
   InitRandomization init_rand;
   PerturbationSettings perturbations;  ///< Physics backends only.
-  double observation_noise = 0.0;      ///< Half-width, in the observation's units.
+  /// Physics backends only: part of the world, the same in every episode of a factory
+  /// (MuJoCo's compiled model, shared by its environments, holds them).
+  FloorBumps bumps;
+  double observation_noise = 0.0;  ///< Half-width, in the observation's units.
   ActionLagSettings action_lag;
   SpineBackendConfig spine;
   int max_episode_steps = 0;  ///< 0: no time limit.

@@ -12,6 +12,7 @@
 #include "envs/shared_options.hpp"
 #include "envs/time_limit.hpp"
 #include "envs/velocity_env.hpp"
+#include "model/number_text.hpp"
 
 namespace upkie_rl {
 
@@ -84,8 +85,25 @@ void declare_backend_options(Backend backend, EnvSettings& settings, OptionTable
                    {{"box", InertiaSource::kBulletBoxRule}, {"urdf", InertiaSource::kUrdf}},
                    "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");
   if (backend != Backend::kMock) {
-    declare_randomization(table, [&] { settings.perturbations.declare_options(table); });
+    declare_randomization(table, [&] {
+      settings.perturbations.declare_options(table);
+      settings.bumps.declare_options(table);
+    });
   }
+}
+
+// Whether the initial states of `settings` can put a tire on a bump: the tire's reach from
+// the base's x, which init_rand_x moves, must end before the first bump's edge.
+std::string bump_start_problem(const EnvSettings& settings) {
+  const FloorBumps& bumps = settings.bumps;
+  const double tire_radius = RobotModel::default_model()->wheel_radius();
+  if (!bumps.enabled() || settings.init_rand.x + tire_radius + bumps.width / 2.0 < bumps.spacing) {
+    return "";
+  }
+  return "init_rand_x (" + shortest_text(settings.init_rand.x) +
+         " m) can start the robot on a bump: init_rand_x + the tire radius (" +
+         shortest_text(tire_radius) + " m) + bump_width / 2 must be below bump_spacing (" +
+         shortest_text(bumps.spacing) + " m)";
 }
 
 // The options of the task of `kind`.
@@ -144,6 +162,9 @@ OptionTable env_option_table(const EnvId& id, EnvSettings& settings) {
   table.add_integer("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
                     "truncate episodes after this many steps, 0 for never");
   declare_randomization(table, [&] { settings.init_rand.declare_options(table); });
+  if (id.backend == Backend::kBullet || id.backend == Backend::kMujoco) {
+    table.add_rule([&settings] { return bump_start_problem(settings); });
+  }
   declare_kind_options(id.kind, settings, table);
   return table;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,23 @@ void RenderConfig::validate() const {
   if (!(camera_distance > 0.0) || !std::isfinite(camera_distance)) {
     throw RenderError("camera distance must be positive");
   }
+  try {
+    bumps.validate("render: ");
+  } catch (const std::invalid_argument& error) {
+    throw RenderError(error.what());
+  }
 }
+
+namespace {
+
+/// The scene's world: the simulation's floor and bumps.
+MujocoConfig scene_config(const RenderConfig& config) {
+  MujocoConfig scene;
+  scene.bumps = config.bumps;
+  return scene;
+}
+
+}  // namespace
 
 struct RobotRenderer::Impl {
   OffscreenContext context;
@@ -60,7 +77,7 @@ struct RobotRenderer::Impl {
 
   Impl(const RobotModel& robot, const RenderConfig& config)
       : context(config.width, config.height),
-        scene_model(build_mujoco_model(robot, MujocoConfig{})),
+        scene_model(build_mujoco_model(robot, scene_config(config))),
         data(mj_makeData(scene_model->model.get())) {
     const mjModel* m = scene_model->model.get();
     mjv_defaultScene(&scene);

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "model/robot_model.hpp"
+#include "sim/floor_bumps.hpp"
 #include "sim/observation.hpp"
 
 namespace upkie_rl {
@@ -45,8 +46,9 @@ struct RenderConfig {
   double camera_azimuth = 135.0;    ///< [deg], MuJoCo's convention.
   double camera_elevation = -20.0;  ///< [deg], negative looks down.
   bool draw_robot = true;           ///< False draws the empty scene (floor, light).
+  FloorBumps bumps{};               ///< Drawn on the floor, as the simulation had them.
 
-  /// @throws RenderError naming a size out of range.
+  /// @throws RenderError naming a size or a bump setting out of range.
   void validate() const;
 };
 

@@ -66,6 +66,10 @@ struct BulletWorld {
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> joint_limits;
   std::unique_ptr<btDefaultMotionState> ground_motion_state;
   std::unique_ptr<btRigidBody> ground;
+  /// The bumps across the floor: one static body, a compound of a box per bump (null
+  /// without bumps).
+  std::unique_ptr<btDefaultMotionState> bumps_motion_state;
+  std::unique_ptr<btRigidBody> bumps;
   std::array<int, kNumServos> servo_link{};  ///< Multibody link index of each servo.
   std::array<const btCollisionObject*, 2> tires{};
   /// Pose of the root body's principal (COM) frame in the base link frame.
@@ -81,6 +85,12 @@ struct BulletWorld {
     for (auto& collider : colliders) world.removeCollisionObject(collider.get());
     if (multibody) world.removeMultiBody(multibody.get());
     if (ground) world.removeRigidBody(ground.get());
+    if (bumps) world.removeRigidBody(bumps.get());
+  }
+
+  /// Whether `object` is the ground or the bumps on it: what a robot part touches.
+  bool is_ground(const btCollisionObject* object) const {
+    return object != nullptr && (object == ground.get() || object == bumps.get());
   }
 };
 
@@ -117,6 +127,33 @@ void add_ground(BulletWorld& bullet, double friction_scale) {
   bullet.world.addRigidBody(bullet.ground.get(), btBroadphaseProxy::StaticFilter,
                             btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
   bullet.shapes.push_back(std::move(box));
+}
+
+/// The bumps of `bumps` as one static body with the ground's friction (Bullet's compound
+/// keeps its boxes in a tree, so a tire meets only the nearest ones).
+void add_bumps(BulletWorld& bullet, const FloorBumps& bumps, double friction_scale) {
+  const double half_height = (bumps.height + kBumpFooting) / 2.0;
+  auto box =
+      std::make_unique<btBoxShape>(btVector3(bumps.width / 2.0, kBumpLength / 2.0, half_height));
+  box->setMargin(kCollisionMargin);
+  auto compound = std::make_unique<btCompoundShape>();
+  btTransform pose;
+  pose.setIdentity();
+  for (const double x : bumps.centres()) {
+    pose.setOrigin(btVector3(x, 0.0, bumps.height - half_height));
+    compound->addChildShape(pose, box.get());
+  }
+  pose.setIdentity();
+  bullet.bumps_motion_state = std::make_unique<btDefaultMotionState>(pose);
+  btRigidBody::btRigidBodyConstructionInfo info(0.0, bullet.bumps_motion_state.get(),
+                                                compound.get());
+  info.m_friction = friction_scale;
+  info.m_restitution = 0.0;
+  bullet.bumps = std::make_unique<btRigidBody>(info);
+  bullet.world.addRigidBody(bullet.bumps.get(), btBroadphaseProxy::StaticFilter,
+                            btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+  bullet.shapes.push_back(std::move(box));
+  bullet.shapes.push_back(std::move(compound));
 }
 
 /// Contact parameters of a body: those of a soft (tire) shape if it has one, since the
@@ -292,6 +329,7 @@ const Observation& BulletSimulation::reset(const ResetState& state) {
   world_ = std::make_unique<BulletWorld>();
   configure_solver(world_->world, start_floor_slope(state));
   if (config_.floor) add_ground(*world_, variation().floor_friction_scale);
+  if (config_.bumps.enabled()) add_bumps(*world_, config_.bumps, variation().floor_friction_scale);
   add_robot(*world_, tree_, *model_, variation());
 
   btMultiBody& multibody = *world_->multibody;
@@ -363,7 +401,7 @@ bool BulletSimulation::floor_contact(bool tires) const {
     const btCollisionObject* body0 = manifold->getBody0();
     const btCollisionObject* body1 = manifold->getBody1();
     const btCollisionObject* other =
-        body0 == world_->ground.get() ? body1 : (body1 == world_->ground.get() ? body0 : nullptr);
+        world_->is_ground(body0) ? body1 : (world_->is_ground(body1) ? body0 : nullptr);
     if (other == nullptr) continue;
     const bool tire = other == world_->tires[0] || other == world_->tires[1];
     if (tire != tires) continue;

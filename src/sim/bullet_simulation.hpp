@@ -44,7 +44,8 @@ class BulletSimulation final : public PhysicsSimulation {
   void measure(MeasuredJoints& joints, MeasuredBase& base) const override;
   bool tire_touches_floor() const override;
   bool non_tire_touches_floor() const override;
-  /// Whether a tire (`tires`) or another robot part (`!tires`) is within 1 mm of the floor.
+  /// Whether a tire (`tires`) or another robot part (`!tires`) is within 1 mm of the floor
+  /// or a bump on it.
   bool floor_contact(bool tires) const;
 
   std::shared_ptr<const RobotModel> model_;

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sim/tire_contact.hpp"
 
@@ -18,6 +19,8 @@ void MujocoDataDeleter::operator()(mjData* data) const { mj_deleteData(data); }
 namespace {
 
 constexpr const char* kFloorName = "floor";
+/// The reference ground's lateral friction; the bumps on it have the same.
+constexpr double kFloorFriction = 1.0;
 
 /// Deletes an mjSpec on every path out of build_mujoco_model.
 struct SpecDeleter {
@@ -135,10 +138,37 @@ void add_floor(mjsBody& world) {
   floor->contype = 0;
   floor->conaffinity = 1;
   floor->condim = 3;
-  floor->friction[0] = 1.0;  // the reference ground's lateral friction
+  floor->friction[0] = kFloorFriction;
   floor->friction[1] = 0.0;
   floor->friction[2] = 0.0;
   mjs_setString(floor->material, "grid");
+}
+
+std::string bump_name(std::size_t bump) { return "bump_" + std::to_string(bump); }
+
+/// A static box per bump of `bumps`, touched by the robot as the floor is (the tires'
+/// contact priority makes their friction and softness the contact's, as on the floor).
+void add_bumps(mjsBody& world, const FloorBumps& bumps) {
+  const std::vector<double> centres = bumps.centres();
+  for (std::size_t bump = 0; bump < centres.size(); ++bump) {
+    mjsGeom* box = mjs_addGeom(&world, nullptr);
+    mjs_setName(box->element, bump_name(bump).c_str());
+    box->type = mjGEOM_BOX;
+    box->size[0] = bumps.width / 2.0;
+    box->size[1] = kBumpLength / 2.0;
+    box->size[2] = (bumps.height + kBumpFooting) / 2.0;
+    box->pos[0] = centres[bump];
+    box->pos[2] = (bumps.height - kBumpFooting) / 2.0;
+    box->group = 2;  // drawn with the floor
+    box->contype = 0;
+    box->conaffinity = 1;
+    box->condim = 3;
+    box->friction[0] = kFloorFriction;
+    box->friction[1] = 0.0;
+    box->friction[2] = 0.0;
+    box->rgba[0] = box->rgba[1] = box->rgba[2] = 0.45f;  // darker than the floor's grid
+    box->rgba[3] = 1.0f;
+  }
 }
 
 int checked_id(const mjModel* model, mjtObj type, const std::string& name) {
@@ -236,6 +266,17 @@ MujocoRobotIndex index_robot(const mjModel* model, const RigidBodyTree& tree,
   index.tire_geoms[0] = checked_id(model, mjOBJ_GEOM, "left_tire");
   index.tire_geoms[1] = checked_id(model, mjOBJ_GEOM, "right_tire");
   if (config.floor) index.floor_geom = checked_id(model, mjOBJ_GEOM, kFloorName);
+  const std::size_t num_bumps = config.bumps.centres().size();
+  if (num_bumps > 0) {
+    index.first_bump_geom = checked_id(model, mjOBJ_GEOM, bump_name(0));
+    index.num_bump_geoms = static_cast<int>(num_bumps);
+    // Added one after the other to the world body, so numbered in a row: checked, since
+    // is_ground relies on it.
+    if (checked_id(model, mjOBJ_GEOM, bump_name(num_bumps - 1)) !=
+        index.first_bump_geom + index.num_bump_geoms - 1) {
+      throw ModelError("MuJoCo model: the bumps' geoms are not numbered in a row");
+    }
+  }
   return index;
 }
 
@@ -248,12 +289,16 @@ void route_mujoco_messages() {
 
 std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
                                                       const MujocoConfig& config) {
+  config.validate();  // the bumps' spacing, say, bounds the number of geoms
   route_mujoco_messages();
   const RigidBodyTree tree(robot, config.inertia_source, /*merge_fixed_links=*/true);
   const std::unique_ptr<mjSpec, SpecDeleter> spec = make_spec(config);
   mjsBody* world = mjs_findBody(spec.get(), "world");
   add_scene(*spec, *world);
-  if (config.floor) add_floor(*world);
+  if (config.floor) {
+    add_floor(*world);
+    add_bumps(*world, config.bumps);
+  }
   add_bodies(*world, tree, robot, config);
 
   MujocoModelPtr model(mj_compile(spec.get(), nullptr));

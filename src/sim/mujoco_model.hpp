@@ -35,6 +35,16 @@ struct MujocoRobotIndex {
   std::array<int, kNumServos> servo_body{};  ///< Body each servo joint moves.
   std::array<int, 2> tire_geoms{-1, -1};     ///< Left, right tire geoms.
   int floor_geom = -1;                       ///< -1 without a floor.
+  /// The bumps across the floor (PhysicsConfig::bumps) are the geoms first_bump_geom to
+  /// first_bump_geom + num_bump_geoms - 1; none by default.
+  int first_bump_geom = -1;
+  int num_bump_geoms = 0;
+
+  /// Whether `geom` is the floor or a bump on it: what a robot geom touches.
+  bool is_ground(int geom) const {
+    return (geom == floor_geom && geom >= 0) ||
+           (geom >= first_bump_geom && geom < first_bump_geom + num_bump_geoms);
+  }
 };
 
 /// A compiled model with its index. Immutable once built; shared by every simulation and
@@ -45,7 +55,9 @@ struct MujocoModel {
 };
 
 /// Builds Upkie (free base, hinge joints with the URDF limits, collision shapes, the tires'
-/// contact parameters) and, with config.floor, a checkered floor plane at z = 0, and a light.
+/// contact parameters) and, with config.floor, a checkered floor plane at z = 0 with the
+/// bumps of config.bumps, and a light.
+/// @throws std::invalid_argument on a setting out of its domain (MujocoConfig::validate).
 /// @throws ModelError with MuJoCo's compiler message if the model does not compile.
 std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
                                                       const MujocoConfig& config);

@@ -250,14 +250,15 @@ void MujocoSimulation::measure(MeasuredJoints& joints, MeasuredBase& base) const
 namespace {
 
 /// Whether a geom of the robot that is (`tires`) or is not (`!tires`) a tire is within
-/// 1 mm of the floor (robot geoms collide with the floor only, never with each other).
+/// 1 mm of the floor or a bump on it (robot geoms collide with those only, never with each
+/// other).
 bool floor_contact(const mjData* d, const MujocoRobotIndex& index, bool tires) {
   if (index.floor_geom < 0) return false;
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& contact = d->contact[c];
-    const int other = contact.geom[0] == index.floor_geom   ? contact.geom[1]
-                      : contact.geom[1] == index.floor_geom ? contact.geom[0]
-                                                            : -1;
+    const int other = index.is_ground(contact.geom[0])   ? contact.geom[1]
+                      : index.is_ground(contact.geom[1]) ? contact.geom[0]
+                                                         : -1;
     if (other < 0 || contact.dist >= kTireContactDistance) continue;
     const bool tire = other == index.tire_geoms[0] || other == index.tire_geoms[1];
     if (tire == tires) return true;

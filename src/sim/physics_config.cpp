@@ -20,6 +20,10 @@ void PhysicsConfig::validate(const char* backend) const {
   if (!is_valid_servo_gain(servo_gains.kp) || !is_valid_servo_gain(servo_gains.kd)) {
     throw std::invalid_argument(prefix + "servo gains must be finite and non-negative");
   }
+  bumps.validate(prefix);
+  if (bumps.enabled() && !floor) {
+    throw std::invalid_argument(prefix + kBumpHeightOption.name + " needs the floor");
+  }
 }
 
 }  // namespace upkie_rl

@@ -3,6 +3,7 @@
 /// Settings every physics backend shares (Bullet, MuJoCo).
 
 #include "model/inertia_source.hpp"
+#include "sim/floor_bumps.hpp"
 #include "sim/servo_law.hpp"
 
 namespace upkie_rl {
@@ -15,6 +16,7 @@ struct PhysicsConfig {
   int nb_substeps = 5;             ///< Physics steps per agent step.
   InertiaSource inertia_source = InertiaSource::kBulletBoxRule;
   bool floor = true;         ///< A ground plane at z = 0.
+  FloorBumps bumps{};        ///< Bumps across the floor (none by default); need the floor.
   double gravity = 9.81;     ///< [m/s^2], along -z.
   ServoGains servo_gains{};  ///< Servo law gains at construction.
 

@@ -31,6 +31,7 @@ std::vector<std::pair<std::string, bool>> declared_options(const EnvId& id) {
     groups.push_back({names_of([&](OptionTable& t) { s.spine.declare_options(t); }), false});
   } else if (id.backend != EnvBackend::kMock) {
     groups.push_back({names_of([&](OptionTable& t) { s.perturbations.declare_options(t); }), true});
+    groups.push_back({names_of([&](OptionTable& t) { s.bumps.declare_options(t); }), true});
   }
   switch (id.kind) {
     case EnvKind::kPendulum:
