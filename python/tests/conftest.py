@@ -2,16 +2,16 @@
 
 Under NumPy 2 (the newest-Gymnasium venv of scripts/install-deps.sh), Debian's torch 1.13,
 which the venv sees through its system site packages, was built against NumPy 1: it
-imports, but `torch.from_numpy` raises "Numpy is not available", so SB3 and the TorchScript
-tests would fail for a reason that is not the package's. There torch is hidden from the
-tests (`import torch` raises ImportError, so `pytest.importorskip` skips them) and the
-session header says why; they run in Debian's interpreter, under NumPy 1.26.
+imports, but `torch.from_numpy` raises "Numpy is not available". The tests that hand
+arrays to torch (SB3 training and conversion, TorchScript) carry the marker
+`needs_torch_numpy` and are skipped there, with that reason; they run in Debian's
+interpreter, under NumPy 1.26. The session header names NumPy's version.
 """
 
 import importlib.metadata
-import sys
 
 import numpy as np
+import pytest
 
 
 def _major_minor(version: str):
@@ -19,7 +19,7 @@ def _major_minor(version: str):
     return int(parts[0]), int("".join(c for c in parts[1] if c.isdigit()) or 0)
 
 
-def _torch_predates_numpy_2() -> str:
+def _torch_predates_this_numpy() -> str:
     """Why torch cannot exchange arrays with this NumPy, or "" when it can (or is absent)."""
     if _major_minor(np.__version__)[0] < 2:
         return ""
@@ -30,13 +30,25 @@ def _torch_predates_numpy_2() -> str:
     if _major_minor(torch_version) >= (2, 3):  # the first torch built for NumPy 2
         return ""
     return (f"torch {torch_version} was built against NumPy 1 and cannot exchange arrays with "
-            f"NumPy {np.__version__}: torch, SB3 and TorchScript tests are skipped here")
+            f"NumPy {np.__version__}")
 
 
-_TORCH_HIDDEN_BECAUSE = _torch_predates_numpy_2()
-if _TORCH_HIDDEN_BECAUSE:
-    sys.modules["torch"] = None  # type: ignore[assignment]  # `import torch` raises ImportError
+TORCH_NUMPY_PROBLEM = _torch_predates_this_numpy()
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "needs_torch_numpy: hands arrays to torch (skipped where torch predates NumPy)")
 
 
 def pytest_report_header(config):
-    return f"numpy {np.__version__}" + (f"; {_TORCH_HIDDEN_BECAUSE}" if _TORCH_HIDDEN_BECAUSE else "")
+    return f"numpy {np.__version__}" + (f"; {TORCH_NUMPY_PROBLEM}" if TORCH_NUMPY_PROBLEM else "")
+
+
+def pytest_collection_modifyitems(config, items):
+    if not TORCH_NUMPY_PROBLEM:
+        return
+    skip = pytest.mark.skip(reason=TORCH_NUMPY_PROBLEM)
+    for item in items:
+        if item.get_closest_marker("needs_torch_numpy"):
+            item.add_marker(skip)

@@ -79,6 +79,7 @@ def python_blocks(path: Path):
     return re.findall(r"```python\n(.*?)```", path.read_text(), flags=re.DOTALL)
 
 
+@pytest.mark.needs_torch_numpy  # conftest.py: the examples load a TorchScript policy
 @pytest.mark.parametrize("doc", ["README.md", "docs/python.md"])
 def test_python_examples_run_as_written(doc, tmp_path):
     """The examples of one file run in order, in one interpreter, from a scratch directory

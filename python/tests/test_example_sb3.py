@@ -23,6 +23,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.needs_torch_numpy  # conftest.py
+
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "train_pendulum_sb3.py"
 RANDOM_BEST_MEAN_RETURN = -968.0  # best 10-episode mean of a random policy (see above)
 PASS_RETURN = -600.0

@@ -42,6 +42,7 @@ def test_checkpoint_policy_matches_the_cli_rollout(trained):
     np.testing.assert_allclose([total for total, _ in results], summary["returns"], rtol=1e-12)
 
 
+@pytest.mark.needs_torch_numpy  # conftest.py
 def test_torchscript_and_checkpoint_give_the_same_actions(trained):
     pytest.importorskip("torch")
     checkpoint, torchscript, _ = trained

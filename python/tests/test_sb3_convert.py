@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+pytestmark = pytest.mark.needs_torch_numpy  # conftest.py
+
 import upkie_rl
 from spine_process import cli_path
 

@@ -7,7 +7,6 @@ import time
 import gymnasium as gym
 import numpy as np
 import pytest
-from stable_baselines3.common.vec_env import VecEnv, VecNormalize
 
 import upkie_rl
 from upkie_rl.env import UpkieEnv
@@ -116,6 +115,8 @@ def test_gym_make_vec_uses_the_vector_entry_point():
 
 
 def test_sb3_vec_env_semantics():
+    vec_env = pytest.importorskip("stable_baselines3.common.vec_env")
+    VecEnv, VecNormalize = vec_env.VecEnv, vec_env.VecNormalize
     num_envs, seed = 3, 11
     actions = random_actions(150, num_envs)
     first, expected = single_env_rollout(num_envs, actions, seed)
