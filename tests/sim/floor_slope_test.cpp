@@ -21,6 +21,15 @@ namespace {
 
 using testing::make_bullet;
 using testing::make_mujoco;
+
+/// MuJoCo without the tires' rolling resistance: they roll freely, which shows the slope's
+/// pull on its own.
+std::unique_ptr<PhysicsSimulation> make_free_rolling_mujoco(const PhysicsConfig& physics) {
+  MujocoConfig config;
+  static_cast<PhysicsConfig&>(config) = physics;
+  config.tire_rolling_resistance = false;
+  return std::make_unique<MujocoSimulation>(RobotModel::default_model(), config);
+}
 using testing::pendulum_action;
 
 constexpr double kGravity = 9.81;
@@ -72,8 +81,9 @@ struct Backend {
   std::function<std::unique_ptr<PhysicsSimulation>(const PhysicsConfig&)> make;
   /// Whether the tires roll freely. Bullet's do not: the reference tires' rolling friction
   /// (0.01 m: a torque of up to 0.01 m times the normal force, i.e. a resistance of 0.2 of
-  /// the weight at r = 0.05 m) holds a robot with free wheels on every slope up to 15 deg.
-  /// MuJoCo's tires (contact dimension 3) have no rolling friction.
+  /// the weight at r = 0.05 m) holds a robot with free wheels on every slope up to 15 deg;
+  /// MuJoCo's have the same resistance (MujocoConfig::tire_rolling_resistance), and roll
+  /// freely without it ("MuJoCoFreeRolling", which checks the slope's physics).
   bool tires_roll_freely;
 };
 
@@ -173,7 +183,9 @@ TEST_P(FloorSlopeEngine, OnASlipperyFloorBrakedWheelsSlideDownhillByCoulombsLaw)
     const std::string name =
         "pitch " + std::to_string(slope.pitch) + " roll " + std::to_string(slope.roll);
     EXPECT_GT(ratio, 0.97) << name;
-    EXPECT_LT(ratio, slope.pitch != 0.0 ? 1.16 : 1.04) << name;
+    // Roll slopes: 1.00 on Bullet, 1.05 on MuJoCo (the rolling resistance's torque, about
+    // the wheel axis, tips the braked robot a little down the slope).
+    EXPECT_LT(ratio, slope.pitch != 0.0 ? 1.16 : 1.06) << name;
     EXPECT_LT(across, 0.05 * expected) << name;
   }
 }
@@ -224,9 +236,11 @@ TEST_P(FloorSlopeEngine, FreeWheelsRollDownhill) {
       EXPECT_GT(ratio, 0.85) << "pitch " << slope.pitch;
       EXPECT_LT(ratio, 1.0) << "pitch " << slope.pitch;
     } else {
-      // Held: measured within 14% of the free roll (-0.04, -0.02, -0.14), the difference
-      // the body's fall makes facing downhill rather than uphill.
-      EXPECT_LT(std::abs(ratio), 0.15) << "pitch " << slope.pitch;
+      // Held: measured within 19% of the free roll (Bullet -0.04, -0.02, -0.14; MuJoCo -0.01,
+      // 0.19, -0.01: its resistance grows in proportion below 0.1 rad/s, so a wheel creeps
+      // on the steepest slope), the difference the body's fall makes facing downhill rather
+      // than uphill.
+      EXPECT_LT(std::abs(ratio), 0.2) << "pitch " << slope.pitch;
     }
   }
   if (GetParam().tires_roll_freely) {
@@ -349,10 +363,11 @@ TEST_P(FloorSlopeEngine, BadSlopesAreRefusedNamingThem) {
   EXPECT_EQ(simulation->variation().slope_roll, 0.0);  // a refused variation changes nothing
 }
 
-INSTANTIATE_TEST_SUITE_P(Engines, FloorSlopeEngine,
-                         ::testing::Values(Backend{"Bullet", make_bullet, false},
-                                           Backend{"MuJoCo", make_mujoco, true}),
-                         [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(
+    Engines, FloorSlopeEngine,
+    ::testing::Values(Backend{"Bullet", make_bullet, false}, Backend{"MuJoCo", make_mujoco, false},
+                      Backend{"MuJoCoFreeRolling", make_free_rolling_mujoco, true}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace upkie_rl
