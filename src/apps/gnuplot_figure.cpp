@@ -29,6 +29,13 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
+/// A tic label: gnuplot reads tic labels as formats, so a '%' ("payload 30 %") is doubled.
+std::string tic_label(const std::string& text) {
+  std::string escaped;
+  for (char c : text) escaped += c == '%' ? std::string("%%") : std::string(1, c);
+  return quoted(escaped);
+}
+
 bool has_cairo(const std::string& gnuplot) {
   const std::string command = gnuplot + " -e 'set terminal' 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
@@ -276,11 +283,11 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
     script << "set xrange [-0.5:" << columns - 0.5 << "]\nset yrange [-0.5:" << rows - 0.5 << "]\n";
     script << "set xtics (";
     for (std::size_t c = 0; c < columns; ++c) {
-      script << (c ? ", " : "") << quoted(figure.x_values[c]) << ' ' << c;
+      script << (c ? ", " : "") << tic_label(figure.x_values[c]) << ' ' << c;
     }
     script << ")\nset ytics (";
     for (std::size_t r = 0; r < rows; ++r) {
-      script << (r ? ", " : "") << quoted(figure.y_values[r]) << ' ' << r;
+      script << (r ? ", " : "") << tic_label(figure.y_values[r]) << ' ' << r;
     }
     script << ")\n";
     // One filled box per cell: `with image` needs two rows and two columns to size its

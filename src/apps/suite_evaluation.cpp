@@ -261,8 +261,9 @@ void write_suite_outputs(const std::filesystem::path& directory, const SuiteResu
   std::ofstream(directory / "results.csv") << suite_csv(run);
   HeatMapFigure figure;
   figure.output = directory / "falls.png";
-  figure.title = "suite " + run.suite.name + ": falls [% of " + std::to_string(run.suite.episodes) +
-                 " episodes]";
+  // Episodes without a fall, on the success-rate scale of every heat map (green: none fell).
+  figure.title = "suite " + run.suite.name + ": episodes without a fall [% of " +
+                 std::to_string(run.suite.episodes) + "]";
   figure.x_label = "controller";
   figure.x_values = run.labels;
   figure.y_label = "world";
@@ -270,7 +271,7 @@ void write_suite_outputs(const std::filesystem::path& directory, const SuiteResu
     const SuiteWorld& world = run.suite.worlds[w];
     figure.y_values.push_back(world.name + " (" + engine_of(world.env_id) + ")");
     for (const CellResult& cell : run.results[w]) {
-      figure.values.push_back(100.0 * falls(cell) / std::max(1, cell.summary.episodes));
+      figure.values.push_back(100.0 * cell.successes / std::max(1, cell.summary.episodes));
     }
   }
   draw_heat_maps({figure});

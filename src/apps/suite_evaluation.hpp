@@ -56,8 +56,8 @@ nlohmann::json suite_json(const SuiteResults& run);
 /// One CSV row per world, env and contender.
 std::string suite_csv(const SuiteResults& run);
 
-/// Writes table.txt, summary.json, results.csv and falls.png (worlds x contenders, fall
-/// rate [%]) in `directory`.
+/// Writes table.txt, summary.json, results.csv and falls.png (worlds x contenders, the
+/// share of episodes without a fall [%], green for none) in `directory`.
 void write_suite_outputs(const std::filesystem::path& directory, const SuiteResults& run);
 
 }  // namespace upkie_rl::apps

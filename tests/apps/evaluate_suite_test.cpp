@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "apps/cli_runner.hpp"
+#include "common/image_pixels.hpp"
 #include "common/temp_files.hpp"
 
 namespace upkie_rl {
@@ -91,7 +92,10 @@ TEST(EvaluateSuite, TinySuiteWritesTheTableJsonCsvAndHeatMap) {
   std::stringstream table_text;
   table_text << table.rdbuf();
   EXPECT_NE(result.output.find(table_text.str()), std::string::npos);
-  EXPECT_GT(std::filesystem::file_size(output / "falls.png"), 1000u);
+  // Green where no episode fell (the nominal world), red where all did; a cell is about
+  // 250 x 200 pixels.
+  EXPECT_GT(testing::count_pixels_near(output / "falls.png", 0x1a9850), 20000);
+  EXPECT_GT(testing::count_pixels_near(output / "falls.png", 0xd73027), 20000);
   std::filesystem::remove_all(output);
 }
 
