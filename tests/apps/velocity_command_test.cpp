@@ -96,7 +96,10 @@ TEST(VelocityCommand, CheckedInPolicyFollowsTheScriptedCommands) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = last_json(result.output);
   EXPECT_EQ(summary.at("fall_rate").get<double>(), 0.0) << result.output;
-  EXPECT_LT(summary.at("tracking_rms_vx").get<double>(), 0.06) << result.output;
+  // Measured: 0.082 m/s on the robot's tires, with their rolling resistance (the policy
+  // trained on the velocity task's former free-rolling tires followed at 0.05; on these it
+  // does at 0.103).
+  EXPECT_LT(summary.at("tracking_rms_vx").get<double>(), 0.1) << result.output;
   EXPECT_LT(summary.at("tracking_rms_wz").get<double>(), 0.15) << result.output;
   // The scripted rows are steps: the robot is further from them than from their ramps.
   EXPECT_GT(summary.at("tracking_rms_vx_target").get<double>(),
