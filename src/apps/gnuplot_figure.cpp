@@ -33,7 +33,8 @@ std::string quoted(const std::string& text) {
 std::string tic_label(const std::string& text) {
   std::string escaped;
   for (char c : text) escaped += c == '%' ? std::string("%%") : std::string(1, c);
-  return quoted(escaped);
+  const std::string& label = escaped;  // const: std::quoted's overload would be chosen
+  return quoted(label);
 }
 
 bool has_cairo(const std::string& gnuplot) {
