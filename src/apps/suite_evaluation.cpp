@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "apps/fixed_text.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/tracking_report.hpp"
 #include "envs/evaluation_start.hpp"
@@ -68,13 +69,6 @@ void run_env(const std::string& env_id, const SuiteRequest& request, const Episo
   }
 }
 
-std::string fixed(double value, int digits) {
-  if (!std::isfinite(value)) return "-";
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(digits) << value;
-  return text.str();
-}
-
 /// "3/20 (2 early)" or "0/20".
 std::string falls_text(const CellResult& cell) {
   std::string text = std::to_string(falls(cell)) + "/" + std::to_string(cell.summary.episodes);
@@ -90,7 +84,7 @@ struct ContenderTotals {
   double rms_vx_sum = 0.0;  ///< Over the worlds where the contender had steps up.
 };
 
-ContenderTotals totals_of(const SuiteResults& run, std::size_t c) {
+ContenderTotals totals_of_contender(const SuiteResults& run, std::size_t c) {
   ContenderTotals totals;
   for (const auto& world : run.results) {
     totals.falls += falls(world[c]);
@@ -99,6 +93,13 @@ ContenderTotals totals_of(const SuiteResults& run, std::size_t c) {
     const double rms = world[c].summary.tracking.rms_forward();
     if (std::isfinite(rms)) totals.rms_vx_sum += rms;
   }
+  return totals;
+}
+
+/// Every contender's totals, in label order.
+std::vector<ContenderTotals> totals_of(const SuiteResults& run) {
+  std::vector<ContenderTotals> totals;
+  for (std::size_t c = 0; c < run.labels.size(); ++c) totals.push_back(totals_of_contender(run, c));
   return totals;
 }
 
@@ -116,7 +117,8 @@ std::string worlds_where_only_first_falls(const SuiteResults& run, std::size_t a
   return names;
 }
 
-void print_comparisons(std::ostream& out, const SuiteResults& run) {
+void print_comparisons(std::ostream& out, const SuiteResults& run,
+                       const std::vector<ContenderTotals>& totals) {
   for (std::size_t a = 0; a < run.labels.size(); ++a) {
     for (std::size_t b = 0; b < run.labels.size(); ++b) {
       if (a == b) continue;
@@ -128,11 +130,12 @@ void print_comparisons(std::ostream& out, const SuiteResults& run) {
   }
   for (std::size_t a = 0; a < run.labels.size(); ++a) {
     for (std::size_t b = a + 1; b < run.labels.size(); ++b) {
-      const double rms_a = totals_of(run, a).rms_vx_sum;
-      const double rms_b = totals_of(run, b).rms_vx_sum;
-      out << "forward tracking summed over the worlds: " << run.labels[a] << ' ' << fixed(rms_a, 3)
-          << " m/s, " << run.labels[b] << ' ' << fixed(rms_b, 3) << " m/s (" << run.labels[a] << " "
-          << fixed(100.0 * (1.0 - rms_a / rms_b), 1) << " % lower)\n";
+      const double rms_a = totals[a].rms_vx_sum;
+      const double rms_b = totals[b].rms_vx_sum;
+      out << "forward tracking summed over the worlds: " << run.labels[a] << ' '
+          << fixed_text(rms_a, 3) << " m/s, " << run.labels[b] << ' ' << fixed_text(rms_b, 3)
+          << " m/s (" << run.labels[a] << " " << fixed_text(100.0 * (1.0 - rms_a / rms_b), 1)
+          << " % lower)\n";
     }
   }
 }
@@ -178,21 +181,22 @@ std::string suite_table(const SuiteResults& run) {
     for (const CellResult& cell : run.results[w]) {
       std::ostringstream entry;
       entry << std::setw(14) << falls_text(cell) << ' ' << std::setw(6)
-            << fixed(cell.summary.tracking.rms_forward(), 3) << ' ' << std::setw(6)
-            << fixed(cell.summary.tracking.rms_yaw(), 3) << ' ' << fixed(cell.mean_return, 1);
+            << fixed_text(cell.summary.tracking.rms_forward(), 3) << ' ' << std::setw(6)
+            << fixed_text(cell.summary.tracking.rms_yaw(), 3) << ' '
+            << fixed_text(cell.mean_return, 1);
       out << " | " << std::setw(36) << entry.str();
     }
     out << '\n';
   }
   out << std::right << '\n';
+  const std::vector<ContenderTotals> totals = totals_of(run);
   for (std::size_t c = 0; c < run.labels.size(); ++c) {
-    const ContenderTotals totals = totals_of(run, c);
-    out << run.labels[c] << ": " << totals.falls << " falls (" << totals.early_falls
-        << " early) in " << totals.worlds_with_falls << " of " << run.results.size()
-        << " worlds; forward tracking RMS summed over the worlds " << fixed(totals.rms_vx_sum, 3)
-        << " m/s\n";
+    out << run.labels[c] << ": " << totals[c].falls << " falls (" << totals[c].early_falls
+        << " early) in " << totals[c].worlds_with_falls << " of " << run.results.size()
+        << " worlds; forward tracking RMS summed over the worlds "
+        << fixed_text(totals[c].rms_vx_sum, 3) << " m/s\n";
   }
-  print_comparisons(out, run);
+  print_comparisons(out, run, totals);
   return out.str();
 }
 
@@ -206,8 +210,9 @@ nlohmann::json suite_json(const SuiteResults& run) {
                          {"early_fall_time", suite.early_fall_time},
                          {"contenders", nlohmann::json::array()},
                          {"worlds", nlohmann::json::array()}};
+  const std::vector<ContenderTotals> all_totals = totals_of(run);
   for (std::size_t c = 0; c < run.labels.size(); ++c) {
-    const ContenderTotals totals = totals_of(run, c);
+    const ContenderTotals& totals = all_totals[c];
     json["contenders"].push_back({{"label", run.labels[c]},
                                   {"source", run.descriptions[c]},
                                   {"falls", totals.falls},

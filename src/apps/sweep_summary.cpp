@@ -1,5 +1,7 @@
 #include "apps/sweep_summary.hpp"
 
+#include "apps/fixed_text.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -17,13 +19,6 @@
 namespace upkie_rl::apps {
 
 namespace {
-
-std::string fixed(double value, int decimals = 1) {
-  if (!std::isfinite(value)) return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
 
 /// A CSV field: quoted when it holds a comma or a quote.
 std::string csv_field(const std::string& text) {
@@ -74,11 +69,12 @@ std::string runs_csv(const std::vector<RunRow>& rows) {
         << csv_field(sweep_group_label(*row.run)) << ',' << csv_field(row.status);
     if (row.outcome) {
       const SweepOutcome& o = *row.outcome;
-      csv << ',' << o.timesteps << ',' << fixed(o.train_seconds, 2) << ','
-          << fixed(o.training_mean_return, 3) << ',' << o.evaluation.episodes << ','
-          << fixed(o.evaluation.mean_return, 3) << ',' << fixed(o.evaluation.std_return, 3) << ','
-          << fixed(o.evaluation.mean_length, 2) << ','
-          << fixed(static_cast<double>(o.evaluation.successes) / o.evaluation.episodes, 4);
+      csv << ',' << o.timesteps << ',' << fixed_text(o.train_seconds, 2) << ','
+          << fixed_text(o.training_mean_return, 3) << ',' << o.evaluation.episodes << ','
+          << fixed_text(o.evaluation.mean_return, 3) << ','
+          << fixed_text(o.evaluation.std_return, 3) << ','
+          << fixed_text(o.evaluation.mean_length, 2) << ','
+          << fixed_text(static_cast<double>(o.evaluation.successes) / o.evaluation.episodes, 4);
     } else {
       csv << ",,,,,,,,";
     }
@@ -118,9 +114,9 @@ std::string settings_table(const std::vector<RunRow>& rows) {
       spread += (value - mean) * (value - mean) / static_cast<double>(returns.size());
     }
     table << "| " << label << " | " << returns.size() << " of " << groups[label].size() << " | "
-          << (returns.empty() ? "-" : fixed(mean) + " ± " + fixed(std::sqrt(spread))) << " | "
-          << fixed(low) << " | " << fixed(high) << " | "
-          << (episodes > 0 ? fixed(100.0 * successes / episodes, 0) + " %" : "-") << " |\n";
+          << (returns.empty() ? "-" : fixed_text(mean) + " ± " + fixed_text(std::sqrt(spread)))
+          << " | " << fixed_text(low) << " | " << fixed_text(high) << " | "
+          << (episodes > 0 ? fixed_text(100.0 * successes / episodes, 0) + " %" : "-") << " |\n";
   }
   return table.str();
 }
@@ -134,9 +130,10 @@ std::string runs_table(const std::vector<RunRow>& rows) {
     if (row.outcome) {
       const SweepOutcome& o = *row.outcome;
       table << with_thousands(o.timesteps) << " | " << format_duration(o.train_seconds) << " | "
-            << fixed(o.training_mean_return) << " | " << fixed(o.evaluation.mean_return) << " ± "
-            << fixed(o.evaluation.std_return) << " | " << fixed(o.evaluation.mean_length) << " | "
-            << o.evaluation.successes << "/" << o.evaluation.episodes << " |\n";
+            << fixed_text(o.training_mean_return) << " | " << fixed_text(o.evaluation.mean_return)
+            << " ± " << fixed_text(o.evaluation.std_return) << " | "
+            << fixed_text(o.evaluation.mean_length) << " | " << o.evaluation.successes << "/"
+            << o.evaluation.episodes << " |\n";
     } else {
       table << "- | - | - | - | - | - |\n";
     }
