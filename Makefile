@@ -81,7 +81,8 @@ train-robust:
 # Drive anywhere (docs/environments.md, "Velocity"): trains configs/velocity.yaml on MuJoCo,
 # then compares the policy with the classical balancer (lqr) on 20 episodes of 20 s with
 # random commands and pushes up to 20 N on MuJoCo, the policy on Bullet (sim-to-sim), and
-# draws commanded against measured velocities, with a video and a still of it.
+# draws commanded against measured velocities, with a video and a still of it, then runs the
+# reality suite (configs/suites/reality.yaml, docs/reality.md) on the policy and the baseline.
 VELOCITY_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000 \
   --env-option push_force=20 --env-option push_duration=0.2 --env-option push_interval=3 \
   --env-option push_direction=any
@@ -98,7 +99,9 @@ train-velocity:
 	    --plot $$run/velocity --json \
 	    --video $$run/velocity.mp4 && \
 	  ffmpeg -loglevel error -y -ss 10 -i $$run/velocity.mp4 -frames:v 1 $$run/velocity_still.png && \
-	  echo "wrote $$run/velocity.mp4 and $$run/velocity_still.png"
+	  echo "wrote $$run/velocity.mp4 and $$run/velocity_still.png" && \
+	  $(BUILD_DIR)/upkie-rl evaluate --suite reality --model policy=$$model --controller lqr \
+	    --output $$run/reality-suite
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done

@@ -1,5 +1,6 @@
 #include "envs/perturbation_settings.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -7,13 +8,22 @@
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
+namespace {
+
+/// Stream of the randomised slopes, payloads and motor weakness (derive_seed).
+constexpr std::uint64_t kRandomizedWorldStream = 11;
+
+}  // namespace
+
 bool PerturbationSettings::any() const {
   return mass_scale != 1.0 || inertia_variation != 0.0 || joint_friction != 0.0 ||
          torque_control_noise != 0.0 || torque_measurement_noise != 0.0 ||
          imu_accelerometer_bias != 0.0 || imu_accelerometer_noise != 0.0 ||
          imu_gyroscope_bias != 0.0 || imu_gyroscope_noise != 0.0 || floor_friction != 1.0 ||
          floor_friction_variation != 0.0 || slope_pitch != 0.0 || slope_roll != 0.0 ||
-         payload_mass != 0.0 || torque_limit_scale != 1.0 || push.enabled();
+         payload_mass != 0.0 || torque_limit_scale != 1.0 || slope_variation != 0.0 ||
+         payload_mass_variation != 0.0 || payload_offset_variation != 0.0 ||
+         torque_limit_variation != 0.0 || push.enabled();
 }
 
 PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double scale) const {
@@ -42,7 +52,31 @@ PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double
   variation.payload_mass = payload_mass;
   variation.payload_offset = Eigen::Vector3d(payload_offset_x, payload_offset_y, payload_offset_z);
   variation.noise_seed = generator();
+  add_randomized_world(variation, scale);
   return variation;
+}
+
+void PerturbationSettings::add_randomized_world(PhysicsVariation& variation, double scale) const {
+  // A stream of its own, derived from the episode's noise seed: the draws above (and so
+  // every trajectory without these options) are the same with or without them.
+  std::mt19937_64 generator(derive_seed(variation.noise_seed, kRandomizedWorldStream));
+  variation.slope_pitch +=
+      degrees_to_radians(uniform_symmetric(generator, scale * slope_variation));
+  variation.slope_roll += degrees_to_radians(uniform_symmetric(generator, scale * slope_variation));
+  variation.payload_mass += scale * payload_mass_variation * uniform_unit(generator);
+  variation.payload_offset.x() += uniform_symmetric(generator, scale * payload_offset_variation);
+  variation.payload_offset.y() += uniform_symmetric(generator, scale * payload_offset_variation);
+  variation.torque_limit_scale *= 1.0 - scale * torque_limit_variation * uniform_unit(generator);
+  // Clamped to the domains PhysicsVariation::validate checks (a fixed value plus its
+  // variation may reach past them).
+  const double max_slope = degrees_to_radians(kMaxSlopeDegrees);
+  variation.slope_pitch = std::clamp(variation.slope_pitch, -max_slope, max_slope);
+  variation.slope_roll = std::clamp(variation.slope_roll, -max_slope, max_slope);
+  variation.payload_mass = std::min(variation.payload_mass, kMaxPayloadMass);
+  for (int axis = 0; axis < 2; ++axis) {
+    variation.payload_offset[axis] =
+        std::clamp(variation.payload_offset[axis], -kMaxPayloadOffset, kMaxPayloadOffset);
+  }
 }
 
 void PerturbationSettings::declare_options(OptionTable& table) {
@@ -84,6 +118,14 @@ void PerturbationSettings::declare_options(OptionTable& table) {
                  offset_help + "left [m]");
   table.add_real("payload_offset_z", &payload_offset_z, -kMaxPayloadOffset, kMaxPayloadOffset,
                  offset_help + "up [m]");
+  table.add_real("slope_variation", &slope_variation, 0.0, kMaxSlopeDegrees,
+                 "floor slope pitch and roll each plus U(-it, it), drawn at reset [deg]");
+  table.add_real("payload_mass_variation", &payload_mass_variation, 0.0, kMaxPayloadMass,
+                 "payload mass plus U(0, it), drawn at reset [kg]");
+  table.add_real("payload_offset_variation", &payload_offset_variation, 0.0, kMaxPayloadOffset,
+                 "payload forward and left offsets each plus U(-it, it), drawn at reset [m]");
+  table.add_real("torque_limit_variation", &torque_limit_variation, 0.0, 0.9,
+                 "servo torque limits times 1 - U(0, it), drawn at reset");
   table.add_real("push_force", &push.force, 0.0, kOptionHuge,
                  "largest push on the base [N], 0 for no pushes");
   table.add_real("push_force_min", &push.force_min, 0.0, kOptionHuge,

@@ -61,6 +61,15 @@ struct PerturbationSettings {
   double payload_offset_x = 0.0;  ///< Its offset from the base's centre of mass, forward [m].
   double payload_offset_y = 0.0;  ///< Left [m].
   double payload_offset_z = 0.0;  ///< Up [m].
+  /// Randomised floor slope: pitch and roll each plus U(-it, it) at reset [deg] (the
+  /// field's "tilted gravity" terrain for a policy that must hold on ramps).
+  double slope_variation = 0.0;
+  /// Randomised payload: mass plus U(0, it) at reset [kg], an owner's battery or camera.
+  double payload_mass_variation = 0.0;
+  /// Randomised payload placement: forward and left offsets each plus U(-it, it) [m].
+  double payload_offset_variation = 0.0;
+  /// Randomised motor weakness: torque limits times 1 - U(0, it) at reset.
+  double torque_limit_variation = 0.0;
   PushSettings push;
 
   /// Whether any setting differs from the nominal robot and world.
@@ -69,6 +78,10 @@ struct PerturbationSettings {
   /// The variation of one episode, every randomisation bound multiplied by `scale`. Always
   /// the same number of draws, whatever the settings.
   PhysicsVariation sample(std::mt19937_64& generator, double scale) const;
+
+  /// Adds the randomised slope, payload and motor weakness to `variation`, drawn from a
+  /// stream derived from its noise seed, every bound multiplied by `scale`.
+  void add_randomized_world(PhysicsVariation& variation, double scale) const;
 
   /// Declares the options (names as the fields, pushes as push_*) in `table`, and
   /// problem() as their rule.

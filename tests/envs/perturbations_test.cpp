@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -304,6 +305,57 @@ TEST(Perturbations, SlopesAndPayloadsAreFixedAndDrawNothing) {
   EXPECT_DOUBLE_EQ(unscaled.slope_roll, -5.0 * M_PI / 180.0);
   EXPECT_EQ(unscaled.payload_mass, 2.5);
   EXPECT_EQ(unscaled.payload_offset, Eigen::Vector3d(0.1, -0.2, 0.05));
+}
+
+TEST(Perturbations, RandomisedWorldsStayInTheirBoundsAndLeaveTheOtherDrawsAlone) {
+  PerturbationSettings plain;
+  plain.inertia_variation = 0.1;
+  PerturbationSettings worlds = plain;
+  worlds.slope_variation = 10.0;
+  worlds.payload_mass_variation = 1.6;
+  worlds.payload_offset_variation = 0.1;
+  worlds.payload_offset_z = 0.1;
+  worlds.torque_limit_variation = 0.25;
+  EXPECT_TRUE(worlds.any());
+  const double max_slope = 10.0 * M_PI / 180.0;
+  std::vector<double> slopes;
+  for (std::uint64_t seed = 0; seed < 50; ++seed) {
+    std::mt19937_64 first(seed);
+    std::mt19937_64 second(seed);
+    const PhysicsVariation a = plain.sample(first, 1.0);
+    const PhysicsVariation b = worlds.sample(second, 1.0);
+    // The other draws, and what the generator gives next, are those without the options.
+    EXPECT_EQ(a.mass_scale, b.mass_scale);
+    EXPECT_EQ(a.noise_seed, b.noise_seed);
+    EXPECT_EQ(first(), second());
+    EXPECT_LE(std::abs(b.slope_pitch), max_slope);
+    EXPECT_LE(std::abs(b.slope_roll), max_slope);
+    EXPECT_GE(b.payload_mass, 0.0);
+    EXPECT_LE(b.payload_mass, 1.6);
+    EXPECT_LE(std::abs(b.payload_offset.x()), 0.1);
+    EXPECT_LE(std::abs(b.payload_offset.y()), 0.1);
+    EXPECT_EQ(b.payload_offset.z(), 0.1);
+    EXPECT_GE(b.torque_limit_scale, 0.75);
+    EXPECT_LE(b.torque_limit_scale, 1.0);
+    EXPECT_NO_THROW(b.validate());
+    slopes.push_back(b.slope_pitch);
+  }
+  // Drawn, not fixed: the 50 episodes spread over most of the range.
+  const auto [low, high] = std::minmax_element(slopes.begin(), slopes.end());
+  EXPECT_LT(*low, -0.5 * max_slope);
+  EXPECT_GT(*high, 0.5 * max_slope);
+  // The curriculum at 0 leaves the fixed values alone; a fixed slope near the largest
+  // one plus its variation stays within the largest slope.
+  std::mt19937_64 generator(3);
+  const PhysicsVariation start = worlds.sample(generator, 0.0);
+  EXPECT_EQ(start.slope_pitch, 0.0);
+  EXPECT_EQ(start.payload_mass, 0.0);
+  EXPECT_EQ(start.torque_limit_scale, 1.0);
+  worlds.slope_pitch = kMaxSlopeDegrees;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    std::mt19937_64 draws(seed);
+    EXPECT_LE(worlds.sample(draws, 1.0).slope_pitch, kMaxSlopeDegrees * M_PI / 180.0);
+  }
 }
 
 TEST(Perturbations, OnlyPhysicsBackendsOfferPhysicalOnes) {
