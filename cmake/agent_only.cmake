@@ -52,6 +52,9 @@ target_include_directories(upkie_rl_agent_pi PUBLIC ${PROJECT_SOURCE_DIR}/src)
 target_compile_definitions(upkie_rl_agent_pi PUBLIC
   UPKIE_RL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   UPKIE_RL_MODEL_PATH="upkie.urdf")
+# The version and commit of --version (the top-level CMakeLists.txt's upkie_rl_build_info).
+target_sources(upkie_rl_agent_pi PRIVATE ${UPKIE_RL_BUILD_INFO})
+add_dependencies(upkie_rl_agent_pi upkie_rl_build_info)
 target_link_libraries(upkie_rl_agent_pi PUBLIC upkie_rl_pi_headers yaml-cpp urdfdom_model tinyxml
   console_bridge Threads::Threads rt)
 

@@ -6,11 +6,11 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <exception>
 #include <iostream>
 #include <string>
 
 #include "agent/policy_runner.hpp"
+#include "apps/cli_failure.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/option_checks.hpp"
 #include "spine/shared_memory.hpp"
@@ -78,15 +78,13 @@ const CLI::Validator kShmName(
     },
     "NAME");
 
-/// A refused option ends as one line on the standard error, before the spine is touched.
-std::string one_line_failure(const CLI::App*, const CLI::Error& error) {
-  return std::string("upkie-rl-agent: error: ") + error.what() + "\n";
-}
+constexpr const char* kTool = "upkie-rl-agent";
 
 int run(int argc, char** argv) {
   CLI::App app{
       "upkie-rl-agent: runs a policy of `upkie-rl train` on Upkie's spine (the robot's, or "
       "`upkie-rl spine`) under a safety supervisor. Ctrl-C or SIGTERM stops it cleanly."};
+  upkie_rl::apps::add_version_flag(app, kTool);
   upkie_rl::RunnerOptions options;
   app.add_option("--model", options.model, "Checkpoint (.ckpt) of `upkie-rl train`")
       ->required()
@@ -99,7 +97,8 @@ int run(int argc, char** argv) {
       ->capture_default_str()
       ->check(finite_range(0.0, 7 * 86400.0));
   app.add_option("--record", options.record,
-                 "Flight record: every cycle to a CSV file (`upkie-rl view --replay` reads it)")
+                 "Flight record: every cycle to a CSV file in the format of `upkie-rl rollout "
+                 "--record` (`upkie-rl view FILE` replays it)")
       ->check(kNonEmptyPath);
   app.add_flag("--dry-run", options.dry_run,
                "Send only stop commands; log the commands the policy would send");
@@ -118,11 +117,11 @@ int run(int argc, char** argv) {
                "space stop)")
       ->excludes(commands);
   add_limit_options(app, options.limits);
-  app.failure_message(one_line_failure);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error) == 0 ? 0 : 1;  // --help: 0; a refused option: 1, as documented
+    // A refused option ends before the spine is touched.
+    return upkie_rl::apps::parse_exit_status(app, error, kTool);
   }
   const upkie_rl::apps::InterruptHandlers handlers;
   const upkie_rl::RunSummary summary =
@@ -142,12 +141,5 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Every failure ends as one line and status 1; a run the supervisor stopped, status 2; a
   // stop cut short by a second interrupt, status 3.
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& error) {
-    std::cerr << "upkie-rl-agent: error: " << error.what() << std::endl;
-  } catch (...) {
-    std::cerr << "upkie-rl-agent: error: unknown exception" << std::endl;
-  }
-  return 1;
+  return upkie_rl::apps::run_reporting_errors(kTool, [&] { return run(argc, argv); });
 }

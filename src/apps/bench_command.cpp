@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/common_flags.hpp"
 #include "apps/controller_option.hpp"
 #include "apps/option_checks.hpp"
 #include "apps/policy_controller.hpp"
@@ -27,7 +28,7 @@ using Clock = std::chrono::steady_clock;
 struct BenchOptions {
   std::string env_id;
   std::size_t num_envs = 1;
-  std::size_t threads = 0;
+  int threads = 0;
   int steps = 1000;
   std::string controller = "zero";
   std::vector<std::string> env_options;
@@ -58,8 +59,8 @@ void run_bench(const BenchOptions& options) {
       resolve_controller_spec(options.controller, design_env_factory(options.env_id, env_options));
   if (spec != options.controller) std::cout << options.controller << ": " << spec << std::endl;
   std::unique_ptr<Controller> controller = make_builtin_controller(spec, *probe);
-  std::unique_ptr<VectorEnv> venv =
-      make_vector_env(options.env_id, env_options, options.num_envs, options.threads);
+  std::unique_ptr<VectorEnv> venv = make_vector_env(options.env_id, env_options, options.num_envs,
+                                                    static_cast<std::size_t>(options.threads));
   const std::size_t obs_size = venv->observation_space().size();
   const std::size_t action_size = venv->action_space().size();
   std::vector<float> actions(options.num_envs * action_size);
@@ -78,8 +79,7 @@ void run_bench(const BenchOptions& options) {
   const double elapsed = seconds_since(start);
   const double env_steps_per_s = options.steps * static_cast<double>(options.num_envs) / elapsed;
   const double physics_steps_per_s = env_steps_per_s * probe->physics_steps_per_step();
-  const std::size_t threads =
-      options.threads == 0 ? 0 : std::min(options.threads, options.num_envs);
+  const std::size_t threads = std::min(static_cast<std::size_t>(options.threads), options.num_envs);
 
   std::cout << options.env_id << ": " << options.num_envs << " envs, "
             << (threads == 0 ? std::string("synchronous") : std::to_string(threads) + " threads")
@@ -104,24 +104,19 @@ void add_bench_command(CLI::App& app) {
   auto options = std::make_shared<BenchOptions>();
   CLI::App* command =
       app.add_subcommand("bench", "Measure environment steps per second of a vector environment");
-  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
+  add_env_id_option(*command, options->env_id)->required();
   command->add_option("--num-envs", options->num_envs, "Number of environments")
       ->check(finite_range(1, 4096))
       ->capture_default_str();
-  command
-      ->add_option("--threads", options->threads,
-                   "0: synchronous; otherwise a thread pool of this many workers")
-      ->check(finite_range(0, 1024))
-      ->capture_default_str();
+  add_threads_option(*command, options->threads, "the environments (a pool of this many workers)");
   command->add_option("--steps", options->steps, "Vector steps to time")
       ->check(finite_range(1, 1'000'000'000))
       ->capture_default_str();
   command->add_option("--controller", options->controller, kControllerHelp)->capture_default_str();
-  command->add_option("--env-option", options->env_options,
-                      "Environment option key=value (repeatable)");
+  add_env_option_option(*command, options->env_options);
   command->add_flag("--raw", options->raw,
                     "Also time a bare BulletSimulation for the same number of steps");
-  command->add_flag("--json", options->json, "Print the figures as JSON on the last line");
+  add_json_flag(*command, options->json);
   command->callback([options] { run_bench(*options); });
 }
 

@@ -113,8 +113,7 @@ std::vector<std::vector<CellResult>> evaluate_all(
       }
     }
   };
-  const unsigned threads = plan.threads > 0 ? static_cast<unsigned>(plan.threads)
-                                            : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = static_cast<unsigned>(std::max(1, plan.threads));
   std::vector<std::thread> workers;
   for (unsigned t = 1; t < std::min<std::size_t>(threads, tasks); ++t) workers.emplace_back(work);
   work();

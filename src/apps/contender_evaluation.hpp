@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/common_flags.hpp"
 #include "envs/episode_runner.hpp"
 #include "envs/registry.hpp"
 
@@ -26,8 +27,8 @@ struct Contender {
 struct EpisodePlan {
   int episodes = 10;
   std::uint64_t seed = 0;  ///< Episode e uses seed + e.
-  int max_steps = 300;
-  int threads = 0;  ///< 0: one per core.
+  int max_steps = kDefaultMaxSteps;
+  int threads = 1;  ///< Threads that run the cells; 0 or 1: the calling thread alone.
   /// Falls in the first `early_fall_time` seconds are counted apart [s]; 0: none.
   double early_fall_time = 0.0;
 };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/common_flags.hpp"
 #include "apps/controller_choice.hpp"
 #include "apps/drive_loop.hpp"
 #include "apps/interrupt_handlers.hpp"
@@ -101,17 +102,9 @@ void run_drive(const DriveOptions& options) {
 }
 
 void add_drive_view_options(CLI::App& command, DriveOptions& options) {
-  command.add_option("--host", options.view.host, "Address the page is served on")
-      ->capture_default_str();
-  command.add_option("--port", options.view.port, "Port of the page; 0 picks a free one")
-      ->check(finite_range(0, 65535))
-      ->capture_default_str();
-  command.add_option("--wait", options.view.wait_clients, "Wait for this many browsers first")
-      ->check(finite_range(0, 1000))
-      ->capture_default_str();
-  command.add_option("--speed", options.view.speed, "Simulated seconds per wall-clock second")
-      ->check(finite_range(0.05, 10.0))
-      ->capture_default_str();
+  // The viewer's flags of every command; --host, --port, --wait and --speed, drive's first
+  // spellings, still work.
+  add_view_server_options(command, options.view, &kDrivenSpeed, true);
   command
       .add_option("--max-messages", options.rate.messages_per_second,
                   "Messages per second a page may send; more are refused")
@@ -126,7 +119,7 @@ void add_drive_command(CLI::App& app) {
   options->view.enabled = true;
   CLI::App* command = app.add_subcommand(
       "drive", "Drive a simulated robot from the browser (keyboard or gamepad), in real time");
-  command->add_option("--env", options->env_id, "A velocity environment (Upkie-*-Velocity)")
+  add_env_id_option(*command, options->env_id, "A velocity environment (Upkie-*-Velocity)")
       ->required();
   command
       ->add_option("--controller", options->controller,
@@ -134,8 +127,7 @@ void add_drive_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--model", options->model, "Trained model; replaces --controller")
       ->check(CLI::ExistingFile);
-  command->add_option("--env-option", options->env_options,
-                      "Environment option key=value (repeatable); no time limit by default");
+  add_env_option_option(*command, options->env_options, "; no time limit by default");
   command->add_option("--seed", options->loop.seed, "Seed of the first episode")
       ->check(kSeed)
       ->capture_default_str();

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/common_flags.hpp"
 #include "apps/contender_evaluation.hpp"
 #include "apps/controller_option.hpp"
 #include "apps/gnuplot_figure.hpp"
@@ -261,7 +262,7 @@ void add_evaluate_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "evaluate",
       "Success rate and mean return of controllers and policies over a grid of perturbations");
-  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)");
+  add_env_id_option(*command, options->env_id);
   command->add_option("--suite", options->suite,
                       "A suite of named worlds instead of --env and --grid: a file, or the name "
                       "of one in configs/suites/ (reality); docs/reality.md");
@@ -288,17 +289,12 @@ void add_evaluate_command(CLI::App& app) {
           ->check(kSeed)
           ->capture_default_str();
   CLI::Option* max_steps =
-      command
-          ->add_option("--max-steps", options->plan.max_steps,
-                       "Success: not terminated within this many steps (or the env's time limit)")
-          ->check(finite_range(1, 1'000'000'000))
-          ->capture_default_str();
-  command->add_option("--env-option", options->env_options,
-                      "Environment option key=value for every cell (repeatable)");
-  command->add_option("--threads", options->plan.threads, "Worker threads (0: one per core)")
-      ->check(finite_range(0, 1024))
-      ->capture_default_str();
-  command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
+      add_max_steps_option(*command, options->plan.max_steps,
+                           "success: not terminated by then (a suite's own figure unless given)");
+  add_env_option_option(*command, options->env_options, " for every cell");
+  options->plan.threads = one_thread_per_core();
+  add_threads_option(*command, options->plan.threads, "the cells (default: one per core)");
+  add_json_flag(*command, options->json);
   command->add_flag("--exact-start", options->exact_start, kExactStartHelp);
   command
       ->add_option("--output", options->output,

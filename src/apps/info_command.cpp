@@ -14,6 +14,7 @@
 #include "onnx/onnx_model_info.hpp"
 #include "policy/checkpoint_gate.hpp"
 #include "policy/checkpoint_header.hpp"
+#include "policy/model_format.hpp"
 #include "policy/model_header.hpp"
 #include "policy/provenance.hpp"
 #include "policy/space_json.hpp"
@@ -115,16 +116,16 @@ void print_torchscript(const std::filesystem::path& path) {
 }
 
 void print_info(const std::filesystem::path& path) {
+  const ModelFormat format = model_format(path);
+  // The converter's own `info` reads an SB3 zip (its pickles are not read here).
+  if (format == ModelFormat::kStableBaselines3) {
+    throw std::runtime_error(model_format_refusal(path));
+  }
   std::cout << "model: " << path.string() << "\n";
-  const std::string extension = path.extension().string();
-  if (extension == ".onnx") {
+  if (format == ModelFormat::kOnnx) {
     print_onnx(path);
-  } else if (extension == ".pt") {
+  } else if (format == ModelFormat::kTorchScript) {
     print_torchscript(path);
-  } else if (extension == ".zip") {
-    throw std::runtime_error(path.string() +
-                             ": a Stable-Baselines3 file; `python3 -m upkie_rl.sb3_convert info "
-                             "FILE` describes it, `... import` converts it");
   } else {
     print_checkpoint(path);
   }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "apps/common_flags.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/option_checks.hpp"
 #include "model/robot_model.hpp"
@@ -13,45 +14,50 @@
 
 namespace upkie_rl::apps {
 
+namespace {
+
+/// --view-<name>, and with `former_spelling`, its former spelling --<name>.
+template <typename Value>
+void add_view_flag(CLI::App& command, const std::string& name, Value& target,
+                   const std::string& help, const CLI::Validator& check, bool former_spelling) {
+  command.add_option("--view-" + name, target, help)->check(check)->capture_default_str();
+  if (former_spelling) {
+    add_former_spelling(command, "--" + name, "--view-" + name, target, check);
+  }
+}
+
+}  // namespace
+
 void add_view_address_options(CLI::App& command, std::string& host, int& port,
-                              bool hidden_aliases) {
-  command.add_option("--view-host", host, "Address the viewer listens on")->capture_default_str();
-  command.add_option("--view-port", port, "Port of the viewer; 0 picks a free one")
-      ->check(finite_range(0, 65535))
-      ->capture_default_str();
-  if (hidden_aliases) {
-    // Former spellings of `upkie-rl view`, accepted and left out of --help.
-    command.add_option("--host", host)->group("");
-    command.add_option("--port", port)->check(finite_range(0, 65535))->group("");
+                              bool former_spellings) {
+  add_view_flag(command, "host", host, "Address the viewer listens on", CLI::Validator(),
+                former_spellings);
+  add_view_flag(command, "port", port, "Port of the viewer; 0 picks a free one",
+                finite_range(0, 65535), former_spellings);
+}
+
+void add_view_server_options(CLI::App& command, LiveViewOptions& options,
+                             const ViewSpeedRange* speed, bool former_spellings) {
+  add_view_address_options(command, options.host, options.port, former_spellings);
+  add_view_flag(command, "wait", options.wait_clients,
+                "Wait for this many browsers before the first step", finite_range(0, 1000),
+                former_spellings);
+  add_view_flag(command, "max-connections", options.max_connections,
+                "Open connections the viewer accepts; more are closed at once",
+                finite_range(1, 65536), false);
+  add_view_flag(command, "idle-timeout", options.idle_timeout,
+                "Seconds a connection may stay silent before the viewer closes it",
+                finite_range(0.1, 3600.0), false);
+  if (speed != nullptr) {
+    add_view_flag(command, "speed", options.speed, speed->help,
+                  finite_range(speed->min, speed->max), former_spellings);
   }
 }
 
 void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pacing) {
   command.add_flag("--view", options.enabled,
                    "Serve a live 3-D view in the browser (the URL is printed)");
-  add_view_address_options(command, options.host, options.port, false);
-  command
-      .add_option("--view-wait", options.wait_clients,
-                  "Wait for this many browsers before the first step")
-      ->check(finite_range(0, 1000))
-      ->capture_default_str();
-  command
-      .add_option("--view-max-connections", options.max_connections,
-                  "Open connections the viewer accepts; more are closed at once")
-      ->check(finite_range(1, 65536))
-      ->capture_default_str();
-  command
-      .add_option("--view-idle-timeout", options.idle_timeout,
-                  "Seconds a connection may stay silent before the viewer closes it")
-      ->check(finite_range(0.1, 3600.0))
-      ->capture_default_str();
-  if (pacing) {
-    command
-        .add_option("--view-speed", options.speed,
-                    "Simulated seconds per second while viewing; 0: as fast as possible")
-        ->check(finite_range(0.0, 1000.0))
-        ->capture_default_str();
-  }
+  add_view_server_options(command, options, pacing ? &kWatchedSpeed : nullptr, false);
 }
 
 namespace {

@@ -35,12 +35,31 @@ struct LiveViewOptions {
   double idle_timeout = 10.0;
 };
 
-/// Adds --view-host and --view-port, the viewer's address in every command; with
-/// `hidden_aliases`, also --host and --port, accepted but not listed in --help.
-void add_view_address_options(CLI::App& command, std::string& host, int& port, bool hidden_aliases);
+/// The range of --view-speed and what it means for a command.
+struct ViewSpeedRange {
+  double min;
+  double max;
+  const char* help;
+};
+/// A run watched: any pace, as fast as it goes included.
+inline constexpr ViewSpeedRange kWatchedSpeed{
+    0.0, 1000.0, "Simulated seconds per wall-clock second while viewing; 0: as fast as possible"};
+/// A run a person drives: real time or near it.
+inline constexpr ViewSpeedRange kDrivenSpeed{0.05, 10.0, "Simulated seconds per wall-clock second"};
 
-/// Adds --view, --view-host, --view-port, --view-wait, --view-max-connections,
-/// --view-idle-timeout and (when `pacing`) --view-speed.
+/// Adds --view-host and --view-port, the viewer's address in every command; with
+/// `former_spellings`, also --host and --port (add_former_spelling), as `view` and `drive`
+/// were first spelt.
+void add_view_address_options(CLI::App& command, std::string& host, int& port,
+                              bool former_spellings);
+
+/// Adds the viewer's address, --view-wait, --view-max-connections, --view-idle-timeout and
+/// (with a `speed` range) --view-speed; with `former_spellings`, also --host, --port, --wait
+/// and --speed, as `drive` was first spelt.
+void add_view_server_options(CLI::App& command, LiveViewOptions& options,
+                             const ViewSpeedRange* speed, bool former_spellings);
+
+/// Adds --view, then add_view_server_options (with kWatchedSpeed when `pacing`).
 void add_live_view_options(CLI::App& command, LiveViewOptions& options, bool pacing);
 
 /// A live viewer of one robot.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/common_flags.hpp"
 #include "apps/controller_choice.hpp"
 #include "apps/controller_option.hpp"
 #include "apps/gnuplot_figure.hpp"
@@ -39,7 +40,7 @@ struct RolloutOptions {
   std::string model;  // a trained policy (`upkie-rl train`), replaces --controller
   int episodes = 1;
   std::uint64_t seed = 0;
-  int max_steps = 1000;
+  int max_steps = kDefaultMaxSteps;
   std::vector<std::string> env_options;
   std::string record_path;
   bool json = false;
@@ -127,15 +128,17 @@ struct Rollout {
 void make_env_and_controller(const RolloutOptions& options, Rollout& rollout) {
   rollout.env_options =
       run_env_options(options.env_id, options.model, parse_env_options(options.env_options));
+  EnvOptions start;
   if (!options.exact_start) {
-    const EnvOptions start = evaluation_start_options(options.env_id, rollout.env_options);
-    if (!start.empty()) {
-      std::cout << "random initial state: " << format_env_options(start)
-                << " (--exact-start: the environment's own)" << std::endl;
-    }
+    start = evaluation_start_options(options.env_id, rollout.env_options);
     rollout.env_options.insert(rollout.env_options.end(), start.begin(), start.end());
   }
   rollout.env = make_env(options.env_id, rollout.env_options);
+  // Printed once the options are known good: a refused option is the only line.
+  if (!start.empty()) {
+    std::cout << "random initial state: " << format_env_options(start)
+              << " (--exact-start: the environment's own)" << std::endl;
+  }
   rollout.controller = make_run_controller(options.env_id, options.controller, options.model,
                                            rollout.env_options, *rollout.env);
   rollout.velocity = find_velocity_env(*rollout.env);
@@ -313,7 +316,7 @@ void add_rollout_command(CLI::App& app) {
   auto options = std::make_shared<RolloutOptions>();
   CLI::App* command = app.add_subcommand(
       "rollout", "Run episodes of an environment with a controller and report their returns");
-  command->add_option("--env", options->env_id, "Environment id (see `upkie-rl envs`)")->required();
+  add_env_id_option(*command, options->env_id)->required();
   command->add_option("--controller", options->controller, kControllerHelp)->capture_default_str();
   command
       ->add_option("--model", options->model,
@@ -326,13 +329,8 @@ void add_rollout_command(CLI::App& app) {
   command->add_option("--seed", options->seed, "Seed of the first episode; episode e uses seed + e")
       ->check(kSeed)
       ->capture_default_str();
-  command
-      ->add_option("--max-steps", options->max_steps,
-                   "Also end an episode after this many steps (the env's own limit applies)")
-      ->check(finite_range(1, 1'000'000'000))
-      ->capture_default_str();
-  command->add_option("--env-option", options->env_options,
-                      "Environment option key=value (repeatable)");
+  add_max_steps_option(*command, options->max_steps, "its line then ends with \"(max-steps)\"");
+  add_env_option_option(*command, options->env_options);
   command->add_option("--record", options->record_path, "Write one CSV row per step to this file")
       ->check(kNonEmptyPath);
   add_video_options(*command, options->video);
@@ -347,7 +345,7 @@ void add_rollout_command(CLI::App& app) {
                    "Velocity tasks: draw commanded against measured velocities of episode 0 "
                    "in PREFIX_forward_velocity.png and PREFIX_yaw_rate.png")
       ->check(kNonEmptyPath);
-  command->add_flag("--json", options->json, "Print the summary as JSON on the last line");
+  add_json_flag(*command, options->json);
   command->add_flag("--exact-start", options->exact_start, kExactStartHelp);
   command->add_flag("--info", options->info,
                     "Print each episode's last info (the full observation dictionary)");

@@ -22,7 +22,7 @@ struct SuiteRequest {
   std::vector<std::string> controllers;  ///< [label=]spec
   EnvOptions base;                       ///< --env-option, before each world's options
   bool exact_start = false;              ///< Keep the environments' own initial states.
-  int threads = 0;                       ///< 0: one per core.
+  int threads = 1;                       ///< Threads; 0 or 1: the calling thread alone.
   /// Overrides of the suite's figures when positive (a quick run of a shipped suite).
   int episodes = 0;
   int max_steps = 0;

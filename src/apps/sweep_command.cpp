@@ -19,6 +19,7 @@
 
 #include "apps/child_process.hpp"
 #include "apps/commands.hpp"
+#include "apps/common_flags.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/option_checks.hpp"
 #include "apps/policy_controller.hpp"
@@ -345,7 +346,7 @@ void add_sweep_command(CLI::App& app) {
       ->add_option("--output", options->out,
                    "Directory of the new sweep (default: runs/sweep-<config>-<date>-<time>)")
       ->check(kNonEmptyPath);
-  command->add_option("--out", options->out)->check(kNonEmptyPath)->group("");  // former spelling
+  add_former_spelling(*command, "--out", "--output", options->out, kNonEmptyPath);
   command
       ->add_option("--jobs", options->jobs,
                    "Runs at once here (default: cores / env.threads, at least 1)")

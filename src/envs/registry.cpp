@@ -12,6 +12,7 @@
 #include "envs/shared_options.hpp"
 #include "envs/time_limit.hpp"
 #include "envs/velocity_env.hpp"
+#include "model/closest_name.hpp"
 #include "model/number_text.hpp"
 
 namespace upkie_rl {
@@ -144,8 +145,9 @@ EnvId parse_env_id(const std::string& id) {
       }
     }
   }
-  throw std::invalid_argument("environment id \"" + id +
-                              "\" not found; registered ids: " + registered_list() +
+  throw std::invalid_argument("environment id \"" + id + "\" not found" +
+                              did_you_mean(id, registered_env_ids()) +
+                              "; registered ids: " + registered_list() +
                               " (Upkie-PyBullet-* is an alias of Upkie-Bullet-*)");
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/closest_name.hpp"
 #include "model/integer_text.hpp"
 #include "model/number_text.hpp"
 #include "model/setting_bounds.hpp"
@@ -97,6 +98,12 @@ std::string expected(const OptionInfo& info) {
   return "a value";
 }
 
+/// The refusal of an unknown option `name`: the nearest of `names` suggested, then all.
+std::string unknown_option(const std::string& name, const std::vector<std::string>& names) {
+  return "unknown option \"" + name + "\"" + did_you_mean(name, names) +
+         "; valid options: " + join(names, ", ");
+}
+
 }  // namespace
 
 void OptionTable::add(Entry entry) {
@@ -182,8 +189,7 @@ const OptionTable::Entry* OptionTable::find(const std::string& name) const {
 const OptionTable::Entry& OptionTable::entry(const std::string& name) const {
   const Entry* found = find(name);
   if (found == nullptr) {
-    throw std::invalid_argument("unknown option \"" + name +
-                                "\"; valid options: " + join(names(), ", "));
+    throw std::invalid_argument(unknown_option(name, names()));
   }
   return *found;
 }
@@ -217,8 +223,7 @@ void OptionTable::check_rules(const std::string& context) const {
 void OptionTable::apply(const OptionValues& options, const std::string& context) const {
   for (const auto& [key, value] : options) {
     if (find(key) == nullptr) {
-      throw std::invalid_argument(context + ": unknown option \"" + key +
-                                  "\"; valid options: " + join(names(), ", "));
+      throw std::invalid_argument(context + ": " + unknown_option(key, names()));
     }
     const std::string where = context + ": option " + key;
     read(key, value, where);

@@ -9,6 +9,7 @@
 #include "model/bounded_json.hpp"
 #include "model/input_file.hpp"
 #include "policy/crc32c.hpp"
+#include "policy/model_format.hpp"
 
 namespace upkie_rl {
 
@@ -75,6 +76,12 @@ void write_checkpoint_file(const CheckpointFile& file, const std::filesystem::pa
 CheckpointFile read_checkpoint_file(const std::filesystem::path& path) {
   const std::string bytes =
       read_input_file<CheckpointError>(path, "checkpoint", kMaxCheckpointBytes);
+  // An export or an SB3 zip gets what to run instead rather than "bad magic" (a checkpoint
+  // under any name still loads).
+  const bool has_magic =
+      bytes.size() >= sizeof(kMagic) && std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) == 0;
+  const std::string refusal = has_magic ? std::string() : model_format_refusal(path);
+  if (!refusal.empty()) throw CheckpointError(refusal);
   return parse_checkpoint_bytes(bytes, "checkpoint " + path.string());
 }
 

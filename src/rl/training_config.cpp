@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "model/closest_name.hpp"
 #include "model/input_file.hpp"
 #include "model/setting_bounds.hpp"
 #include "model/trim.hpp"
@@ -106,7 +107,10 @@ void set_key(TrainingConfig& config, const OptionTable& table, const std::string
                    std::string(trim(value)));
     return;
   }
-  if (!table.contains(key)) throw std::invalid_argument("unknown config key '" + key + "'");
+  if (!table.contains(key)) {
+    throw std::invalid_argument("unknown config key '" + key + "'" +
+                                did_you_mean(key, table.names()));
+  }
   table.read(key, value, config_key(key));
 }
 
@@ -147,9 +151,10 @@ void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& con
         set_env_option(config, option_name, node_text(option.second, key + "." + option_name));
       }
     } else if (value.IsMap()) {
-      if (prefix.empty() && name != "env" && name != "normalize" && name != "policy" &&
-          name != "ppo") {
-        throw std::invalid_argument("unknown config section '" + key + "'");
+      static const std::vector<std::string> sections = {"env", "normalize", "policy", "ppo"};
+      if (prefix.empty() && std::find(sections.begin(), sections.end(), name) == sections.end()) {
+        throw std::invalid_argument("unknown config section '" + key + "'" +
+                                    did_you_mean(key, sections));
       }
       walk(value, key, config, table);
     } else {

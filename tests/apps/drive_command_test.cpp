@@ -29,7 +29,7 @@ using testing::temp_path;
 TEST(DriveCommand, ARunWithoutADriverStandsStillAndRecordsCommandAndVelocity) {
   const auto record = temp_path("drive.csv");
   const auto result = run_cli(
-      "drive --env Upkie-MuJoCo-Velocity --controller lqr --port 0 --speed 10 "
+      "drive --env Upkie-MuJoCo-Velocity --controller lqr --view-port 0 --view-speed 10 "
       "--duration 1 --record " +
       record.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
@@ -73,7 +73,7 @@ TEST(DriveCommand, ARunWithoutADriverStandsStillAndRecordsCommandAndVelocity) {
 }
 
 TEST(DriveCommand, RefusesAnEnvironmentThatIsNotAVelocityTask) {
-  const auto result = run_cli("drive --env Upkie-MuJoCo-Pendulum --port 0 --duration 1");
+  const auto result = run_cli("drive --env Upkie-MuJoCo-Pendulum --view-port 0 --duration 1");
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("drive needs a velocity task (Upkie-*-Velocity)"), std::string::npos)
       << result.output;

@@ -65,8 +65,10 @@ TEST(EvaluateCommand, ResultsDoNotDependOnTheThreadCount) {
       "--grid push=0:40:20,mass=0.8:1.2:0.4 --episodes 2 --json --threads ";
   const auto one = run_cli(command + "1");
   const auto two = run_cli(command + "2");
+  const auto none = run_cli(command + "0");  // the calling thread alone, as in bench
   ASSERT_EQ(one.exit_code, 0) << one.output;
   EXPECT_EQ(last_line(one.output), last_line(two.output));
+  EXPECT_EQ(last_line(one.output), last_line(none.output));
   EXPECT_EQ(last_line(one.output).front(), '{');
 }
 

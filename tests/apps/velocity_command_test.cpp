@@ -162,7 +162,7 @@ TEST(VelocityCommand, ShortTrainingImprovesTheReturnAndLogsEachTerm) {
   }
   ASSERT_FALSE(model.empty()) << "no final model in " << run_dir;
   const auto drive = run_cli("drive --env Upkie-MuJoCo-Velocity --model " + model.string() +
-                             " --port 0 --speed 10 --duration 2");
+                             " --view-port 0 --view-speed 10 --duration 2");
   ASSERT_EQ(drive.exit_code, 0) << drive.output;
   EXPECT_NE(drive.output.find("drive: 100 steps (2 s simulated), 1 episode(s), 0 fall(s)"),
             std::string::npos)

@@ -20,7 +20,7 @@ async function startDrive() {
   runs += 1;
   const record = join(work, `drive${runs}.csv`);
   const served = await serve(['drive', '--env', 'Upkie-MuJoCo-Velocity', '--controller', 'lqr',
-    '--port', '0', '--record', record]);
+    '--view-port', '0', '--record', record]);
   return { ...served, record };
 }
 
