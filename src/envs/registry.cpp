@@ -94,16 +94,19 @@ void declare_backend_options(Backend backend, EnvSettings& settings, OptionTable
 }
 
 // Whether the initial states of `settings` can put a tire on a bump: the tire's reach from
-// the base's x, which init_rand_x moves, must end before the first bump's edge.
+// the base's x, which init_rand_x moves, must end before the first bump's foot (its ramp's,
+// if it has one).
 std::string bump_start_problem(const EnvSettings& settings) {
   const FloorBumps& bumps = settings.bumps;
   const double tire_radius = RobotModel::default_model()->wheel_radius();
-  if (!bumps.enabled() || settings.init_rand.x + tire_radius + bumps.width / 2.0 < bumps.spacing) {
+  const double half_footprint = bumps.footprint() / 2.0;
+  if (!bumps.enabled() || settings.init_rand.x + tire_radius + half_footprint < bumps.spacing) {
     return "";
   }
   return "init_rand_x (" + shortest_text(settings.init_rand.x) +
          " m) can start the robot on a bump: init_rand_x + the tire radius (" +
-         shortest_text(tire_radius) + " m) + bump_width / 2 must be below bump_spacing (" +
+         shortest_text(tire_radius) + " m) + bump_width / 2 + bump_ramp x bump_height (" +
+         shortest_text(half_footprint) + " m) must be below bump_spacing (" +
          shortest_text(bumps.spacing) + " m)";
 }
 

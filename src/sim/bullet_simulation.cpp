@@ -66,8 +66,8 @@ struct BulletWorld {
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> joint_limits;
   std::unique_ptr<btDefaultMotionState> ground_motion_state;
   std::unique_ptr<btRigidBody> ground;
-  /// The bumps across the floor: one static body, a compound of a box per bump (null
-  /// without bumps).
+  /// The bumps across the floor: one static body, a compound of a box or convex hull per
+  /// bump (null without bumps).
   std::unique_ptr<btDefaultMotionState> bumps_motion_state;
   std::unique_ptr<btRigidBody> bumps;
   std::array<int, kNumServos> servo_link{};  ///< Multibody link index of each servo.
@@ -129,19 +129,41 @@ void add_ground(BulletWorld& bullet, double friction_scale) {
   bullet.shapes.push_back(std::move(box));
 }
 
+/// The shape of every bump of `bumps`, centred on x = 0 at the floor's height: a box
+/// reaching kBumpFooting into the floor (square edges), or the convex hull of the ramped
+/// section swept along y.
+std::unique_ptr<btCollisionShape> make_bump_shape(const FloorBumps& bumps) {
+  if (!bumps.ramped()) {
+    const double half_height = (bumps.height + kBumpFooting) / 2.0;
+    auto box =
+        std::make_unique<btBoxShape>(btVector3(bumps.width / 2.0, kBumpLength / 2.0, half_height));
+    box->setMargin(kCollisionMargin);
+    return box;
+  }
+  // A box keeps its margin inside its sides, a hull adds it around its points: the section
+  // moves in by the margin so that the touched surface is the trapezoid's.
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (const auto& [x, z] : bumps.ramped_section(kCollisionMargin)) {
+    hull->addPoint(btVector3(x, kBumpLength / 2.0, z), false);
+    hull->addPoint(btVector3(x, -kBumpLength / 2.0, z), false);
+  }
+  hull->setMargin(kCollisionMargin);
+  hull->recalcLocalAabb();
+  return hull;
+}
+
 /// The bumps of `bumps` as one static body with the ground's friction (Bullet's compound
-/// keeps its boxes in a tree, so a tire meets only the nearest ones).
+/// keeps its children in a tree, so a tire meets only the nearest ones).
 void add_bumps(BulletWorld& bullet, const FloorBumps& bumps, double friction_scale) {
-  const double half_height = (bumps.height + kBumpFooting) / 2.0;
-  auto box =
-      std::make_unique<btBoxShape>(btVector3(bumps.width / 2.0, kBumpLength / 2.0, half_height));
-  box->setMargin(kCollisionMargin);
+  std::unique_ptr<btCollisionShape> bump = make_bump_shape(bumps);
+  // The box is centred on its middle, the hull's points are around the floor's height.
+  const double bump_z = bumps.ramped() ? 0.0 : bumps.height - (bumps.height + kBumpFooting) / 2.0;
   auto compound = std::make_unique<btCompoundShape>();
   btTransform pose;
   pose.setIdentity();
   for (const double x : bumps.centres()) {
-    pose.setOrigin(btVector3(x, 0.0, bumps.height - half_height));
-    compound->addChildShape(pose, box.get());
+    pose.setOrigin(btVector3(x, 0.0, bump_z));
+    compound->addChildShape(pose, bump.get());
   }
   pose.setIdentity();
   bullet.bumps_motion_state = std::make_unique<btDefaultMotionState>(pose);
@@ -152,7 +174,7 @@ void add_bumps(BulletWorld& bullet, const FloorBumps& bumps, double friction_sca
   bullet.bumps = std::make_unique<btRigidBody>(info);
   bullet.world.addRigidBody(bullet.bumps.get(), btBroadphaseProxy::StaticFilter,
                             btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
-  bullet.shapes.push_back(std::move(box));
+  bullet.shapes.push_back(std::move(bump));
   bullet.shapes.push_back(std::move(compound));
 }
 

@@ -145,29 +145,57 @@ void add_floor(mjsBody& world) {
 }
 
 std::string bump_name(std::size_t bump) { return "bump_" + std::to_string(bump); }
+constexpr const char* kBumpMeshName = "bump";
 
-/// A static box per bump of `bumps`, touched by the robot as the floor is (the tires'
+/// The mesh every ramped bump's geom shows: the section of `bumps` swept along y, centred on
+/// x = 0 with the floor at z = 0 (MuJoCo collides with its convex hull, which it is).
+void add_bump_mesh(mjSpec& spec, const FloorBumps& bumps) {
+  mjsMesh* mesh = mjs_addMesh(&spec, nullptr);
+  mjs_setName(mesh->element, kBumpMeshName);
+  std::vector<float> vertices;
+  for (const auto& [x, z] : bumps.ramped_section()) {
+    for (const double y : {kBumpLength / 2.0, -kBumpLength / 2.0}) {
+      vertices.insert(vertices.end(),
+                      {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+    }
+  }
+  mjs_setFloat(mesh->uservert, vertices.data(), static_cast<int>(vertices.size()));
+}
+
+/// Makes `geom` the bump of `bumps` centred on x = `centre`: a box reaching kBumpFooting into
+/// the floor (square edges), or the ramped mesh.
+void set_bump_shape(mjsGeom& geom, const FloorBumps& bumps, double centre) {
+  geom.pos[0] = centre;
+  if (bumps.ramped()) {
+    geom.type = mjGEOM_MESH;
+    mjs_setString(geom.meshname, kBumpMeshName);
+    return;
+  }
+  geom.type = mjGEOM_BOX;
+  geom.size[0] = bumps.width / 2.0;
+  geom.size[1] = kBumpLength / 2.0;
+  geom.size[2] = (bumps.height + kBumpFooting) / 2.0;
+  geom.pos[2] = (bumps.height - kBumpFooting) / 2.0;
+}
+
+/// A static geom per bump of `bumps`, touched by the robot as the floor is (the tires'
 /// contact priority makes their friction and softness the contact's, as on the floor).
-void add_bumps(mjsBody& world, const FloorBumps& bumps) {
+void add_bumps(mjSpec& spec, mjsBody& world, const FloorBumps& bumps) {
   const std::vector<double> centres = bumps.centres();
+  if (bumps.ramped() && !centres.empty()) add_bump_mesh(spec, bumps);
   for (std::size_t bump = 0; bump < centres.size(); ++bump) {
-    mjsGeom* box = mjs_addGeom(&world, nullptr);
-    mjs_setName(box->element, bump_name(bump).c_str());
-    box->type = mjGEOM_BOX;
-    box->size[0] = bumps.width / 2.0;
-    box->size[1] = kBumpLength / 2.0;
-    box->size[2] = (bumps.height + kBumpFooting) / 2.0;
-    box->pos[0] = centres[bump];
-    box->pos[2] = (bumps.height - kBumpFooting) / 2.0;
-    box->group = 2;  // drawn with the floor
-    box->contype = 0;
-    box->conaffinity = 1;
-    box->condim = 3;
-    box->friction[0] = kFloorFriction;
-    box->friction[1] = 0.0;
-    box->friction[2] = 0.0;
-    box->rgba[0] = box->rgba[1] = box->rgba[2] = 0.45f;  // darker than the floor's grid
-    box->rgba[3] = 1.0f;
+    mjsGeom* geom = mjs_addGeom(&world, nullptr);
+    mjs_setName(geom->element, bump_name(bump).c_str());
+    set_bump_shape(*geom, bumps, centres[bump]);
+    geom->group = 2;  // drawn with the floor
+    geom->contype = 0;
+    geom->conaffinity = 1;
+    geom->condim = 3;
+    geom->friction[0] = kFloorFriction;
+    geom->friction[1] = 0.0;
+    geom->friction[2] = 0.0;
+    geom->rgba[0] = geom->rgba[1] = geom->rgba[2] = 0.45f;  // darker than the floor's grid
+    geom->rgba[3] = 1.0f;
   }
 }
 
@@ -297,7 +325,7 @@ std::shared_ptr<const MujocoModel> build_mujoco_model(const RobotModel& robot,
   add_scene(*spec, *world);
   if (config.floor) {
     add_floor(*world);
-    add_bumps(*world, config.bumps);
+    add_bumps(*spec, *world, config.bumps);
   }
   add_bodies(*world, tree, robot, config);
 
