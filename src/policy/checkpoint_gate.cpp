@@ -15,8 +15,8 @@
 #include "policy/parameter_layout.hpp"
 #include "policy/space_json.hpp"
 #include "vec/normalization_state.hpp"
+#include "vec/normalize_config.hpp"
 #include "vec/running_mean_std.hpp"
-#include "vec/vec_normalize.hpp"
 
 namespace upkie_rl {
 

@@ -12,10 +12,10 @@
 /// `compute_ppo_loss(...).total.backward()` in the training loop. compute_ppo_loss stays
 /// the reference; tests/rl/ppo_gradient_test.cpp compares the two.
 ///
-/// The matrix products use Eigen, or, on CPUs with AVX2 and FMA, a small register-blocked
-/// kernel compiled for them and chosen at run time: the project is built for baseline
-/// x86-64, where Eigen only has SSE2 and spends more instructions on these products than
-/// libtorch's AVX2 sgemm did (about 1.4 per multiply-add against 0.25 for the kernel).
+/// The matrix products use Eigen, or, on CPUs with AVX2 and FMA, the register-blocked
+/// kernels of rl/matrix_kernels_avx2.hpp, chosen at run time: the project is built for
+/// baseline x86-64, where Eigen only has SSE2 and spends more instructions on these products
+/// than libtorch's AVX2 sgemm did (about 1.4 per multiply-add against 0.25 for the kernel).
 ///
 /// It covers the relu and tanh activations only and refuses the others, which train through
 /// rl/autograd_ppo_gradient.hpp (`ppo.gradient` in docs/training.md).

@@ -16,8 +16,6 @@
 #include "rl/config_file_limit.hpp"
 #include "rl/hand_gradient_activations.hpp"
 #include "vec/make_vector_env.hpp"
-#include "vec/normalization_state.hpp"
-#include "vec/vec_normalize.hpp"
 
 namespace upkie_rl {
 
@@ -181,7 +179,7 @@ std::int64_t TrainingConfig::steps_per_env() const {
 
 void TrainingConfig::declare_options(OptionTable& table) {
   declare_run_options(table);
-  normalize.declare_options(table);
+  normalize.declare_options(table, "normalize.");
   policy.declare_options(table);
   ppo.declare_options(table, num_envs, policy.activation);
   table.add_integer<std::uint64_t>("seed", &seed, 0, std::numeric_limits<std::uint64_t>::max(),
@@ -203,21 +201,6 @@ void TrainingConfig::declare_run_options(OptionTable& table) {
                                   "worker threads of the vector environment, 0 for none");
   table.add_integer<std::int64_t>("env.curriculum_steps", &curriculum_steps, 0, kMaxTimesteps,
                                   "timesteps over which randomisation ramps up, 0 for none");
-}
-
-void NormalizationConfig::declare_options(OptionTable& table) {
-  // The keys of the normalisation state's config (an SB3 import's configuration copies that
-  // entry into its normalize section).
-  namespace key = normalization_state;
-  const auto name = [](const char* setting) { return std::string("normalize.") + setting; };
-  table.add_boolean(name(key::kObservations), &observations, "normalise observations");
-  table.add_boolean(name(key::kRewards), &rewards, "normalise rewards by the return's std");
-  table.add_real(name(key::kClipObservations), &clip_observations, 0, kMaxNormalizationClip,
-                 "clip normalised observations to +-it", true);
-  table.add_real(name(key::kClipRewards), &clip_rewards, 0, kMaxNormalizationClip,
-                 "clip normalised rewards to +-it", true);
-  table.add_real(name(key::kGamma), &gamma, 0, 1, "discount of the return", true);
-  table.add_real(name(key::kEpsilon), &epsilon, 0, 1, "added to variances", true);
 }
 
 void PolicyConfig::declare_options(OptionTable& table) {

@@ -10,6 +10,7 @@
 
 #include "model/option_table.hpp"
 #include "policy/activation.hpp"
+#include "vec/normalize_config.hpp"
 
 namespace upkie_rl {
 
@@ -19,7 +20,7 @@ inline constexpr std::int64_t kMaxTimesteps = 1'000'000'000'000'000;
 /// Largest ppo.n_steps (the rollout buffer is also checked against the machine's memory).
 inline constexpr std::int64_t kMaxRolloutSteps = std::int64_t{1} << 30;
 /// Largest |ppo.clip_range_vf| and ppo.max_grad_norm: a finite float32 far beyond any
-/// useful value (normalize.clip_* use vec's kMaxNormalizationClip).
+/// useful value (normalize.clip_* use vec/normalize_config.hpp's kMaxNormalizationClip).
 inline constexpr double kMaxClip = 1e6;
 /// Most intra-op threads of libtorch (torch_threads).
 inline constexpr std::int64_t kMaxTorchThreads = 256;
@@ -73,19 +74,6 @@ struct PpoConfig {
                        const Activation& activation);
 };
 
-/// Observation and reward normalisation (SB3 VecNormalize).
-struct NormalizationConfig {
-  bool observations = true;
-  bool rewards = true;
-  double clip_observations = 10.0;
-  double clip_rewards = 10.0;
-  double gamma = 0.99;
-  double epsilon = 1e-8;
-
-  /// Declares the keys normalize.*.
-  void declare_options(OptionTable& table);
-};
-
 /// Everything a training run needs.
 struct TrainingConfig {
   std::string env_id = "Upkie-Bullet-Pendulum";
@@ -98,7 +86,8 @@ struct TrainingConfig {
   /// perturbations, noise, lag, pushes) ramps linearly from 0 to its value over this many
   /// timesteps (0: full from the start). Env::set_randomization_scale.
   std::int64_t curriculum_steps = 0;
-  NormalizationConfig normalize;
+  /// Observation and reward normalisation (SB3 VecNormalize), keys normalize.*.
+  NormalizeConfig normalize;
   PolicyConfig policy;
   PpoConfig ppo;
   std::uint64_t seed = 0;

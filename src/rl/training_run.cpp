@@ -39,17 +39,6 @@ double wall_time() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-NormalizeConfig normalize_config(const NormalizationConfig& config) {
-  NormalizeConfig out;
-  out.observations = config.observations;
-  out.rewards = config.rewards;
-  out.clip_observations = config.clip_observations;
-  out.clip_rewards = config.clip_rewards;
-  out.gamma = config.gamma;
-  out.epsilon = config.epsilon;
-  return out;
-}
-
 /// Whether `run_dir` holds a checkpoint or a final model (a run worth keeping).
 bool holds_checkpoints(const std::filesystem::path& run_dir) {
   std::error_code error;
@@ -249,8 +238,7 @@ void TrainingRun::make_learner() {
   auto inner = make_vector_env(config_.env_id, config_.env_options,
                                static_cast<std::size_t>(config_.num_envs),
                                static_cast<std::size_t>(config_.env_threads));
-  auto normalize =
-      std::make_unique<VecNormalize>(std::move(inner), normalize_config(config_.normalize));
+  auto normalize = std::make_unique<VecNormalize>(std::move(inner), config_.normalize);
   normalize_ = normalize.get();
   env_ = std::move(normalize);
   ppo_ = std::make_unique<Ppo>(*env_, config_);

@@ -26,7 +26,7 @@ void spin_then_wait(const std::atomic<T>& value, Predicate done) {
 
 ThreadPoolVectorEnv::ThreadPoolVectorEnv(std::vector<std::unique_ptr<Env>> envs,
                                          std::size_t threads, AutoresetMode autoreset_mode)
-    : batch_(std::move(envs), autoreset_mode), num_threads_(threads) {
+    : EnvBatchVectorEnv(std::move(envs), autoreset_mode), num_threads_(threads) {
   if (threads == 0 || threads > batch_.size()) {
     throw std::invalid_argument("thread pool vector env: threads must be in [1, " +
                                 std::to_string(batch_.size()) + "], got " +

@@ -7,8 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "vec/env_batch.hpp"
-#include "vec/vector_env.hpp"
+#include "vec/env_batch_vector_env.hpp"
 
 namespace upkie_rl {
 
@@ -19,7 +18,7 @@ namespace upkie_rl {
 /// results are bit-identical to it for the same seeds whichever thread steps it. Every
 /// environment is stepped even when another throws; the exception of the lowest
 /// environment index is then re-thrown by step()/reset().
-class ThreadPoolVectorEnv final : public VectorEnv {
+class ThreadPoolVectorEnv final : public EnvBatchVectorEnv {
  public:
   /// @param threads Number of workers including the caller, in [1, envs.size()].
   /// @throws std::invalid_argument on a bad thread count.
@@ -29,21 +28,10 @@ class ThreadPoolVectorEnv final : public VectorEnv {
   ThreadPoolVectorEnv(const ThreadPoolVectorEnv&) = delete;
   ThreadPoolVectorEnv& operator=(const ThreadPoolVectorEnv&) = delete;
 
-  std::size_t num_envs() const override { return batch_.size(); }
-  const BoxSpace& observation_space() const override { return batch_.observation_space(); }
-  const BoxSpace& action_space() const override { return batch_.action_space(); }
   std::span<const float> reset(std::optional<std::uint64_t> seed) override;
   const VectorStep& step(std::span<const float> actions) override;
 
   std::size_t num_threads() const { return num_threads_; }
-  const Env& env(std::size_t i) const { return batch_.env(i); }
-  void set_randomization_scale(double scale) override { batch_.set_randomization_scale(scale); }
-  std::span<const std::string_view> reward_term_names() const override {
-    return batch_.env(0).reward_term_names();
-  }
-  const Observation* full_observation(std::size_t i) const override {
-    return batch_.env(i).full_observation();
-  }
 
  private:
   enum class Task { kReset, kStep, kStop };
@@ -52,7 +40,6 @@ class ThreadPoolVectorEnv final : public VectorEnv {
   void work();          // Claims and processes environments until none is left.
   void worker_loop();
 
-  EnvBatch batch_;
   std::size_t num_threads_;
   std::vector<std::thread> threads_;
   // Current task, written by the caller before bumping generation_.

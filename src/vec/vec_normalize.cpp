@@ -1,6 +1,5 @@
 #include "vec/vec_normalize.hpp"
 
-#include "model/setting_bounds.hpp"
 #include "vec/normalization_state.hpp"
 
 #include <algorithm>
@@ -11,44 +10,6 @@
 namespace upkie_rl {
 
 namespace key = normalization_state;
-
-void check_normalize_config(const NormalizeConfig& config) {
-  constexpr auto kExcluded = LowerBound::kExcluded;
-  const auto name = [](const char* setting) { return std::string("normalization ") + setting; };
-  check_setting(name(key::kClipObservations), config.clip_observations, 0.0, kMaxNormalizationClip,
-                kExcluded);
-  check_setting(name(key::kClipRewards), config.clip_rewards, 0.0, kMaxNormalizationClip,
-                kExcluded);
-  check_setting(name(key::kGamma), config.gamma, 0.0, 1.0, kExcluded);
-  check_setting(name(key::kEpsilon), config.epsilon, 0.0, 1.0, kExcluded);
-}
-
-NormalizeConfig normalize_config_from_json(const nlohmann::json& json) {
-  if (!json.is_object()) {
-    throw std::invalid_argument(std::string(key::kConfig) + " must be an object");
-  }
-  NormalizeConfig config;
-  auto read_bool = [&](const char* name, bool& out) {
-    if (!json.contains(name) || !json.at(name).is_boolean()) {
-      throw std::invalid_argument(std::string(key::kConfig) + "." + name + " must be a boolean");
-    }
-    out = json.at(name).get<bool>();
-  };
-  auto read_number = [&](const char* name, double& out) {
-    if (!json.contains(name) || !json.at(name).is_number()) {
-      throw std::invalid_argument(std::string(key::kConfig) + "." + name + " must be a number");
-    }
-    out = json.at(name).get<double>();
-  };
-  read_bool(key::kObservations, config.observations);
-  read_bool(key::kRewards, config.rewards);
-  read_number(key::kClipObservations, config.clip_observations);
-  read_number(key::kClipRewards, config.clip_rewards);
-  read_number(key::kGamma, config.gamma);
-  read_number(key::kEpsilon, config.epsilon);
-  check_normalize_config(config);
-  return config;
-}
 
 VecNormalize::VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfig& config)
     : venv_(venv ? std::move(venv) : throw std::invalid_argument("VecNormalize: null env")),
@@ -139,13 +100,7 @@ const VectorStep& VecNormalize::step(std::span<const float> actions) {
 nlohmann::json VecNormalize::state() const {
   return {{key::kObservationStatistics, observation_rms_.to_json()},
           {key::kReturnStatistics, return_rms_.to_json()},
-          {key::kConfig,
-           {{key::kObservations, config_.observations},
-            {key::kRewards, config_.rewards},
-            {key::kClipObservations, config_.clip_observations},
-            {key::kClipRewards, config_.clip_rewards},
-            {key::kGamma, config_.gamma},
-            {key::kEpsilon, config_.epsilon}}}};
+          {key::kConfig, normalize_config_to_json(config_)}};
 }
 
 void VecNormalize::load_state(const nlohmann::json& state) {

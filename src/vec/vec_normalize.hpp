@@ -8,31 +8,11 @@
 #include <span>
 #include <vector>
 
+#include "vec/normalize_config.hpp"
 #include "vec/running_mean_std.hpp"
 #include "vec/vector_env.hpp"
 
 namespace upkie_rl {
-
-/// Largest clip_observations and clip_rewards (a finite float32 far beyond any useful value).
-inline constexpr double kMaxNormalizationClip = 1e6;
-
-/// Settings of VecNormalize (SB3's defaults, the seed's values).
-struct NormalizeConfig {
-  bool observations = true;  ///< Normalise observations.
-  bool rewards = true;       ///< Normalise rewards (by the std of discounted returns).
-  double clip_observations = 10.0;
-  double clip_rewards = 10.0;
-  double gamma = 0.99;  ///< Discount of the returns whose variance scales rewards.
-  double epsilon = 1e-8;
-};
-
-/// Throws std::invalid_argument naming the setting unless clip_observations and
-/// clip_rewards are in (0, kMaxNormalizationClip], gamma and epsilon in (0, 1].
-void check_normalize_config(const NormalizeConfig& config);
-
-/// The "config" of a VecNormalize state (VecNormalize::state()), checked as above; throws
-/// std::invalid_argument naming a missing or mistyped key.
-NormalizeConfig normalize_config_from_json(const nlohmann::json& json);
 
 /// Observations: obs_n = clip((obs - mean) / sqrt(var + epsilon), ±clip_observations), with
 /// the statistics updated (while training) by every batch of observations the inner env
