@@ -22,6 +22,8 @@ using testing::run_cli;
 
 const std::filesystem::path kPolicies = std::filesystem::path(UPKIE_RL_TEST_DATA_DIR) / "policies";
 const std::string kPendulum = (kPolicies / "pendulum_bullet_seed0.ckpt").string();
+/// The pendulum's training config, absolute: ctest runs the tests from the build directory.
+const std::string kPendulumConfig = std::string(UPKIE_RL_SOURCE_DIR) + "/configs/pendulum.yaml";
 
 /// `result` is a refusal: status 1 and one line, "<tool>: error: " then `message` somewhere.
 void expect_one_line_error(const CliResult& result, const std::string& tool,
@@ -74,7 +76,7 @@ TEST(CliConsistency, ParserRefusalsAreOneLineWithStatusOne) {
 }
 
 TEST(CliConsistency, AMistypedCommandGetsTheNearestSuggested) {
-  expect_one_line_error(run_cli("trian --config configs/pendulum.yaml"), "upkie-rl",
+  expect_one_line_error(run_cli("trian --config " + kPendulumConfig), "upkie-rl",
                         "unknown command \"trian\" (did you mean \"train\"?); commands: envs");
   expect_one_line_error(run_cli("rolout --help"), "upkie-rl", "did you mean \"rollout\"?");
   const CliResult far = run_cli("xyzzy");
@@ -107,7 +109,7 @@ TEST(CliConsistency, AMistypedEnvironmentIdGetsTheNearestSuggested) {
 
 TEST(CliConsistency, AMistypedConfigKeyGetsTheNearestSuggested) {
   const auto run_dir = testing::temp_path("cli_consistency_run");
-  expect_one_line_error(run_cli("train --config configs/pendulum.yaml --run-dir " +
+  expect_one_line_error(run_cli("train --config " + kPendulumConfig + " --run-dir " +
                                 run_dir.string() + " --set ppo.total_timestep=1000"),
                         "upkie-rl",
                         "unknown config key 'ppo.total_timestep' (did you mean "
