@@ -25,8 +25,8 @@ ID_LIST_END = "<!-- end of registry ids -->"
 ALIAS_BACKENDS = {"PyBullet": "Bullet"}
 # Ids of the public upkie package that the docs compare with (never registered by us).
 PUBLIC_UPKIE_TASKS = {"BaseVelocity"}
-# Misspelt on purpose: the README's example of the error an unknown id gets.
-ERROR_EXAMPLES = {"Upkie-Bullet-Pendlum"}
+# Mistyped on purpose: the error examples (README "Commands", docs/reliability.md).
+ERROR_EXAMPLES = {"Upkie-Bullet-Pendlum", "Upkie-Mujoco-Pendulum"}
 
 
 def expand(pattern: str):
