@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "sim/balance_trajectory.hpp"
 #include "sim/floor_bumps.hpp"
 #include "sim/mujoco_model.hpp"
 #include "sim/physics_backends.hpp"
@@ -19,6 +20,7 @@
 namespace upkie_rl {
 namespace {
 
+using testing::balance_trajectory;
 using testing::make_bullet;
 using testing::make_mujoco;
 using testing::pendulum_action;
@@ -95,24 +97,6 @@ TEST_P(FloorBumpsOnEngine, ATireOnABumpIsLiftedByItsHeight) {
   for (const double x : {0.5, -2.5, 21.0}) {
     EXPECT_NEAR(landed_tire_height(*bumpy, x, contact) - on_floor, 0.0, 1e-4) << "x " << x;
   }
-}
-
-/// The base positions of 400 steps (2 s) of the pendulum law from a tilted start.
-std::vector<Eigen::Vector3d> balance_trajectory(PhysicsSimulation& simulation) {
-  ResetState start;
-  start.orientation_base_in_world = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY());
-  simulation.reset(start);
-  const double radius = simulation.model().wheel_radius();
-  std::vector<Eigen::Vector3d> positions;
-  for (int step = 0; step < 400; ++step) {
-    const Observation& observation = simulation.observation();
-    const double velocity = 10.0 * observation.base_orientation.pitch +
-                            observation.wheel_odometry.position +
-                            0.1 * observation.wheel_odometry.velocity;
-    simulation.step(pendulum_action(std::clamp(velocity, -1.0, 1.0), radius));
-    positions.push_back(simulation.observation().sim_base.position);
-  }
-  return positions;
 }
 
 TEST_P(FloorBumpsOnEngine, HeightZeroIsTheFlatFloorBitForBit) {
