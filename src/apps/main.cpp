@@ -32,6 +32,7 @@ int run(int argc, char** argv) {
   upkie_rl::apps::add_plot_command(app);
   upkie_rl::apps::add_export_command(app);
   upkie_rl::apps::add_info_command(app);
+  upkie_rl::apps::add_identify_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -157,6 +157,7 @@ const Observation& MujocoSimulation::reset(const ResetState& state) {
   }
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     d->qpos[index.servo_qpos[servo]] = state.joint_configuration[servo];
+    d->qvel[index.servo_dof[servo]] = state.joint_velocities[servo];
   }
   mj_forward(m, d);
   return observe_reset();
