@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,8 +63,8 @@ void run_identify(const IdentifyOptions& options) {
   const IdentificationResult result = identify(log, settings);
   print_result(result, log);
   if (!options.output_path.empty()) {
-    write_file_atomically(options.output_path,
-                          identification_yaml(result, options.log_path, options.env_id));
+    write_file_atomically<std::runtime_error>(
+        options.output_path, identification_yaml(result, options.log_path, options.env_id));
     std::printf("options written to %s\n", options.output_path.c_str());
   }
   if (options.json) std::printf("%s\n", identification_json(result).c_str());

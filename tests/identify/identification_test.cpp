@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <string>
 
 #include "common/temp_files.hpp"
@@ -27,7 +28,10 @@ IdentificationResult fit(const RobotLog& log, const std::vector<std::string>& pa
   settings.env_id = "Upkie-Bullet-Servos";
   settings.parameters = parse_parameter_requests(params);
   settings.max_evaluations = 60;
-  return identify(log, settings);
+  const IdentificationResult result = identify(log, settings);
+  // The figures docs/identify.md reports.
+  std::cout << identification_json(result) << std::endl;
+  return result;
 }
 
 const FittedParameter& parameter(const IdentificationResult& result, const std::string& name) {
