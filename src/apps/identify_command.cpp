@@ -28,6 +28,7 @@ struct IdentifyOptions {
   bool json = false;
   double horizon = 0.2;
   double window_spacing = 0.2;
+  std::size_t max_windows = 100;
   int max_evaluations = 120;
   std::uint64_t seed = 0;
 };
@@ -57,6 +58,7 @@ void run_identify(const IdentifyOptions& options) {
   settings.parameters = parse_parameter_requests(options.params);
   settings.replay.horizon = options.horizon;
   settings.replay.window_spacing = options.window_spacing;
+  settings.replay.max_windows = options.max_windows;
   settings.max_evaluations = options.max_evaluations;
   settings.seed = options.seed;
   const RobotLog log = read_robot_log(options.log_path);
@@ -103,6 +105,11 @@ void add_identify_command(CLI::App& app) {
   command->add_option("--window-spacing", options->window_spacing, "Between replays [s]")
       ->capture_default_str()
       ->check(finite_range(0.005, 60.0));
+  command
+      ->add_option("--max-windows", options->max_windows,
+                   "At most this many replays, spread evenly over the log")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
   command
       ->add_option("--max-evaluations", options->max_evaluations,
                    "Replays of the whole log per continuous fit")

@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "model/number_text.hpp"
 
@@ -21,20 +22,30 @@ constexpr double kMinimumSensitivity = 1e-3;
 struct Fit {
   const LogReplay& replay;
   std::vector<ParameterRequest> continuous;
+  /// Measured without replaying (the gyroscope's bias): fixed during the fit.
+  ParameterValues measured;
   const ParameterRequest* delay = nullptr;
   double delay_value = 0.0;
   int evaluations = 0;
 
   ParameterValues values(const std::vector<double>& x) const {
-    ParameterValues result;
+    ParameterValues result = measured;
     for (std::size_t i = 0; i < continuous.size(); ++i)
       result.emplace_back(continuous[i].parameter, x[i]);
     if (delay != nullptr) result.emplace_back(delay->parameter, delay_value);
     return result;
   }
-  double rmse(const std::vector<double>& x, std::vector<double>* residuals = nullptr) {
+  double rmse(const std::vector<double>& x, std::vector<double>* residuals = nullptr,
+              std::size_t window_stride = 1) {
     ++evaluations;
-    return replay.rmse(values(x), residuals);
+    return replay.rmse(values(x), residuals, window_stride);
+  }
+  /// The index of action_lag among the continuous parameters, or -1.
+  int lag_index() const {
+    for (std::size_t i = 0; i < continuous.size(); ++i) {
+      if (continuous[i].parameter->name == "action_lag") return static_cast<int>(i);
+    }
+    return -1;
   }
 };
 
@@ -64,6 +75,67 @@ std::pair<double, std::string> scan_delay(Fit& fit, const std::vector<double>& x
              "): the commands change too little";
   }
   return {fit.delay_value, reason};
+}
+
+/// Replays per coarse-search evaluation: one in kCoarseStride.
+constexpr std::size_t kCoarseStride = 4;
+
+/// A delay of d steps and a lag of time constant tau predict alike to first order (both
+/// shift the commands by about d·dt + tau), so scanning the delay alone at zero lag puts a
+/// lag into the delay, a local minimum the continuous fit does not leave. When both are
+/// fitted, the start is the best of a coarse grid of both, on a quarter of the replays.
+void search_actuation(Fit& fit, std::vector<double>& x) {
+  const int lag = fit.lag_index();
+  if (fit.delay == nullptr || lag < 0) return;
+  const ParameterRequest& range = fit.continuous[static_cast<std::size_t>(lag)];
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<double> candidate = x;
+  double best_delay = fit.delay_value;
+  double best_lag = x[static_cast<std::size_t>(lag)];
+  for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
+    for (int k = 0; k < 4; ++k) {  // lags up to half the range: its large values are rare
+      fit.delay_value = d;
+      candidate[static_cast<std::size_t>(lag)] = range.low + (range.high - range.low) * k / 6.0;
+      const double cost = fit.rmse(candidate, nullptr, kCoarseStride);
+      if (cost < best) {
+        best = cost;
+        best_delay = d;
+        best_lag = candidate[static_cast<std::size_t>(lag)];
+      }
+    }
+  }
+  fit.delay_value = best_delay;
+  x[static_cast<std::size_t>(lag)] = best_lag;
+}
+
+/// After a fit, the delays along the ridge where delay·dt + lag stays the fitted sum (what
+/// the commands' timing pins down): a delay the coarse search chose wrongly leaves a lag
+/// that made up for it, and scanning the delay at that lag keeps it. Returns whether the
+/// delay changed.
+bool scan_delay_along_lag(Fit& fit, std::vector<double>& x) {
+  const auto lag = static_cast<std::size_t>(fit.lag_index());
+  const ParameterRequest& range = fit.continuous[lag];
+  const double dt = fit.replay.timestep();
+  const double total = fit.delay_value * dt + x[lag];
+  double best = fit.rmse(x);
+  const double fitted_delay = fit.delay_value;
+  double best_delay = fitted_delay;
+  double best_lag = x[lag];
+  std::vector<double> candidate = x;
+  for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
+    if (d == static_cast<int>(fitted_delay)) continue;
+    candidate[lag] = std::clamp(total - d * dt, range.low, range.high);
+    fit.delay_value = d;
+    const double cost = fit.rmse(candidate);
+    if (cost < best) {
+      best = cost;
+      best_delay = d;
+      best_lag = candidate[lag];
+    }
+  }
+  fit.delay_value = best_delay;
+  x[lag] = best_lag;
+  return best_delay != fitted_delay;
 }
 
 void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
@@ -118,10 +190,23 @@ void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
           "the log does not excite it";
     }
   }
-  const double sigma2 = r0.squaredNorm() / std::max<double>(1.0, double(m) - double(n));
-  const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
-  const Eigen::MatrixXd covariance =
-      sigma2 * information.completeOrthogonalDecomposition().pseudoInverse();
+  // The errors within one replay are strongly correlated (one wrong parameter shifts a whole
+  // trajectory), so the i.i.d. estimate sigma^2 (J^T J)^-1 is far too small. Replays are
+  // treated as independent blocks instead: the cluster-robust ("sandwich") covariance
+  // (J^T J)^-1 (sum_w J_w^T r_w r_w^T J_w) (J^T J)^-1, i.e. the spread the fit would show
+  // over other replays of the same kind.
+  const Eigen::MatrixXd bread =
+      (jacobian.transpose() * jacobian).completeOrthogonalDecomposition().pseudoInverse();
+  const auto block = static_cast<Eigen::Index>(fit.replay.residuals_per_window());
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
+  for (Eigen::Index start = 0; start + block <= m; start += block) {
+    const Eigen::VectorXd score =
+        jacobian.middleRows(start, block).transpose() * r0.segment(start, block);
+    meat += score * score.transpose();
+  }
+  const double windows = static_cast<double>(m / std::max<Eigen::Index>(1, block));
+  const double small_sample = windows > double(n) ? windows / (windows - double(n)) : 1.0;
+  const Eigen::MatrixXd covariance = small_sample * bread * meat * bread;
   for (std::size_t i = 0; i < n; ++i) {
     const double sd = std::sqrt(std::max(0.0, covariance(Eigen::Index(i), Eigen::Index(i))));
     fitted[i].uncertainty = sd;
@@ -146,10 +231,17 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   }
   const LogReplay replay(settings.env_id, settings.options, log, settings.replay, max_delay,
                          max_lag);
-  Fit fit{replay, {}, nullptr, 0.0, 0};
+  Fit fit{replay, {}, {}, nullptr, 0.0, 0};
   std::vector<double> x;
+  std::vector<FittedParameter> measured;
   for (const ParameterRequest& request : settings.parameters) {
-    if (request.parameter->integer) {
+    if (request.parameter->name == "imu_gyroscope_bias_fixed_y") {
+      const auto [bias, standard_error] = replay.pitch_rate_bias();
+      const double value = std::clamp(bias, request.low, request.high);
+      fit.measured.emplace_back(request.parameter, value);
+      measured.push_back({std::string(request.parameter->name),
+                          std::string(request.parameter->unit), value, standard_error, true, ""});
+    } else if (request.parameter->integer) {
       fit.delay = &request;
       fit.delay_value = std::clamp(request.parameter->nominal, request.low, request.high);
     } else {
@@ -160,12 +252,21 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   IdentificationResult result;
   result.windows = replay.num_windows();
   result.horizon = settings.replay.horizon;
-  result.rmse_before = fit.rmse(x);
+  const ParameterValues measured_values = std::exchange(fit.measured, {});
+  result.rmse_before = fit.rmse(x);  // the nominal robot
+  fit.measured = measured_values;
   std::string delay_reason;
-  if (fit.delay != nullptr) delay_reason = scan_delay(fit, x).second;
+  if (fit.delay != nullptr && fit.lag_index() >= 0) {
+    search_actuation(fit, x);
+  } else if (fit.delay != nullptr) {
+    delay_reason = scan_delay(fit, x).second;
+  }
   if (!x.empty()) {
     fit_continuous(fit, x, settings);
-    if (fit.delay != nullptr) {
+    if (fit.delay != nullptr && fit.lag_index() >= 0) {
+      if (scan_delay_along_lag(fit, x)) fit_continuous(fit, x, settings);
+      delay_reason = scan_delay(fit, x).second;  // and whether it stands out
+    } else if (fit.delay != nullptr) {
       const double previous = fit.delay_value;
       delay_reason = scan_delay(fit, x).second;
       if (fit.delay_value != previous) fit_continuous(fit, x, settings);
@@ -173,14 +274,18 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   }
   for (std::size_t i = 0; i < fit.continuous.size(); ++i) {
     const IdentifiedParameter& parameter = *fit.continuous[i].parameter;
-    result.parameters.push_back({std::string(parameter.name), std::string(parameter.unit), x[i]});
+    result.parameters.push_back(
+        {std::string(parameter.name), std::string(parameter.unit), x[i], 0.0, true, ""});
   }
   if (!x.empty()) estimate_uncertainty(fit, x, result.parameters);
+  result.parameters.insert(result.parameters.end(), measured.begin(), measured.end());
   if (fit.delay != nullptr) {
     FittedParameter delay{std::string(fit.delay->parameter->name),
-                          std::string(fit.delay->parameter->unit), fit.delay_value};
-    delay.identifiable = delay_reason.empty();
-    delay.reason = delay_reason;
+                          std::string(fit.delay->parameter->unit),
+                          fit.delay_value,
+                          0.0,
+                          delay_reason.empty(),
+                          delay_reason};
     result.parameters.push_back(delay);
   }
   result.rmse_after = fit.rmse(x);

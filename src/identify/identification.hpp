@@ -28,8 +28,10 @@ struct FittedParameter {
   std::string name;
   std::string unit;
   double value = 0.0;
-  /// One standard deviation [unit of the value], from the Gauss-Newton approximation of the
-  /// errors' curvature (0 for a delay whose neighbours predict clearly worse).
+  /// One standard deviation [unit of the value]: the spread of the fit over replays, from
+  /// the errors' Jacobian with each replay an independent block (cluster-robust sandwich
+  /// covariance); 0 for a delay, which is scanned. It does not include the bias of a model
+  /// that cannot match the robot (another engine, the no-slip start states).
   double uncertainty = 0.0;
   bool identifiable = true;
   std::string reason;  ///< Why not, when not identifiable.

@@ -21,8 +21,9 @@ struct IdentifiedParameter {
   std::string_view not_fittable;
 };
 
-/// The options: masses, payload, floor, motor, actuation timing, and the ones a fit refuses.
-inline constexpr std::array<IdentifiedParameter, 12> kIdentifiedParameters = {{
+/// The options: masses, payload, floor, motors, actuation timing, sensors, and the ones a fit
+/// refuses.
+inline constexpr std::array<IdentifiedParameter, 16> kIdentifiedParameters = {{
     {"mass_scale", 0.5, 2.0, 1.0, false, "", ""},
     {"payload_mass", 0.0, 3.0, 0.0, false, "kg", ""},
     {"payload_offset_x", -0.2, 0.2, 0.0, false, "m", ""},
@@ -32,10 +33,16 @@ inline constexpr std::array<IdentifiedParameter, 12> kIdentifiedParameters = {{
     {"torque_limit_scale", 0.2, 1.5, 1.0, false, "", ""},
     {"action_delay", 0.0, 10.0, 0.0, true, "steps", ""},
     {"action_lag", 0.0, 0.3, 0.0, false, "s", ""},
+    {"wheel_servo_gain_scale", 0.3, 3.0, 1.0, false, "", ""},
+    {"leg_servo_gain_scale", 0.3, 3.0, 1.0, false, "", ""},
+    {"joint_friction_fixed", 0.0, 0.5, 0.0, false, "N.m", ""},
+    // The base's pitch axis is the IMU's y axis (the IMU is turned about z and x by pi).
+    {"imu_gyroscope_bias_fixed_y", -0.1, 0.1, 0.0, false, "rad/s", ""},
     {"joint_friction", 0.0, 0.0, 0.0, false, "N.m",
-     "joint_friction is drawn per joint in U(0, it) at each reset, not a fixed friction"},
+     "joint_friction is drawn per joint in U(0, it) at each reset; fit joint_friction_fixed"},
     {"imu_gyroscope_bias", 0.0, 0.0, 0.0, false, "rad/s",
-     "imu_gyroscope_bias is drawn in U(-it, it) at each reset, not a fixed bias"},
+     "imu_gyroscope_bias is drawn in U(-it, it) at each reset; fit imu_gyroscope_bias_fixed_y "
+     "(the pitch axis: replays compare the pitch rate only)"},
     {"inertia_variation", 0.0, 0.0, 0.0, false, "",
      "inertia_variation is a randomisation range, not a physical value"},
 }};

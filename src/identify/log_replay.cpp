@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <limits>
 #include <stdexcept>
+#include <thread>
 
 #include "envs/env_wrapper.hpp"
 #include "envs/registry.hpp"
@@ -85,8 +88,11 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
       continue;
     }
     const double number = std::stod(value);
-    if (name == "action_delay") fixed_delay_ = static_cast<int>(number);
-    (name == "action_lag_min" ? lag_min : lag_max) = number;
+    if (name == "action_delay") {
+      fixed_delay_ = static_cast<int>(number);
+    } else {
+      (name == "action_lag_min" ? lag_min : lag_max) = number;
+    }
   }
   if (lag_min != lag_max) {
     throw std::invalid_argument(
@@ -103,6 +109,11 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
     const LoggedCycle& cycle = log.cycles[i];
     Sample& sample = samples_.emplace_back();
     sample.state = measured_reset_state(model, cycle.observation);
+    Observation turned = cycle.observation;  // the state is linear in the pitch rate
+    turned.base_orientation.angular_velocity.y() += 1.0;
+    sample.velocity_per_pitch_rate =
+        measured_reset_state(model, turned).linear_velocity_base_to_world_in_world -
+        sample.state.linear_velocity_base_to_world_in_world;
     sample.signals = replay_signals(cycle.observation);
     for (std::size_t servo = 0; servo < kNumServos; ++servo) {
       for (std::size_t field = 0; field < kServoCommandFields.size(); ++field) {
@@ -134,6 +145,13 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   for (std::size_t start = first; start + horizon_steps_ < samples_.size(); start += spacing) {
     window_starts_.push_back(start);
   }
+  if (window_starts_.size() > settings.max_windows) {  // spread evenly over the log
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < settings.max_windows; ++i) {
+      kept.push_back(window_starts_[i * window_starts_.size() / settings.max_windows]);
+    }
+    window_starts_ = std::move(kept);
+  }
   if (window_starts_.empty()) {
     throw RobotLogError(log.format + " " + log.name + ": " + shortest_text(log.duration()) +
                         " s is too short for one replay of " + shortest_text(settings.horizon) +
@@ -141,22 +159,50 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   }
 }
 
-double LogReplay::rmse(const ParameterValues& values, std::vector<double>* residuals) const {
-  EnvOptions options = options_;
-  int delay = fixed_delay_;
-  double lag = fixed_lag_;
-  for (const auto& [parameter, value] : values) {
-    if (parameter->name == "action_delay") {
-      delay = static_cast<int>(std::lround(value));
-    } else if (parameter->name == "action_lag") {
-      lag = value;
-    } else {
-      options.emplace_back(std::string(parameter->name), shortest_text(value));
+std::pair<double, double> LogReplay::pitch_rate_bias() const {
+  const std::size_t block = std::max<std::size_t>(1, std::lround(0.2 / timestep_));
+  std::vector<double> block_means;
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 1; i + 1 < samples_.size(); ++i) {
+    const double pitch_change =
+        (samples_[i + 1].signals[0] - samples_[i - 1].signals[0]) / (2.0 * timestep_);
+    sum += samples_[i].signals[1] - pitch_change;
+    if (++count == block) {
+      block_means.push_back(sum / static_cast<double>(count));
+      sum = 0.0;
+      count = 0;
     }
   }
-  std::unique_ptr<Env> env = make_env(env_id_, options);
-  ServosEnv& servos = find_servos_env(*env);
+  if (block_means.size() < 2) return {0.0, std::numeric_limits<double>::infinity()};
+  double mean = 0.0;
+  for (const double value : block_means) mean += value;
+  mean /= static_cast<double>(block_means.size());
+  double variance = 0.0;
+  for (const double value : block_means) variance += (value - mean) * (value - mean);
+  const double n = static_cast<double>(block_means.size());
+  return {mean, std::sqrt(variance / (n - 1.0) / n)};
+}
+
+LogReplay::Case LogReplay::make_case(const ParameterValues& values) const {
+  Case replay{options_, fixed_delay_, fixed_lag_, 0.0};
+  for (const auto& [parameter, value] : values) {
+    if (parameter->name == "imu_gyroscope_bias_fixed_y") replay.pitch_rate_bias = value;
+    if (parameter->name == "action_delay") {
+      replay.delay = static_cast<int>(std::lround(value));
+    } else if (parameter->name == "action_lag") {
+      replay.lag = value;
+    } else {
+      replay.options.emplace_back(std::string(parameter->name), shortest_text(value));
+    }
+  }
+  return replay;
+}
+
+void LogReplay::replay_window(ServosEnv& servos, const Case& replay, std::size_t start,
+                              std::span<double> errors) const {
   std::vector<float> observation(servos.observation_space().size());
+  const double lag = replay.lag;
   const float alpha = lag > 0.0 ? static_cast<float>(std::min(1.0, timestep_ / lag)) : 1.0f;
   std::array<float, kNumServos * 6> filtered{};
   const auto filter = [&](const std::array<float, kNumServos * 6>& target) {
@@ -166,38 +212,71 @@ double LogReplay::rmse(const ParameterValues& values, std::vector<double>* resid
                         : filtered[i] + alpha * (target[i] - filtered[i]);
     }
   };
-  if (residuals != nullptr) residuals->clear();
-  double sum_squares = 0.0;
-  std::size_t count = 0;
-  for (const std::size_t start : window_starts_) {
-    servos.reset_servos_to(samples_[start].state, 0);
-    const std::size_t warmup = std::min(lag_warmup_, start - static_cast<std::size_t>(delay));
-    filtered = samples_[start - static_cast<std::size_t>(delay) - warmup].command;
-    for (std::size_t j = start - warmup; j < start; ++j) filter(samples_[j - delay].command);
-    bool diverged = false;
-    for (int step = 0; step < horizon_steps_; ++step) {
-      const std::size_t index = start + static_cast<std::size_t>(step);
-      filter(samples_[index - static_cast<std::size_t>(delay)].command);
-      std::array<double, kNumReplaySignals> predicted{};
-      if (!diverged) {
-        try {
-          servos.step(filtered, observation);
-          predicted = replay_signals(*servos.full_observation());
-        } catch (const SimulationDivergedError&) {
-          diverged = true;
-        }
-      }
-      for (std::size_t k = 0; k < kNumReplaySignals; ++k) {
-        const double error = diverged
-                                 ? kDivergedError
-                                 : (predicted[k] - samples_[index + 1].signals[k]) / scales_[k];
-        sum_squares += error * error;
-        ++count;
-        if (residuals != nullptr) residuals->push_back(error);
+  ResetState state = samples_[start].state;  // what the gyroscope measured, less its bias
+  state.angular_velocity_base_in_base.y() -= replay.pitch_rate_bias;
+  state.linear_velocity_base_to_world_in_world -=
+      replay.pitch_rate_bias * samples_[start].velocity_per_pitch_rate;
+  servos.reset_servos_to(state, 0);
+  const auto delay = static_cast<std::size_t>(replay.delay);
+  const std::size_t warmup = std::min(lag_warmup_, start - delay);
+  filtered = samples_[start - delay - warmup].command;
+  for (std::size_t j = start - warmup; j < start; ++j) filter(samples_[j - delay].command);
+  bool diverged = false;
+  for (int step = 0; step < horizon_steps_; ++step) {
+    const std::size_t index = start + static_cast<std::size_t>(step);
+    filter(samples_[index - delay].command);
+    std::array<double, kNumReplaySignals> predicted{};
+    if (!diverged) {
+      try {
+        servos.step(filtered, observation);
+        predicted = replay_signals(*servos.full_observation());
+      } catch (const SimulationDivergedError&) {
+        diverged = true;
       }
     }
+    for (std::size_t k = 0; k < kNumReplaySignals; ++k) {
+      errors[static_cast<std::size_t>(step) * kNumReplaySignals + k] =
+          diverged ? kDivergedError : (predicted[k] - samples_[index + 1].signals[k]) / scales_[k];
+    }
   }
-  return std::sqrt(sum_squares / static_cast<double>(count));
+}
+
+double LogReplay::rmse(const ParameterValues& values, std::vector<double>* residuals,
+                       std::size_t window_stride) const {
+  const Case replay = make_case(values);
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < window_starts_.size(); i += std::max<std::size_t>(1, window_stride)) {
+    starts.push_back(window_starts_[i]);
+  }
+  const std::size_t block = residuals_per_window();
+  std::vector<double> errors(starts.size() * block);
+  // A fixed number of workers, each with its own environment and every kReplayWorkers-th
+  // replay: the same replays on the same environments whatever the machine, so the same
+  // result. An error in a worker is rethrown here.
+  std::array<std::exception_ptr, kReplayWorkers> failures{};
+  const auto work = [&](std::size_t worker) {
+    try {
+      std::unique_ptr<Env> env = make_env(env_id_, replay.options);
+      ServosEnv& servos = find_servos_env(*env);
+      for (std::size_t w = worker; w < starts.size(); w += kReplayWorkers) {
+        replay_window(servos, replay, starts[w], std::span(errors).subspan(w * block, block));
+      }
+    } catch (...) {
+      failures[worker] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t worker = 1; worker < kReplayWorkers; ++worker)
+    threads.emplace_back(work, worker);
+  work(0);
+  for (std::thread& thread : threads) thread.join();
+  for (const std::exception_ptr& failure : failures) {
+    if (failure) std::rethrow_exception(failure);
+  }
+  double sum_squares = 0.0;
+  for (const double error : errors) sum_squares += error * error;
+  if (residuals != nullptr) *residuals = std::move(errors);
+  return std::sqrt(sum_squares / static_cast<double>(starts.size() * block));
 }
 
 }  // namespace upkie_rl

@@ -14,18 +14,21 @@
 namespace upkie_rl {
 namespace {
 
-/// A 3 s log of Upkie-Bullet-Servos with `options` as the hidden physics.
-RobotLog simulated_log(const std::string& name, const EnvOptions& options) {
+/// A 3 s log of `env_id` with `options` as the hidden physics.
+RobotLog simulated_log(const std::string& name, const EnvOptions& options,
+                       const std::string& env_id = "Upkie-Bullet-Servos", std::uint64_t seed = 0) {
   const auto path = testing::temp_path(name);
   ExcitationSettings excitation;
   excitation.duration = 3.0;
-  write_excitation_log("Upkie-Bullet-Servos", options, excitation, path);
+  excitation.seed = seed;
+  write_excitation_log(env_id, options, excitation, path);
   return read_robot_log(path);
 }
 
-IdentificationResult fit(const RobotLog& log, const std::vector<std::string>& params) {
+IdentificationResult fit(const RobotLog& log, const std::vector<std::string>& params,
+                         const std::string& env_id = "Upkie-Bullet-Servos") {
   IdentificationSettings settings;
-  settings.env_id = "Upkie-Bullet-Servos";
+  settings.env_id = env_id;
   settings.parameters = parse_parameter_requests(params);
   settings.max_evaluations = 60;
   const IdentificationResult result = identify(log, settings);
@@ -57,6 +60,30 @@ TEST(Identification, RecoversFloorFrictionOnBullet) {
   EXPECT_LT(result.rmse_after, result.rmse_before);
 }
 
+TEST(Identification, RecoversMassScaleOnMuJoCoForSeveralSeeds) {
+  for (const std::uint64_t seed : {1, 2}) {
+    const RobotLog log =
+        simulated_log("mujoco_mass.mpack", {{"mass_scale", "1.3"}}, "Upkie-MuJoCo-Servos", seed);
+    const IdentificationResult result = fit(log, {"mass_scale=0.7:1.6"}, "Upkie-MuJoCo-Servos");
+    EXPECT_NEAR(parameter(result, "mass_scale").value, 1.3, 0.065) << "seed " << seed;
+    EXPECT_LT(result.rmse_after, result.rmse_before) << "seed " << seed;
+  }
+}
+
+TEST(Identification, RecoversGyroscopeBiasOnBullet) {
+  const RobotLog log = simulated_log("gyroscope.mpack", {{"imu_gyroscope_bias_fixed_y", "0.03"}});
+  const IdentificationResult result = fit(log, {"imu_gyroscope_bias_fixed_y=-0.1:0.1"});
+  EXPECT_NEAR(parameter(result, "imu_gyroscope_bias_fixed_y").value, 0.03, 0.005);
+  EXPECT_LT(result.rmse_after, result.rmse_before);
+}
+
+TEST(Identification, RecoversWheelGainScaleOnBullet) {
+  const RobotLog log = simulated_log("wheel_gain.mpack", {{"wheel_servo_gain_scale", "1.5"}});
+  const IdentificationResult result = fit(log, {"wheel_servo_gain_scale=0.5:3"});
+  EXPECT_NEAR(parameter(result, "wheel_servo_gain_scale").value, 1.5, 0.075);
+  EXPECT_LT(result.rmse_after, result.rmse_before);
+}
+
 TEST(Identification, SameLogSameResult) {
   const RobotLog log = simulated_log("repeat.mpack", {{"mass_scale", "0.8"}});
   const IdentificationResult first = fit(log, {"mass_scale=0.6:1.2"});
@@ -77,7 +104,9 @@ TEST(Identification, ParameterOutsideItsRangeIsRefused) {
   EXPECT_NE(refusal("mass_scale=0.1:5").find("leaves the declared range"), std::string::npos);
   EXPECT_NE(refusal("mass_scale=2:1").find("LOW must be below HIGH"), std::string::npos);
   EXPECT_NE(refusal("wheel_size").find("unknown parameter"), std::string::npos);
-  EXPECT_NE(refusal("joint_friction").find("cannot be fitted"), std::string::npos);
+  EXPECT_NE(refusal("joint_friction").find("fit joint_friction_fixed"), std::string::npos);
+  EXPECT_NE(refusal("wheel_servo_gain_scale=0.1:2").find("leaves the declared range"),
+            std::string::npos);
 }
 
 TEST(Identification, LogWithoutServoCommandsIsRefused) {
