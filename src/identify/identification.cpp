@@ -219,6 +219,31 @@ void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
   }
 }
 
+/// The fit's strategy: the actuation's start (a coarse grid of delay and lag, or the delay
+/// scanned), the continuous fit, then the delay again (along the lag's ridge when both are
+/// fitted) and the continuous fit again if it moved. Returns why the delay is not
+/// identifiable, or "".
+std::string run_fit(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
+  std::string delay_reason;
+  if (fit.delay != nullptr && fit.lag_index() >= 0) {
+    search_actuation(fit, x);
+  } else if (fit.delay != nullptr) {
+    delay_reason = scan_delay(fit, x).second;
+  }
+  if (!x.empty()) {
+    fit_continuous(fit, x, settings);
+    if (fit.delay != nullptr && fit.lag_index() >= 0) {
+      if (scan_delay_along_lag(fit, x)) fit_continuous(fit, x, settings);
+      delay_reason = scan_delay(fit, x).second;  // and whether it stands out
+    } else if (fit.delay != nullptr) {
+      const double previous = fit.delay_value;
+      delay_reason = scan_delay(fit, x).second;
+      if (fit.delay_value != previous) fit_continuous(fit, x, settings);
+    }
+  }
+  return delay_reason;
+}
+
 }  // namespace
 
 IdentificationResult identify(const RobotLog& log, const IdentificationSettings& settings) {
@@ -255,23 +280,7 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   const ParameterValues measured_values = std::exchange(fit.measured, {});
   result.rmse_before = fit.rmse(x);  // the nominal robot
   fit.measured = measured_values;
-  std::string delay_reason;
-  if (fit.delay != nullptr && fit.lag_index() >= 0) {
-    search_actuation(fit, x);
-  } else if (fit.delay != nullptr) {
-    delay_reason = scan_delay(fit, x).second;
-  }
-  if (!x.empty()) {
-    fit_continuous(fit, x, settings);
-    if (fit.delay != nullptr && fit.lag_index() >= 0) {
-      if (scan_delay_along_lag(fit, x)) fit_continuous(fit, x, settings);
-      delay_reason = scan_delay(fit, x).second;  // and whether it stands out
-    } else if (fit.delay != nullptr) {
-      const double previous = fit.delay_value;
-      delay_reason = scan_delay(fit, x).second;
-      if (fit.delay_value != previous) fit_continuous(fit, x, settings);
-    }
-  }
+  const std::string delay_reason = run_fit(fit, x, settings);
   for (std::size_t i = 0; i < fit.continuous.size(); ++i) {
     const IdentifiedParameter& parameter = *fit.continuous[i].parameter;
     result.parameters.push_back(

@@ -60,6 +60,22 @@ std::size_t decimation(const RobotLog& log, double timestep, const std::string& 
   return static_cast<std::size_t>(stride);
 }
 
+/// Every `spacing`-th sample from `first` that leaves a whole replay of `horizon` steps in
+/// the log's `num_samples`, at most `max_windows` of them spread evenly over the log.
+std::vector<std::size_t> replay_starts(std::size_t first, std::size_t num_samples,
+                                       std::size_t horizon, std::size_t spacing,
+                                       std::size_t max_windows) {
+  std::vector<std::size_t> starts;
+  for (std::size_t start = first; start + horizon < num_samples; start += spacing) {
+    starts.push_back(start);
+  }
+  if (starts.size() <= max_windows) return starts;
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < max_windows; ++i)
+    kept.push_back(starts[i * starts.size() / max_windows]);
+  return kept;
+}
+
 void require_signals(const RobotLog& log) {
   const auto missing = [&](const char* what) {
     throw RobotLogError(
@@ -142,16 +158,8 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
       static_cast<std::size_t>(std::ceil(5.0 * std::max(max_lag, fixed_lag_) / timestep_));
   const std::size_t first =
       static_cast<std::size_t>(std::max(max_delay_steps, fixed_delay_)) + lag_warmup_;
-  for (std::size_t start = first; start + horizon_steps_ < samples_.size(); start += spacing) {
-    window_starts_.push_back(start);
-  }
-  if (window_starts_.size() > settings.max_windows) {  // spread evenly over the log
-    std::vector<std::size_t> kept;
-    for (std::size_t i = 0; i < settings.max_windows; ++i) {
-      kept.push_back(window_starts_[i * window_starts_.size() / settings.max_windows]);
-    }
-    window_starts_ = std::move(kept);
-  }
+  window_starts_ = replay_starts(first, samples_.size(), static_cast<std::size_t>(horizon_steps_),
+                                 spacing, settings.max_windows);
   if (window_starts_.empty()) {
     throw RobotLogError(log.format + " " + log.name + ": " + shortest_text(log.duration()) +
                         " s is too short for one replay of " + shortest_text(settings.horizon) +
