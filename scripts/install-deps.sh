@@ -12,6 +12,7 @@ DEBIAN_PACKAGES=(
   libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox fonts-liberation
   clang-format clang-tidy python3-pip python3-pytest python3-numpy
   python3-dev  # the upkie_rl Python extension module (pybind11 from the registry, below)
+  libnlopt-dev  # `upkie-rl identify` fits a robot's log with NLopt's BOBYQA
   libonnx-dev  # ONNX export: the ONNX project's protobuf classes and checker
   python3-yaml  # upkie_rl.sb3_convert reads and writes training configurations
   # offscreen rendering without display or GPU (EGL, Mesa's llvmpipe), videos (H.264, GIF)
@@ -50,7 +51,7 @@ PYTHON_PACKAGES=(
   "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium==1.0.0" "msgpack:msgpack"
   "upkie:upkie" "tensorboard:tensorboard" "scikit_build_core:scikit-build-core"
   "pybind11:pybind11" "cloudpickle:cloudpickle" "pandas:pandas" "matplotlib:matplotlib"
-  "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy" "onnxruntime:onnxruntime" "mypy:mypy"
+  "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy" "mpacklog:mpacklog" "onnxruntime:onnxruntime" "mypy:mypy"
 )
 # Installed without their dependencies, which are listed above: Debian's torch calls
 # itself 1.13.0a0, a pre-release that SB3's "torch>=1.13" refuses, so pip would fetch

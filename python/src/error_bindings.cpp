@@ -48,7 +48,8 @@ bool is(const Error& error) {
 
 // Parents come before their children; the translator tries the most derived class first.
 // The Python module has no view or rl layer, so ViewError and DistributedError (which
-// only the `upkie-rl` tool raises) are not bound.
+// only the `upkie-rl` tool raises) are not bound; nor is RobotLogError: the module reads no
+// robot logs (`upkie-rl identify` and `spine --log` do).
 const std::array kErrorClasses = {
     ErrorClass{"Error", "Base of every error upkie-rl raises on purpose.", &is<Error>, -1,
                &PyExc_RuntimeError},

@@ -36,6 +36,8 @@ void add_sweep_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 /// `upkie-rl export`: a trained model as ONNX (export_command.cpp).
 void add_export_command(CLI::App& app);
+/// `upkie-rl identify`: environment options fitted to a robot's log (identify_command.cpp).
+void add_identify_command(CLI::App& app);
 /// `upkie-rl info`: a model's spaces and provenance (info_command.cpp).
 void add_info_command(CLI::App& app);
 

@@ -59,6 +59,7 @@ int run(int argc, char** argv) {
   upkie_rl::apps::add_plot_command(app);
   upkie_rl::apps::add_export_command(app);
   upkie_rl::apps::add_info_command(app);
+  upkie_rl::apps::add_identify_command(app);
   check_command_name(app, argc, argv);
   try {
     app.parse(argc, argv);

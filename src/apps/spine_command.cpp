@@ -17,6 +17,7 @@
 #include "model/robot_model.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "sim/mujoco_simulation.hpp"
+#include "spine/spine_log_writer.hpp"
 #include "spine/spine_server.hpp"
 
 namespace upkie_rl::apps {
@@ -58,6 +59,34 @@ struct SpineOptions {
   double observation_latency = 0.0;  ///< Age of the observations sent [s].
   double cycle_jitter = 0.0;         ///< Lateness of each cycle, up to [s].
   LiveViewOptions view;
+  /// Write every simulation step to this spine log (mpacklog), empty for none.
+  std::string log_path;
+};
+
+/// Writes the spine log of `--log`: each step's cycle as Upkie's spines log it, the
+/// observation the agent saw before the step with the commands applied in it (so an episode's
+/// last observation is not written). Reports a write error once, then stops writing.
+class SpineStepLogger {
+ public:
+  explicit SpineStepLogger(const std::string& path) : writer_(path) {}
+  void observe(const Observation& observation, const ServoAction& action, bool reset) {
+    if (failed_) return;
+    try {
+      if (!reset && has_previous_) writer_.write(previous_, action);
+    } catch (const std::exception& error) {
+      spdlog::error("spine log: {}", error.what());
+      failed_ = true;
+    }
+    previous_ = observation;
+    has_previous_ = true;
+  }
+  void close() { writer_.close(); }
+
+ private:
+  SpineLogWriter writer_;
+  Observation previous_;
+  bool has_previous_ = false;
+  bool failed_ = false;
 };
 
 /// Applies the push of `options` to `simulation` at the simulation time of `observation`.
@@ -154,6 +183,9 @@ void run_spine(const SpineOptions& options) {
   if (options.push_force != 0.0 && options.view.enabled) {
     throw std::invalid_argument("--push-force does not work with --view yet");
   }
+  if (!options.log_path.empty() && options.view.enabled) {
+    throw std::invalid_argument("--log does not work with --view yet");
+  }
   const bool real_time = options.nb_substeps == 0;
   std::shared_ptr<const RobotModel> model = RobotModel::default_model();
 
@@ -166,6 +198,8 @@ void run_spine(const SpineOptions& options) {
 
   const SpineServerConfig config = spine_config(options, simulation, physics, *model);
 
+  std::unique_ptr<SpineStepLogger> logger;
+  if (!options.log_path.empty()) logger = std::make_unique<SpineStepLogger>(options.log_path);
   std::string error;
   {
     InterruptHandlers handlers;
@@ -182,10 +216,12 @@ void run_spine(const SpineOptions& options) {
     if (options.view.enabled) {
       view = view_spine(options, server, physics.physics_timestep * physics.nb_substeps);
       view->wait_for_browsers();
-    } else if (options.push_force != 0.0) {
+    } else if (options.push_force != 0.0 || logger) {
       server.set_simulation_observer(
-          [&options, &simulation](const Observation& observation, const ServoAction&, bool) {
+          [&options, &simulation, &logger](const Observation& observation,
+                                           const ServoAction& action, bool reset) {
             apply_push(options, simulation, observation);
+            if (logger) logger->observe(observation, action, reset);
           });
     }
     log_spine_start(options, physics, config);
@@ -195,6 +231,7 @@ void run_spine(const SpineOptions& options) {
     spdlog::info("spine {}: over after {} cycles, {} simulation steps", options.shm_name,
                  server.nb_cycles(), server.nb_simulation_steps());
   }  // the shared memory is unlinked here
+  if (logger) logger->close();
   if (!error.empty()) throw std::runtime_error("spine shut down: " + error);
 }
 
@@ -252,6 +289,12 @@ void add_spine_command(CLI::App& app) {
                    "Sim-to-real timing, real time: start each cycle up to this late [s]")
       ->capture_default_str()
       ->check(finite_range(0.0, 1.0));
+  command
+      ->add_option("--log", options->log_path,
+                   "Write every simulation step to this spine log (mpacklog: a stream of "
+                   "MessagePack dictionaries, as Upkie's spines write; `upkie-rl identify` and "
+                   "Python's mpacklog read it)")
+      ->check(kNonEmptyPath);
   options->view.speed = 0.0;  // the spine keeps its own pace
   add_live_view_options(*command, options->view, false);
   command->callback([options] { run_spine(*options); });

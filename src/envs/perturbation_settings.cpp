@@ -5,6 +5,7 @@
 #include <string>
 
 #include "envs/shared_options.hpp"
+#include "model/joint_order.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
@@ -17,6 +18,8 @@ constexpr std::uint64_t kRandomizedWorldStream = 11;
 
 bool PerturbationSettings::any() const {
   return mass_scale != 1.0 || inertia_variation != 0.0 || joint_friction != 0.0 ||
+         joint_friction_fixed != 0.0 || wheel_servo_gain_scale != 1.0 ||
+         leg_servo_gain_scale != 1.0 || !imu_gyroscope_bias_fixed.isZero(0.0) ||
          torque_control_noise != 0.0 || torque_measurement_noise != 0.0 ||
          imu_accelerometer_bias != 0.0 || imu_accelerometer_noise != 0.0 ||
          imu_gyroscope_bias != 0.0 || imu_gyroscope_noise != 0.0 || floor_friction != 1.0 ||
@@ -32,14 +35,19 @@ PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double
     body_scale = mass_scale * (1.0 + uniform_symmetric(generator, scale * inertia_variation));
   }
   for (double& friction : variation.joint_friction) {
-    friction = scale * joint_friction * uniform_unit(generator);
+    friction = scale * joint_friction * uniform_unit(generator) + joint_friction_fixed;
+  }
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    variation.servo_gain_scale[servo] =
+        is_wheel(servo) ? wheel_servo_gain_scale : leg_servo_gain_scale;
   }
   variation.torque_control_noise = scale * torque_control_noise;
   variation.torque_measurement_noise = scale * torque_measurement_noise;
   ImuUncertainty& imu = variation.imu;
   for (int i = 0; i < 3; ++i) {
     imu.accelerometer_bias[i] = uniform_symmetric(generator, scale * imu_accelerometer_bias);
-    imu.gyroscope_bias[i] = uniform_symmetric(generator, scale * imu_gyroscope_bias);
+    imu.gyroscope_bias[i] =
+        uniform_symmetric(generator, scale * imu_gyroscope_bias) + imu_gyroscope_bias_fixed[i];
   }
   imu.accelerometer_noise = scale * imu_accelerometer_noise;
   imu.gyroscope_noise = scale * imu_gyroscope_noise;
@@ -85,6 +93,12 @@ void PerturbationSettings::declare_options(OptionTable& table) {
                  "each body's mass and inertia times 1 + U(-it, it), drawn at reset");
   table.add_real("joint_friction", &joint_friction, 0.0, kOptionHuge,
                  "each joint's kinetic friction drawn in U(0, it) at reset [N.m]");
+  table.add_real("joint_friction_fixed", &joint_friction_fixed, 0.0, 10.0,
+                 "fixed kinetic friction of every joint, added to the drawn one [N.m]");
+  table.add_real("wheel_servo_gain_scale", &wheel_servo_gain_scale, 0.1, 10.0,
+                 "factor on the wheel servos' kp and kd (the real servos' gains)");
+  table.add_real("leg_servo_gain_scale", &leg_servo_gain_scale, 0.1, 10.0,
+                 "factor on the hip and knee servos' kp and kd");
   table.add_real("torque_control_noise", &torque_control_noise, 0.0, kOptionHuge,
                  "std of Gaussian noise on applied joint torques [N.m]");
   table.add_real("torque_measurement_noise", &torque_measurement_noise, 0.0, kOptionHuge,
@@ -95,6 +109,12 @@ void PerturbationSettings::declare_options(OptionTable& table) {
                  "std of accelerometer white noise [m/s^2]");
   table.add_real("imu_gyroscope_bias", &imu_gyroscope_bias, 0.0, kOptionHuge,
                  "gyroscope bias components drawn in U(-it, it) at reset [rad/s]");
+  for (int axis = 0; axis < 3; ++axis) {
+    table.add_real(std::string("imu_gyroscope_bias_fixed_") + "xyz"[axis],
+                   &imu_gyroscope_bias_fixed[axis], -1.0, 1.0,
+                   std::string("fixed gyroscope bias about the IMU's ") + "xyz"[axis] +
+                       " axis, added to the drawn one [rad/s]");
+  }
   table.add_real("imu_gyroscope_noise", &imu_gyroscope_noise, 0.0, kOptionHuge,
                  "std of gyroscope white noise (it reaches the pitch rate) [rad/s]");
   table.add_real("floor_friction", &floor_friction, 0.01, 100.0,

@@ -36,17 +36,24 @@ struct PushSettings {
 
 /// Ranges of the perturbations, all off by default. Randomised values are drawn at each
 /// reset from the environment's seeded generator; "randomisation bounds" (everything but
-/// the fixed values mass_scale, floor_friction, the slopes and the payload) are multiplied
-/// by the curriculum scale.
+/// the fixed values mass_scale, floor_friction, torque_limit_scale, the gain scales, the
+/// slopes, the payload and the *_fixed values) are multiplied by the curriculum scale. The
+/// fixed values draw nothing: a seed gives the same episode otherwise.
 struct PerturbationSettings {
-  double mass_scale = 1.0;                ///< Fixed factor on every body's mass and inertia.
-  double inertia_variation = 0.0;         ///< ε: each body's mass and inertia × (1 + U(-ε, ε)).
-  double joint_friction = 0.0;            ///< Each joint's kinetic friction in U(0, it) [N.m].
+  double mass_scale = 1.0;         ///< Fixed factor on every body's mass and inertia.
+  double inertia_variation = 0.0;  ///< ε: each body's mass and inertia × (1 + U(-ε, ε)).
+  double joint_friction = 0.0;     ///< Each joint's kinetic friction in U(0, it) [N.m].
+  /// Fixed kinetic friction of every joint, added to the drawn one [N.m].
+  double joint_friction_fixed = 0.0;
+  double wheel_servo_gain_scale = 1.0;    ///< Fixed factor on the wheel servos' kp and kd.
+  double leg_servo_gain_scale = 1.0;      ///< Fixed factor on the hip and knee servos' kp and kd.
   double torque_control_noise = 0.0;      ///< Std of the noise on applied torques [N.m].
   double torque_measurement_noise = 0.0;  ///< Std of the noise on observed torques [N.m].
   double imu_accelerometer_bias = 0.0;    ///< Each bias component in U(-it, it) [m/s^2].
   double imu_accelerometer_noise = 0.0;   ///< Std of the white noise [m/s^2].
   double imu_gyroscope_bias = 0.0;        ///< Each bias component in U(-it, it) [rad/s].
+  /// Fixed gyroscope bias, in the IMU's frame, added to the drawn one [rad/s].
+  Eigen::Vector3d imu_gyroscope_bias_fixed = Eigen::Vector3d::Zero();
   double imu_gyroscope_noise = 0.0;       ///< Std of the white noise [rad/s].
   double floor_friction = 1.0;            ///< Fixed factor on the tire-floor friction.
   double floor_friction_variation = 0.0;  ///< ε: friction × (1 + U(-ε, ε)).

@@ -102,7 +102,7 @@ ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
   observation_space_ = observation_dict_space_.flatten();
 }
 
-const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
+void ServosEnv::start_perturbations(std::optional<std::uint64_t> seed) {
   hand_push_end_ = 0.0;  // the reset clears the simulation's base force
   if (seed) {
     generator_.seed(*seed);
@@ -112,7 +112,18 @@ const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
     physics_->set_variation(perturbations_.sample(perturbation_generator_, randomization_scale_));
     pushes_.reset(perturbations_.push, randomization_scale_, perturbation_generator_());
   }
+}
+
+const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
+  start_perturbations(seed);
   return simulation_->reset(init_randomization_.scaled(randomization_scale_).sample(generator_));
+}
+
+const Observation& ServosEnv::reset_servos_to(const ResetState& state,
+                                              std::optional<std::uint64_t> seed) {
+  validate_reset_state(state);
+  start_perturbations(seed);
+  return simulation_->reset(state);
 }
 
 void ServosEnv::set_randomization_scale(double scale) {

@@ -52,6 +52,10 @@ class ServosEnv final : public Env {
   /// perturbations are drawn from (two streams: the initial states do not depend on
   /// whether perturbations are on).
   const Observation& reset_servos(std::optional<std::uint64_t> seed);
+  /// Starts an episode from `state` instead of a drawn one (identification replays a log from
+  /// its measured states); the perturbations are drawn as reset_servos() draws them.
+  /// @throws std::invalid_argument when `state` is not finite.
+  const Observation& reset_servos_to(const ResetState& state, std::optional<std::uint64_t> seed);
 
   /// Clamps `action` to the bounds and holds it for one step, pushes included.
   /// @throws InvalidCommandError on a NaN velocity, torque or gain, or an infinite position.
@@ -89,6 +93,8 @@ class ServosEnv final : public Env {
   void set_randomization_scale(double scale) override;
 
  private:
+  /// The perturbations of an episode, drawn (a seed re-seeds both generators).
+  void start_perturbations(std::optional<std::uint64_t> seed);
   void write_observation(const Observation& full, std::span<float> observation) const;
 
   std::unique_ptr<Simulation> simulation_;

@@ -8,9 +8,10 @@ namespace upkie_rl {
 
 /// Base of the domain errors (ModelError, SimulationDivergedError, InvalidCommandError,
 /// RenderError, ViewError, SpineError, CheckpointError, PolicyOutputError, OnnxError,
-/// DistributedError, AgentError, RecordFileError): catch it to handle any of them at once. The
-/// Python module maps the same hierarchy onto `upkie_rl.Error`. Option and configuration mistakes
-/// stay `std::invalid_argument` (Python's ValueError).
+/// DistributedError, AgentError, RecordFileError, RobotLogError): catch it to handle any of
+/// them at once. The Python module maps the same hierarchy onto `upkie_rl.Error` (the errors
+/// of the layers it binds: not the runner's, the record files' or the robot logs'). Option and
+/// configuration mistakes stay `std::invalid_argument` (Python's ValueError).
 class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

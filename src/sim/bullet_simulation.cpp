@@ -371,7 +371,7 @@ const Observation& BulletSimulation::reset(const ResetState& state) {
   multibody.setBaseOmega(to_bullet(angular_velocity_world));
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     multibody.setJointPos(world_->servo_link[servo], state.joint_configuration[servo]);
-    multibody.setJointVel(world_->servo_link[servo], 0.0);
+    multibody.setJointVel(world_->servo_link[servo], state.joint_velocities[servo]);
   }
   btAlignedObjectArray<btQuaternion> scratch_rotations;
   btAlignedObjectArray<btVector3> scratch_vectors;

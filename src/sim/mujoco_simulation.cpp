@@ -157,6 +157,7 @@ const Observation& MujocoSimulation::reset(const ResetState& state) {
   }
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     d->qpos[index.servo_qpos[servo]] = state.joint_configuration[servo];
+    d->qvel[index.servo_dof[servo]] = state.joint_velocities[servo];
   }
   mj_forward(m, d);
   return observe_reset();
@@ -178,7 +179,7 @@ void MujocoSimulation::apply_servo_torques(const ServoAction& action, bool brake
     const ServoCommand& command = action[servo];
     const double limit = servo_torque_limit(command, torque_limit(servo));
     const bool linear = !braked && std::abs(applied_torques_[servo]) < limit;
-    const double damping = linear ? servo_gains().kd * command.kd_scale : 0.0;
+    const double damping = linear ? servo_gains(servo).kd * command.kd_scale : 0.0;
     varied_model_->dof_damping[dof] = damping;
     d->qfrc_applied[dof] += damping * velocity;
   }

@@ -106,9 +106,9 @@ void PhysicsSimulation::set_base_force(const Eigen::Vector3d& force_in_world) {
 
 double PhysicsSimulation::joint_torque(std::size_t servo, const ServoCommand& command, bool braked,
                                        double position, double velocity) {
-  double torque =
-      braked ? std::clamp(-servo_gains_.kd * velocity, -kBrakeTorque, kBrakeTorque)
-             : servo_torque(command, position, velocity, servo_gains_, torque_limit(servo));
+  const ServoGains gains = servo_gains(servo);
+  double torque = braked ? std::clamp(-gains.kd * velocity, -kBrakeTorque, kBrakeTorque)
+                         : servo_torque(command, position, velocity, gains, torque_limit(servo));
   if (variation_.torque_control_noise > 0.0) {
     torque += variation_.torque_control_noise * standard_normal(torque_noise_);
   }

@@ -51,6 +51,11 @@ class PhysicsSimulation : public Simulation {
   /// @throws std::invalid_argument when a gain is negative or not finite; nothing changes.
   void set_servo_gains(const ServoGains& gains);
   const ServoGains& servo_gains() const { return servo_gains_; }
+  /// The gains servo `servo` applies: servo_gains() times the variation's servo_gain_scale.
+  ServoGains servo_gains(std::size_t servo) const {
+    const double scale = variation_.servo_gain_scale[servo];
+    return {servo_gains_.kp * scale, servo_gains_.kd * scale};
+  }
 
   /// Sets what differs from the nominal robot and world (masses, frictions, noise) in the
   /// episodes that the next resets start.

@@ -37,6 +37,9 @@ void PhysicsVariation::validate() const {
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     check(finite_non_negative(joint_friction[servo]),
           "joint_friction of " + std::string(kServoNames[servo]), joint_friction[servo]);
+    check(std::isfinite(servo_gain_scale[servo]) && servo_gain_scale[servo] > 0.0,
+          "servo_gain_scale of " + std::string(kServoNames[servo]) + " (must be positive)",
+          servo_gain_scale[servo]);
   }
   check(finite_non_negative(torque_control_noise), "torque_control_noise", torque_control_noise);
   check(finite_non_negative(torque_measurement_noise), "torque_measurement_noise",

@@ -35,6 +35,10 @@ struct PhysicsVariation {
   std::array<double, kNumServos + 1> mass_scale{1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   /// Kinetic friction of each joint: torque -friction·sign(v) when |v| > 1e-3 rad/s [N.m].
   std::array<double, kNumServos> joint_friction{};
+  /// Factor on each servo's feedback gains kp and kd (and its brake's damping): the real
+  /// servos' gains differ from the simulated law's (another moteus configuration, a motor
+  /// constant off its datasheet).
+  std::array<double, kNumServos> servo_gain_scale{1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   /// Standard deviation of Gaussian noise added to each servo torque at every physics
   /// step (it is part of the torque the servo reports) [N.m].
   double torque_control_noise = 0.0;

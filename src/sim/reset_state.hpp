@@ -24,6 +24,9 @@ struct ResetState {
   Eigen::Vector3d angular_velocity_base_in_base = Eigen::Vector3d::Zero();
   /// Joint angles in the standard order [rad].
   std::array<double, kNumServos> joint_configuration{};
+  /// Joint velocities in the standard order [rad/s] (a replay from a measured state: the
+  /// wheels of a rolling robot turn).
+  std::array<double, kNumServos> joint_velocities{};
 };
 
 /// @throws std::invalid_argument when `state` has a non-finite value or a zero quaternion.
@@ -33,6 +36,7 @@ inline void validate_reset_state(const ResetState& state) {
                 state.linear_velocity_base_to_world_in_world.allFinite() &&
                 state.angular_velocity_base_in_base.allFinite();
   for (double angle : state.joint_configuration) finite = finite && std::isfinite(angle);
+  for (double rate : state.joint_velocities) finite = finite && std::isfinite(rate);
   if (!finite) {
     throw std::invalid_argument(
         "reset state must be finite (position, orientation, velocities and joint angles)");

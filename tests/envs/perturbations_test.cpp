@@ -57,6 +57,12 @@ Trace pd_trace(const std::string& id, const EnvOptions& options, std::uint64_t s
 const EnvOptions kEverythingOff = {{"mass_scale", "1"},
                                    {"inertia_variation", "0"},
                                    {"joint_friction", "0"},
+                                   {"joint_friction_fixed", "0"},
+                                   {"wheel_servo_gain_scale", "1"},
+                                   {"leg_servo_gain_scale", "1"},
+                                   {"imu_gyroscope_bias_fixed_x", "0"},
+                                   {"imu_gyroscope_bias_fixed_y", "0"},
+                                   {"imu_gyroscope_bias_fixed_z", "0"},
                                    {"torque_control_noise", "0"},
                                    {"torque_measurement_noise", "0"},
                                    {"imu_accelerometer_bias", "0"},
@@ -288,14 +294,23 @@ TEST(Perturbations, SlopesAndPayloadsAreFixedAndDrawNothing) {
   fixed.payload_offset_x = 0.1;
   fixed.payload_offset_y = -0.2;
   fixed.payload_offset_z = 0.05;
+  fixed.joint_friction_fixed = 0.02;
+  fixed.wheel_servo_gain_scale = 1.5;
+  fixed.leg_servo_gain_scale = 0.7;
+  fixed.imu_gyroscope_bias_fixed = Eigen::Vector3d(0.0, 0.03, 0.0);
   EXPECT_TRUE(fixed.any());
   std::mt19937_64 first(9);
   std::mt19937_64 second(9);
   const PhysicsVariation a = randomised.sample(first, 1.0);
   const PhysicsVariation b = fixed.sample(second, 1.0);
   EXPECT_EQ(a.mass_scale, b.mass_scale);
-  EXPECT_EQ(a.joint_friction, b.joint_friction);
-  EXPECT_EQ(a.imu.gyroscope_bias, b.imu.gyroscope_bias);
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {  // drawn + fixed
+    EXPECT_DOUBLE_EQ(b.joint_friction[servo], a.joint_friction[servo] + 0.02);
+    EXPECT_EQ(b.servo_gain_scale[servo], is_wheel(servo) ? 1.5 : 0.7);
+    EXPECT_EQ(a.servo_gain_scale[servo], 1.0);
+  }
+  EXPECT_DOUBLE_EQ(b.imu.gyroscope_bias.y(), a.imu.gyroscope_bias.y() + 0.03);
+  EXPECT_EQ(b.imu.gyroscope_bias.x(), a.imu.gyroscope_bias.x());
   EXPECT_EQ(a.floor_friction_scale, b.floor_friction_scale);
   EXPECT_EQ(a.noise_seed, b.noise_seed);
   EXPECT_EQ(first(), second());

@@ -225,6 +225,31 @@ TEST_P(PhysicsVariationTest, TorqueLimitScaleCapsTheServoTorque) {
   EXPECT_THROW(simulation->set_variation(weaker), std::invalid_argument);
 }
 
+// A knee told to go 0.2 rad away, in the air: with its gains scaled up it moves further in
+// the first step (torque kp·scale·error, well below its limit), scaled down less far.
+TEST_P(PhysicsVariationTest, ServoGainScaleScalesTheServoLaw) {
+  PhysicsConfig config;
+  config.floor = false;
+  config.gravity = 0.0;
+  auto simulation = make(config);
+  const auto knee_motion = [&](double scale) {
+    PhysicsVariation variation;
+    variation.servo_gain_scale[kLeftKnee] = scale;
+    simulation->set_variation(variation);
+    simulation->reset(ResetState{});
+    ServoAction action = pendulum_action(0.0, kWheelRadius);
+    action[kLeftKnee].position += 0.2;
+    return simulation->step(action).servo[kLeftKnee].position;
+  };
+  const double nominal = knee_motion(1.0);
+  ASSERT_GT(nominal, 1e-4);
+  EXPECT_GT(knee_motion(2.0), 1.25 * nominal);  // not twice: kd scales too, and damps
+  EXPECT_LT(knee_motion(0.5), 0.75 * nominal);
+  PhysicsVariation zero;
+  zero.servo_gain_scale[kLeftKnee] = 0.0;
+  EXPECT_THROW(simulation->set_variation(zero), std::invalid_argument);
+}
+
 TEST_P(PhysicsVariationTest, ImuBiasReachesTheImuAndThePitchRateOnly) {
   auto nominal = make();
   auto biased = make();

@@ -1,0 +1,353 @@
+#include "identify/identification.hpp"
+
+#include <nlopt.h>
+
+#include <Eigen/Dense>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <utility>
+
+#include "model/number_text.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+/// Relative change of the errors below which a parameter is "not excited" by the log.
+constexpr double kMinimumSensitivity = 1e-3;
+
+struct Fit {
+  const LogReplay& replay;
+  std::vector<ParameterRequest> continuous;
+  /// Measured without replaying (the gyroscope's bias): fixed during the fit.
+  ParameterValues measured;
+  const ParameterRequest* delay = nullptr;
+  double delay_value = 0.0;
+  int evaluations = 0;
+
+  ParameterValues values(const std::vector<double>& x) const {
+    ParameterValues result = measured;
+    for (std::size_t i = 0; i < continuous.size(); ++i)
+      result.emplace_back(continuous[i].parameter, x[i]);
+    if (delay != nullptr) result.emplace_back(delay->parameter, delay_value);
+    return result;
+  }
+  double rmse(const std::vector<double>& x, std::vector<double>* residuals = nullptr,
+              std::size_t window_stride = 1) {
+    ++evaluations;
+    return replay.rmse(values(x), residuals, window_stride);
+  }
+  /// The index of action_lag among the continuous parameters, or -1.
+  int lag_index() const {
+    for (std::size_t i = 0; i < continuous.size(); ++i) {
+      if (continuous[i].parameter->name == "action_lag") return static_cast<int>(i);
+    }
+    return -1;
+  }
+};
+
+double objective(unsigned n, const double* x, double* gradient, void* data) {
+  static_cast<void>(gradient);  // BOBYQA asks for none
+  auto& fit = *static_cast<Fit*>(data);
+  return fit.rmse(std::vector<double>(x, x + n));
+}
+
+/// The best delay over its range at `x`, and whether it stands out from its neighbours.
+std::pair<double, std::string> scan_delay(Fit& fit, const std::vector<double>& x) {
+  std::vector<double> costs;
+  for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
+    fit.delay_value = d;
+    costs.push_back(fit.rmse(x));
+  }
+  const auto best = std::min_element(costs.begin(), costs.end());
+  const std::size_t index = static_cast<std::size_t>(best - costs.begin());
+  fit.delay_value = fit.delay->low + static_cast<double>(index);
+  double neighbour = std::numeric_limits<double>::infinity();
+  if (index > 0) neighbour = std::min(neighbour, costs[index - 1]);
+  if (index + 1 < costs.size()) neighbour = std::min(neighbour, costs[index + 1]);
+  std::string reason;
+  if (!(neighbour > *best * (1.0 + 10 * kMinimumSensitivity))) {
+    reason = "delays " + shortest_text(fit.delay_value) + " +-1 predict the log alike (rmse " +
+             shortest_text(*best) + " vs " + shortest_text(neighbour) +
+             "): the commands change too little";
+  }
+  return {fit.delay_value, reason};
+}
+
+/// Replays per coarse-search evaluation: one in kCoarseStride.
+constexpr std::size_t kCoarseStride = 4;
+
+/// A delay of d steps and a lag of time constant tau predict alike to first order (both
+/// shift the commands by about d·dt + tau), so scanning the delay alone at zero lag puts a
+/// lag into the delay, a local minimum the continuous fit does not leave. When both are
+/// fitted, the start is the best of a coarse grid of both, on a quarter of the replays.
+void search_actuation(Fit& fit, std::vector<double>& x) {
+  const int lag = fit.lag_index();
+  if (fit.delay == nullptr || lag < 0) return;
+  const ParameterRequest& range = fit.continuous[static_cast<std::size_t>(lag)];
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<double> candidate = x;
+  double best_delay = fit.delay_value;
+  double best_lag = x[static_cast<std::size_t>(lag)];
+  for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
+    for (int k = 0; k < 4; ++k) {  // lags up to half the range: its large values are rare
+      fit.delay_value = d;
+      candidate[static_cast<std::size_t>(lag)] = range.low + (range.high - range.low) * k / 6.0;
+      const double cost = fit.rmse(candidate, nullptr, kCoarseStride);
+      if (cost < best) {
+        best = cost;
+        best_delay = d;
+        best_lag = candidate[static_cast<std::size_t>(lag)];
+      }
+    }
+  }
+  fit.delay_value = best_delay;
+  x[static_cast<std::size_t>(lag)] = best_lag;
+}
+
+/// After a fit, the delays along the ridge where delay·dt + lag stays the fitted sum (what
+/// the commands' timing pins down): a delay the coarse search chose wrongly leaves a lag
+/// that made up for it, and scanning the delay at that lag keeps it. Returns whether the
+/// delay changed.
+bool scan_delay_along_lag(Fit& fit, std::vector<double>& x) {
+  const auto lag = static_cast<std::size_t>(fit.lag_index());
+  const ParameterRequest& range = fit.continuous[lag];
+  const double dt = fit.replay.timestep();
+  const double total = fit.delay_value * dt + x[lag];
+  double best = fit.rmse(x);
+  const double fitted_delay = fit.delay_value;
+  double best_delay = fitted_delay;
+  double best_lag = x[lag];
+  std::vector<double> candidate = x;
+  for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
+    if (d == static_cast<int>(fitted_delay)) continue;
+    candidate[lag] = std::clamp(total - d * dt, range.low, range.high);
+    fit.delay_value = d;
+    const double cost = fit.rmse(candidate);
+    if (cost < best) {
+      best = cost;
+      best_delay = d;
+      best_lag = candidate[lag];
+    }
+  }
+  fit.delay_value = best_delay;
+  x[lag] = best_lag;
+  return best_delay != fitted_delay;
+}
+
+void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
+  const unsigned n = static_cast<unsigned>(fit.continuous.size());
+  nlopt_srand(settings.seed);
+  nlopt_opt optimizer = nlopt_create(NLOPT_LN_BOBYQA, n);
+  std::vector<double> low(n), high(n), step(n);
+  for (unsigned i = 0; i < n; ++i) {
+    low[i] = fit.continuous[i].low;
+    high[i] = fit.continuous[i].high;
+    step[i] = 0.1 * (high[i] - low[i]);
+  }
+  nlopt_set_lower_bounds(optimizer, low.data());
+  nlopt_set_upper_bounds(optimizer, high.data());
+  nlopt_set_initial_step(optimizer, step.data());
+  nlopt_set_min_objective(optimizer, objective, &fit);
+  nlopt_set_maxeval(optimizer, settings.max_evaluations);
+  nlopt_set_ftol_rel(optimizer, 1e-6);
+  nlopt_set_xtol_rel(optimizer, 1e-4);
+  double best = 0.0;
+  const nlopt_result status = nlopt_optimize(optimizer, x.data(), &best);
+  nlopt_destroy(optimizer);
+  if (status < 0)
+    throw std::runtime_error("identify: NLopt failed (" + std::to_string(status) + ")");
+}
+
+/// Uncertainties from the errors' Jacobian (forward differences), or why a parameter is not
+/// identifiable.
+void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
+                          std::vector<FittedParameter>& fitted) {
+  const std::size_t n = x.size();
+  std::vector<double> residuals;
+  fit.rmse(x, &residuals);
+  const auto m = static_cast<Eigen::Index>(residuals.size());
+  const Eigen::Map<const Eigen::VectorXd> r0(residuals.data(), m);
+  Eigen::MatrixXd jacobian(m, static_cast<Eigen::Index>(n));
+  std::vector<double> shifted;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double range = fit.continuous[i].high - fit.continuous[i].low;
+    double h = 0.01 * range;
+    if (x[i] + h > fit.continuous[i].high) h = -h;
+    std::vector<double> moved = x;
+    moved[i] += h;
+    fit.rmse(moved, &shifted);
+    jacobian.col(static_cast<Eigen::Index>(i)) =
+        (Eigen::Map<const Eigen::VectorXd>(shifted.data(), m) - r0) / h;
+    const double change = jacobian.col(static_cast<Eigen::Index>(i)).norm() * range;
+    if (change < kMinimumSensitivity * std::max(r0.norm(), 1e-12) * 100.0 / std::sqrt(double(m))) {
+      fitted[i].identifiable = false;
+      fitted[i].reason =
+          "changing it over its whole range changes the prediction by under 0.1 %: "
+          "the log does not excite it";
+    }
+  }
+  // The errors within one replay are strongly correlated (one wrong parameter shifts a whole
+  // trajectory), so the i.i.d. estimate sigma^2 (J^T J)^-1 is far too small. Replays are
+  // treated as independent blocks instead: the cluster-robust ("sandwich") covariance
+  // (J^T J)^-1 (sum_w J_w^T r_w r_w^T J_w) (J^T J)^-1, i.e. the spread the fit would show
+  // over other replays of the same kind.
+  const Eigen::MatrixXd bread =
+      (jacobian.transpose() * jacobian).completeOrthogonalDecomposition().pseudoInverse();
+  const auto block = static_cast<Eigen::Index>(fit.replay.residuals_per_window());
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
+  for (Eigen::Index start = 0; start + block <= m; start += block) {
+    const Eigen::VectorXd score =
+        jacobian.middleRows(start, block).transpose() * r0.segment(start, block);
+    meat += score * score.transpose();
+  }
+  const double windows = static_cast<double>(m / std::max<Eigen::Index>(1, block));
+  const double small_sample = windows > double(n) ? windows / (windows - double(n)) : 1.0;
+  const Eigen::MatrixXd covariance = small_sample * bread * meat * bread;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double sd = std::sqrt(std::max(0.0, covariance(Eigen::Index(i), Eigen::Index(i))));
+    fitted[i].uncertainty = sd;
+    const double range = fit.continuous[i].high - fit.continuous[i].low;
+    if (fitted[i].identifiable && !(sd < 0.5 * range)) {
+      fitted[i].identifiable = false;
+      fitted[i].reason = "its uncertainty (+-" + shortest_text(sd) +
+                         ") spans its range: other parameters explain the log as well";
+    }
+  }
+}
+
+/// The fit's strategy: the actuation's start (a coarse grid of delay and lag, or the delay
+/// scanned), the continuous fit, then the delay again (along the lag's ridge when both are
+/// fitted) and the continuous fit again if it moved. Returns why the delay is not
+/// identifiable, or "".
+std::string run_fit(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
+  std::string delay_reason;
+  if (fit.delay != nullptr && fit.lag_index() >= 0) {
+    search_actuation(fit, x);
+  } else if (fit.delay != nullptr) {
+    delay_reason = scan_delay(fit, x).second;
+  }
+  if (!x.empty()) {
+    fit_continuous(fit, x, settings);
+    if (fit.delay != nullptr && fit.lag_index() >= 0) {
+      if (scan_delay_along_lag(fit, x)) fit_continuous(fit, x, settings);
+      delay_reason = scan_delay(fit, x).second;  // and whether it stands out
+    } else if (fit.delay != nullptr) {
+      const double previous = fit.delay_value;
+      delay_reason = scan_delay(fit, x).second;
+      if (fit.delay_value != previous) fit_continuous(fit, x, settings);
+    }
+  }
+  return delay_reason;
+}
+
+}  // namespace
+
+IdentificationResult identify(const RobotLog& log, const IdentificationSettings& settings) {
+  const auto started = std::chrono::steady_clock::now();
+  int max_delay = 0;
+  double max_lag = 0.0;
+  for (const ParameterRequest& request : settings.parameters) {
+    if (request.parameter->name == "action_delay") max_delay = static_cast<int>(request.high);
+    if (request.parameter->name == "action_lag") max_lag = request.high;
+  }
+  const LogReplay replay(settings.env_id, settings.options, log, settings.replay, max_delay,
+                         max_lag);
+  Fit fit{replay, {}, {}, nullptr, 0.0, 0};
+  std::vector<double> x;
+  std::vector<FittedParameter> measured;
+  for (const ParameterRequest& request : settings.parameters) {
+    if (request.parameter->name == "imu_gyroscope_bias_fixed_y") {
+      const auto [bias, standard_error] = replay.pitch_rate_bias();
+      const double value = std::clamp(bias, request.low, request.high);
+      fit.measured.emplace_back(request.parameter, value);
+      measured.push_back({std::string(request.parameter->name),
+                          std::string(request.parameter->unit), value, standard_error, true, ""});
+    } else if (request.parameter->integer) {
+      fit.delay = &request;
+      fit.delay_value = std::clamp(request.parameter->nominal, request.low, request.high);
+    } else {
+      fit.continuous.push_back(request);
+      x.push_back(std::clamp(request.parameter->nominal, request.low, request.high));
+    }
+  }
+  IdentificationResult result;
+  result.windows = replay.num_windows();
+  result.horizon = settings.replay.horizon;
+  const ParameterValues measured_values = std::exchange(fit.measured, {});
+  result.rmse_before = fit.rmse(x);  // the nominal robot
+  fit.measured = measured_values;
+  const std::string delay_reason = run_fit(fit, x, settings);
+  for (std::size_t i = 0; i < fit.continuous.size(); ++i) {
+    const IdentifiedParameter& parameter = *fit.continuous[i].parameter;
+    result.parameters.push_back(
+        {std::string(parameter.name), std::string(parameter.unit), x[i], 0.0, true, ""});
+  }
+  if (!x.empty()) estimate_uncertainty(fit, x, result.parameters);
+  result.parameters.insert(result.parameters.end(), measured.begin(), measured.end());
+  if (fit.delay != nullptr) {
+    FittedParameter delay{std::string(fit.delay->parameter->name),
+                          std::string(fit.delay->parameter->unit),
+                          fit.delay_value,
+                          0.0,
+                          delay_reason.empty(),
+                          delay_reason};
+    result.parameters.push_back(delay);
+  }
+  result.rmse_after = fit.rmse(x);
+  result.evaluations = fit.evaluations;
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+std::string identification_json(const IdentificationResult& result) {
+  nlohmann::json json;
+  json["params"] = nlohmann::json::object();
+  json["uncertainty"] = nlohmann::json::object();
+  json["identifiable"] = nlohmann::json::object();
+  for (const FittedParameter& parameter : result.parameters) {
+    json["params"][parameter.name] = parameter.value;
+    json["uncertainty"][parameter.name] = parameter.uncertainty;
+    json["identifiable"][parameter.name] = parameter.identifiable;
+  }
+  json["rmse_before"] = result.rmse_before;
+  json["rmse_after"] = result.rmse_after;
+  json["seconds"] = result.seconds;
+  json["evaluations"] = result.evaluations;
+  return json.dump();
+}
+
+std::string identification_yaml(const IdentificationResult& result, const std::string& log_name,
+                                const std::string& env_id) {
+  std::ostringstream yaml;
+  std::ostringstream env_options;
+  std::ostringstream set_options;
+  std::ostringstream entries;
+  const auto option = [&](const std::string& name, const std::string& value) {
+    entries << "    " << name << ": " << value << "\n";
+    env_options << " --env-option " << name << "=" << value;
+    set_options << " --set env.options." << name << "=" << value;
+  };
+  for (const FittedParameter& parameter : result.parameters) {
+    const std::string value = shortest_text(parameter.value);
+    if (parameter.name == "action_lag") {
+      option("action_lag_min", value);
+      option("action_lag_max", value);
+    } else {
+      option(parameter.name, value);
+    }
+  }
+  yaml << "# upkie-rl identify --log " << log_name << " --env " << env_id << "\n"
+       << "# rmse " << shortest_text(result.rmse_before) << " -> "
+       << shortest_text(result.rmse_after) << " over " << shortest_text(result.horizon)
+       << " s replays\n# rollout:" << env_options.str() << "\n# train:" << set_options.str()
+       << "\nenv:\n  options:\n"
+       << entries.str();
+  return yaml.str();
+}
+
+}  // namespace upkie_rl

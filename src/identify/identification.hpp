@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// identify(): the environment options that make a simulation predict a robot's log best.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "envs/env_options.hpp"
+#include "envs/robot_log.hpp"
+#include "identify/identified_parameter.hpp"
+#include "identify/log_replay.hpp"
+
+namespace upkie_rl {
+
+/// What to fit, on what, and how hard.
+struct IdentificationSettings {
+  std::string env_id = "Upkie-Bullet-Servos";
+  EnvOptions options;  ///< Fixed options of the environment.
+  std::vector<ParameterRequest> parameters;
+  ReplaySettings replay;
+  int max_evaluations = 120;  ///< Of the replay, per continuous fit.
+  std::uint64_t seed = 0;     ///< NLopt's (BOBYQA itself draws nothing).
+};
+
+/// One fitted parameter.
+struct FittedParameter {
+  std::string name;
+  std::string unit;
+  double value = 0.0;
+  /// One standard deviation [unit of the value]: the spread of the fit over replays, from
+  /// the errors' Jacobian with each replay an independent block (cluster-robust sandwich
+  /// covariance); 0 for a delay, which is scanned. It does not include the bias of a model
+  /// that cannot match the robot (another engine, the no-slip start states).
+  double uncertainty = 0.0;
+  bool identifiable = true;
+  std::string reason;  ///< Why not, when not identifiable.
+};
+
+struct IdentificationResult {
+  std::vector<FittedParameter> parameters;
+  double rmse_before = 0.0;  ///< With the nominal values (normalised errors, no unit).
+  double rmse_after = 0.0;   ///< With the fitted ones.
+  double seconds = 0.0;      ///< Wall time of the fit [s].
+  int evaluations = 0;       ///< Replays of the whole log.
+  std::size_t windows = 0;   ///< Replays per evaluation.
+  double horizon = 0.0;      ///< Of each replay [s].
+};
+
+/// Fits the requested parameters: the delay (whole steps) by scanning its range, the others
+/// with NLopt's BOBYQA (bounded, derivative-free) within their ranges, starting from the
+/// nominal robot; then the delay again at the fitted values. Same log and settings, same
+/// result.
+/// @throws RobotLogError when the log cannot be replayed (see LogReplay).
+/// @throws std::invalid_argument on a bad environment, option or parameter.
+IdentificationResult identify(const RobotLog& log, const IdentificationSettings& settings);
+
+/// `{"params": {name: value}, "rmse_before": x, "rmse_after": y, "seconds": s}` plus each
+/// parameter's uncertainty and identifiability, on one line.
+std::string identification_json(const IdentificationResult& result);
+
+/// The fitted options as a YAML training-configuration fragment (env.options), with the
+/// matching `--env-option` and `--set` arguments in its comments.
+std::string identification_yaml(const IdentificationResult& result, const std::string& log_name,
+                                const std::string& env_id);
+
+}  // namespace upkie_rl

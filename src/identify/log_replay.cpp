@@ -1,0 +1,290 @@
+#include "identify/log_replay.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <stdexcept>
+#include <thread>
+
+#include "envs/env_wrapper.hpp"
+#include "envs/registry.hpp"
+#include "envs/servos_env.hpp"
+#include "identify/measured_reset_state.hpp"
+#include "model/number_text.hpp"
+#include "sim/servo_command_fields.hpp"
+#include "sim/simulation.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+/// Smallest scale of each signal: a log where one barely moves must not blow its errors up.
+constexpr std::array<double, kNumReplaySignals> kMinimumScales = {0.01,  0.05,  0.5,   0.5,
+                                                                  0.005, 0.005, 0.005, 0.005};
+/// Normalised error of each signal after the simulation diverged.
+constexpr double kDivergedError = 10.0;
+
+std::array<double, kNumReplaySignals> replay_signals(const Observation& observation) {
+  return {observation.base_orientation.pitch,     observation.base_orientation.angular_velocity.y(),
+          observation.servo[kLeftWheel].velocity, observation.servo[kRightWheel].velocity,
+          observation.servo[kLeftHip].position,   observation.servo[kLeftKnee].position,
+          observation.servo[kRightHip].position,  observation.servo[kRightKnee].position};
+}
+
+ServosEnv& find_servos_env(Env& env) {
+  Env* current = &env;
+  while (current != nullptr) {
+    if (auto* servos = dynamic_cast<ServosEnv*>(current)) return *servos;
+    auto* wrapper = dynamic_cast<EnvWrapper*>(current);
+    current = wrapper != nullptr ? &wrapper->inner() : nullptr;
+  }
+  throw std::invalid_argument("identify: the environment has no servos to replay commands on");
+}
+
+bool is_actuation_option(const std::string& name) {
+  return name == "action_delay" || name == "action_lag_min" || name == "action_lag_max";
+}
+
+/// The log's cycles taken every `stride`, with the environment's step.
+std::size_t decimation(const RobotLog& log, double timestep, const std::string& env_id) {
+  const double period = log.period();
+  const double ratio = timestep / period;
+  const double stride = std::round(ratio);
+  if (stride < 1.0 || std::abs(ratio - stride) > 0.01 * stride) {
+    throw RobotLogError(log.format + " " + log.name + ": wrong frequency: cycles every " +
+                        shortest_text(1e3 * period) + " ms (" + shortest_text(1.0 / period) +
+                        " Hz), " + env_id + " steps every " + shortest_text(1e3 * timestep) +
+                        " ms: not a whole number of cycles per step (set its frequency option)");
+  }
+  return static_cast<std::size_t>(stride);
+}
+
+/// Every `spacing`-th sample from `first` that leaves a whole replay of `horizon` steps in
+/// the log's `num_samples`, at most `max_windows` of them spread evenly over the log.
+std::vector<std::size_t> replay_starts(std::size_t first, std::size_t num_samples,
+                                       std::size_t horizon, std::size_t spacing,
+                                       std::size_t max_windows) {
+  std::vector<std::size_t> starts;
+  for (std::size_t start = first; start + horizon < num_samples; start += spacing) {
+    starts.push_back(start);
+  }
+  if (starts.size() <= max_windows) return starts;
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < max_windows; ++i)
+    kept.push_back(starts[i * starts.size() / max_windows]);
+  return kept;
+}
+
+void require_signals(const RobotLog& log) {
+  const auto missing = [&](const char* what) {
+    throw RobotLogError(
+        log.format + " " + log.name + ": no " + what +
+        ": identification replays the servo commands and compares joint and IMU "
+        "measurements (record with `upkie-rl spine --log` or the robot's spine log, "
+        "or `rollout --record` on a servos environment)");
+  };
+  if (!log.signals.servo_commands) missing("servo commands (action.<joint>.<field> columns)");
+  if (!log.signals.servo_measurements) missing("servo measurements (<joint>.position, .velocity)");
+  if (!log.signals.pitch_rate) missing("base pitch rate");
+}
+
+}  // namespace
+
+LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const RobotLog& log,
+                     const ReplaySettings& settings, int max_delay_steps, double max_lag)
+    : env_id_(env_id) {
+  require_signals(log);
+  log.check_regular();
+  double lag_min = 0.0;
+  double lag_max = 0.0;
+  for (const auto& [name, value] : options) {
+    if (!is_actuation_option(name)) {
+      options_.emplace_back(name, value);
+      continue;
+    }
+    const double number = std::stod(value);
+    if (name == "action_delay") {
+      fixed_delay_ = static_cast<int>(number);
+    } else {
+      (name == "action_lag_min" ? lag_min : lag_max) = number;
+    }
+  }
+  if (lag_min != lag_max) {
+    throw std::invalid_argument(
+        "identify: action_lag_min and action_lag_max must be equal (one "
+        "time constant), got " +
+        shortest_text(lag_min) + " and " + shortest_text(lag_max));
+  }
+  fixed_lag_ = lag_max;
+  std::unique_ptr<Env> probe = make_env(env_id, options_);
+  const RobotModel& model = find_servos_env(*probe).model();
+  timestep_ = probe->timestep();
+  const std::size_t stride = decimation(log, timestep_, env_id);
+  for (std::size_t i = 0; i < log.cycles.size(); i += stride) {
+    const LoggedCycle& cycle = log.cycles[i];
+    Sample& sample = samples_.emplace_back();
+    sample.state = measured_reset_state(model, cycle.observation);
+    Observation turned = cycle.observation;  // the state is linear in the pitch rate
+    turned.base_orientation.angular_velocity.y() += 1.0;
+    sample.velocity_per_pitch_rate =
+        measured_reset_state(model, turned).linear_velocity_base_to_world_in_world -
+        sample.state.linear_velocity_base_to_world_in_world;
+    sample.signals = replay_signals(cycle.observation);
+    for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+      for (std::size_t field = 0; field < kServoCommandFields.size(); ++field) {
+        sample.command[servo * kServoCommandFields.size() + field] =
+            static_cast<float>(cycle.command[servo].*kServoCommandFields[field].member);
+      }
+    }
+  }
+  // Each signal's standard deviation over the log.
+  for (std::size_t k = 0; k < kNumReplaySignals; ++k) {
+    double sum = 0.0;
+    double sum_squares = 0.0;
+    for (const Sample& sample : samples_) {
+      sum += sample.signals[k];
+      sum_squares += sample.signals[k] * sample.signals[k];
+    }
+    const double n = static_cast<double>(samples_.size());
+    const double variance = std::max(0.0, sum_squares / n - (sum / n) * (sum / n));
+    scales_[k] = std::max(kMinimumScales[k], std::sqrt(variance));
+  }
+  horizon_steps_ = std::max(1, static_cast<int>(std::lround(settings.horizon / timestep_)));
+  const auto spacing = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::lround(settings.window_spacing / timestep_)));
+  // The lag's filter starts five time constants before a window, from the log's commands.
+  lag_warmup_ =
+      static_cast<std::size_t>(std::ceil(5.0 * std::max(max_lag, fixed_lag_) / timestep_));
+  const std::size_t first =
+      static_cast<std::size_t>(std::max(max_delay_steps, fixed_delay_)) + lag_warmup_;
+  window_starts_ = replay_starts(first, samples_.size(), static_cast<std::size_t>(horizon_steps_),
+                                 spacing, settings.max_windows);
+  if (window_starts_.empty()) {
+    throw RobotLogError(log.format + " " + log.name + ": " + shortest_text(log.duration()) +
+                        " s is too short for one replay of " + shortest_text(settings.horizon) +
+                        " s after the actuation's warm-up");
+  }
+}
+
+std::pair<double, double> LogReplay::pitch_rate_bias() const {
+  const std::size_t block = std::max<std::size_t>(1, std::lround(0.2 / timestep_));
+  std::vector<double> block_means;
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 1; i + 1 < samples_.size(); ++i) {
+    const double pitch_change =
+        (samples_[i + 1].signals[0] - samples_[i - 1].signals[0]) / (2.0 * timestep_);
+    sum += samples_[i].signals[1] - pitch_change;
+    if (++count == block) {
+      block_means.push_back(sum / static_cast<double>(count));
+      sum = 0.0;
+      count = 0;
+    }
+  }
+  if (block_means.size() < 2) return {0.0, std::numeric_limits<double>::infinity()};
+  double mean = 0.0;
+  for (const double value : block_means) mean += value;
+  mean /= static_cast<double>(block_means.size());
+  double variance = 0.0;
+  for (const double value : block_means) variance += (value - mean) * (value - mean);
+  const double n = static_cast<double>(block_means.size());
+  return {mean, std::sqrt(variance / (n - 1.0) / n)};
+}
+
+LogReplay::Case LogReplay::make_case(const ParameterValues& values) const {
+  Case replay{options_, fixed_delay_, fixed_lag_, 0.0};
+  for (const auto& [parameter, value] : values) {
+    if (parameter->name == "imu_gyroscope_bias_fixed_y") replay.pitch_rate_bias = value;
+    if (parameter->name == "action_delay") {
+      replay.delay = static_cast<int>(std::lround(value));
+    } else if (parameter->name == "action_lag") {
+      replay.lag = value;
+    } else {
+      replay.options.emplace_back(std::string(parameter->name), shortest_text(value));
+    }
+  }
+  return replay;
+}
+
+void LogReplay::replay_window(ServosEnv& servos, const Case& replay, std::size_t start,
+                              std::span<double> errors) const {
+  std::vector<float> observation(servos.observation_space().size());
+  const double lag = replay.lag;
+  const float alpha = lag > 0.0 ? static_cast<float>(std::min(1.0, timestep_ / lag)) : 1.0f;
+  std::array<float, kNumServos * 6> filtered{};
+  const auto filter = [&](const std::array<float, kNumServos * 6>& target) {
+    for (std::size_t i = 0; i < filtered.size(); ++i) {
+      filtered[i] = std::isnan(target[i]) || std::isnan(filtered[i])
+                        ? target[i]
+                        : filtered[i] + alpha * (target[i] - filtered[i]);
+    }
+  };
+  ResetState state = samples_[start].state;  // what the gyroscope measured, less its bias
+  state.angular_velocity_base_in_base.y() -= replay.pitch_rate_bias;
+  state.linear_velocity_base_to_world_in_world -=
+      replay.pitch_rate_bias * samples_[start].velocity_per_pitch_rate;
+  servos.reset_servos_to(state, 0);
+  const auto delay = static_cast<std::size_t>(replay.delay);
+  const std::size_t warmup = std::min(lag_warmup_, start - delay);
+  filtered = samples_[start - delay - warmup].command;
+  for (std::size_t j = start - warmup; j < start; ++j) filter(samples_[j - delay].command);
+  bool diverged = false;
+  for (int step = 0; step < horizon_steps_; ++step) {
+    const std::size_t index = start + static_cast<std::size_t>(step);
+    filter(samples_[index - delay].command);
+    std::array<double, kNumReplaySignals> predicted{};
+    if (!diverged) {
+      try {
+        servos.step(filtered, observation);
+        predicted = replay_signals(*servos.full_observation());
+      } catch (const SimulationDivergedError&) {
+        diverged = true;
+      }
+    }
+    for (std::size_t k = 0; k < kNumReplaySignals; ++k) {
+      errors[static_cast<std::size_t>(step) * kNumReplaySignals + k] =
+          diverged ? kDivergedError : (predicted[k] - samples_[index + 1].signals[k]) / scales_[k];
+    }
+  }
+}
+
+double LogReplay::rmse(const ParameterValues& values, std::vector<double>* residuals,
+                       std::size_t window_stride) const {
+  const Case replay = make_case(values);
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < window_starts_.size(); i += std::max<std::size_t>(1, window_stride)) {
+    starts.push_back(window_starts_[i]);
+  }
+  const std::size_t block = residuals_per_window();
+  std::vector<double> errors(starts.size() * block);
+  // A fixed number of workers, each with its own environment and every kReplayWorkers-th
+  // replay: the same replays on the same environments whatever the machine, so the same
+  // result. An error in a worker is rethrown here.
+  std::array<std::exception_ptr, kReplayWorkers> failures{};
+  const auto work = [&](std::size_t worker) {
+    try {
+      std::unique_ptr<Env> env = make_env(env_id_, replay.options);
+      ServosEnv& servos = find_servos_env(*env);
+      for (std::size_t w = worker; w < starts.size(); w += kReplayWorkers) {
+        replay_window(servos, replay, starts[w], std::span(errors).subspan(w * block, block));
+      }
+    } catch (...) {
+      failures[worker] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t worker = 1; worker < kReplayWorkers; ++worker)
+    threads.emplace_back(work, worker);
+  work(0);
+  for (std::thread& thread : threads) thread.join();
+  for (const std::exception_ptr& failure : failures) {
+    if (failure) std::rethrow_exception(failure);
+  }
+  double sum_squares = 0.0;
+  for (const double error : errors) sum_squares += error * error;
+  if (residuals != nullptr) *residuals = std::move(errors);
+  return std::sqrt(sum_squares / static_cast<double>(starts.size() * block));
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,142 @@
+// upkie-rl identify's fit: known physics recovered from logs the test writes, refusals, and
+// the same result for the same log and seed.
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <string>
+
+#include "common/temp_files.hpp"
+#include "envs/robot_log.hpp"
+#include "identify/excitation_log.hpp"
+#include "identify/identification.hpp"
+
+namespace upkie_rl {
+namespace {
+
+/// A 3 s log of `env_id` with `options` as the hidden physics.
+RobotLog simulated_log(const std::string& name, const EnvOptions& options,
+                       const std::string& env_id = "Upkie-Bullet-Servos", std::uint64_t seed = 0) {
+  const auto path = testing::temp_path(name);
+  ExcitationSettings excitation;
+  excitation.duration = 3.0;
+  excitation.seed = seed;
+  write_excitation_log(env_id, options, excitation, path);
+  return read_robot_log(path);
+}
+
+IdentificationResult fit(const RobotLog& log, const std::vector<std::string>& params,
+                         const std::string& env_id = "Upkie-Bullet-Servos") {
+  IdentificationSettings settings;
+  settings.env_id = env_id;
+  settings.parameters = parse_parameter_requests(params);
+  settings.max_evaluations = 60;
+  const IdentificationResult result = identify(log, settings);
+  // The figures docs/identify.md reports.
+  std::cout << identification_json(result) << std::endl;
+  return result;
+}
+
+const FittedParameter& parameter(const IdentificationResult& result, const std::string& name) {
+  for (const FittedParameter& fitted : result.parameters) {
+    if (fitted.name == name) return fitted;
+  }
+  throw std::runtime_error("no parameter " + name);
+}
+
+TEST(Identification, RecoversMassScaleAndDelayOnBullet) {
+  const RobotLog log =
+      simulated_log("mass_delay.mpack", {{"mass_scale", "1.3"}, {"action_delay", "2"}});
+  const IdentificationResult result = fit(log, {"mass_scale=0.7:1.6", "action_delay=0:4"});
+  EXPECT_NEAR(parameter(result, "mass_scale").value, 1.3, 0.05);
+  EXPECT_EQ(parameter(result, "action_delay").value, 2.0);
+  EXPECT_LT(result.rmse_after, 0.5 * result.rmse_before);
+}
+
+TEST(Identification, RecoversFloorFrictionOnBullet) {
+  const RobotLog log = simulated_log("friction.mpack", {{"floor_friction", "0.3"}});
+  const IdentificationResult result = fit(log, {"floor_friction=0.1:1.5"});
+  EXPECT_NEAR(parameter(result, "floor_friction").value, 0.3, 0.05);
+  EXPECT_LT(result.rmse_after, result.rmse_before);
+}
+
+TEST(Identification, RecoversMassScaleOnMuJoCoForSeveralSeeds) {
+  for (const std::uint64_t seed : {1, 2}) {
+    const RobotLog log =
+        simulated_log("mujoco_mass.mpack", {{"mass_scale", "1.3"}}, "Upkie-MuJoCo-Servos", seed);
+    const IdentificationResult result = fit(log, {"mass_scale=0.7:1.6"}, "Upkie-MuJoCo-Servos");
+    EXPECT_NEAR(parameter(result, "mass_scale").value, 1.3, 0.065) << "seed " << seed;
+    EXPECT_LT(result.rmse_after, result.rmse_before) << "seed " << seed;
+  }
+}
+
+TEST(Identification, RecoversGyroscopeBiasOnBullet) {
+  const RobotLog log = simulated_log("gyroscope.mpack", {{"imu_gyroscope_bias_fixed_y", "0.03"}});
+  const IdentificationResult result = fit(log, {"imu_gyroscope_bias_fixed_y=-0.1:0.1"});
+  EXPECT_NEAR(parameter(result, "imu_gyroscope_bias_fixed_y").value, 0.03, 0.005);
+  EXPECT_LT(result.rmse_after, result.rmse_before);
+}
+
+TEST(Identification, RecoversWheelGainScaleOnBullet) {
+  const RobotLog log = simulated_log("wheel_gain.mpack", {{"wheel_servo_gain_scale", "1.5"}});
+  const IdentificationResult result = fit(log, {"wheel_servo_gain_scale=0.5:3"});
+  EXPECT_NEAR(parameter(result, "wheel_servo_gain_scale").value, 1.5, 0.075);
+  EXPECT_LT(result.rmse_after, result.rmse_before);
+}
+
+TEST(Identification, SameLogSameResult) {
+  const RobotLog log = simulated_log("repeat.mpack", {{"mass_scale", "0.8"}});
+  const IdentificationResult first = fit(log, {"mass_scale=0.6:1.2"});
+  const IdentificationResult second = fit(log, {"mass_scale=0.6:1.2"});
+  EXPECT_EQ(parameter(first, "mass_scale").value, parameter(second, "mass_scale").value);
+  EXPECT_EQ(first.rmse_after, second.rmse_after);
+}
+
+TEST(Identification, ParameterOutsideItsRangeIsRefused) {
+  const auto refusal = [](const std::string& text) -> std::string {
+    try {
+      parse_parameter_request(text);
+    } catch (const std::invalid_argument& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_NE(refusal("mass_scale=0.1:5").find("leaves the declared range"), std::string::npos);
+  EXPECT_NE(refusal("mass_scale=2:1").find("LOW must be below HIGH"), std::string::npos);
+  EXPECT_NE(refusal("wheel_size").find("unknown parameter"), std::string::npos);
+  EXPECT_NE(refusal("joint_friction").find("fit joint_friction_fixed"), std::string::npos);
+  EXPECT_NE(refusal("wheel_servo_gain_scale=0.1:2").find("leaves the declared range"),
+            std::string::npos);
+}
+
+TEST(Identification, LogWithoutServoCommandsIsRefused) {
+  const std::string header =
+      "episode,step,t,pitch,ground_position,theta_dot,action.ground_velocity\n";
+  std::string text = header;
+  for (int i = 0; i < 200; ++i)
+    text += "0," + std::to_string(i) + "," + std::to_string(0.005 * i) + ",0,0,0,0\n";
+  const RobotLog log = read_record_log(text, "pendulum.csv");
+  try {
+    fit(log, {"mass_scale"});
+    FAIL() << "a pendulum record has no servo commands";
+  } catch (const RobotLogError& error) {
+    EXPECT_NE(std::string(error.what()).find("no servo commands"), std::string::npos);
+  }
+}
+
+TEST(Identification, WrongFrequencyIsRefused) {
+  const auto path = testing::temp_path("frequency.mpack");
+  ExcitationSettings excitation;
+  excitation.duration = 1.0;
+  write_excitation_log("Upkie-Bullet-Servos", {{"frequency", "300"}}, excitation, path);
+  const RobotLog log = read_robot_log(path);
+  try {
+    fit(log, {"mass_scale"});
+    FAIL() << "a 300 Hz log on a 200 Hz environment";
+  } catch (const RobotLogError& error) {
+    EXPECT_NE(std::string(error.what()).find("wrong frequency"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace upkie_rl
