@@ -1,0 +1,84 @@
+"""Every console example of README.md and docs/ is marked, and the marked ones print what the
+text shows (doc_examples.py says how blocks are marked, run and compared). The slow ones run
+with UPKIE_RL_DOCS_SLOW=1 (`make test-docs`)."""
+
+import os
+import re
+from pathlib import Path
+
+import pytest
+
+from doc_examples import (find_examples, line_mismatch, output_mismatches,
+                          run_example)
+from spine_process import cli_path
+
+ROOT = Path(__file__).resolve().parents[2]
+DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+EXAMPLES = [example for path in DOCS for example in find_examples(path)]
+RUN_SLOW = os.environ.get("UPKIE_RL_DOCS_SLOW") == "1"
+README_MAX_LINES = 250
+
+
+def build_dir() -> Path:
+    return cli_path().resolve().parent
+
+
+def test_every_console_example_is_marked():
+    unmarked = [example.name for example in EXAMPLES if example.marker is None]
+    assert not unmarked, ("console examples without a `<!-- example: run -->` or "
+                          f"`<!-- example: not-run: REASON -->` line before them: {unmarked}")
+    assert any(example.run for example in EXAMPLES)
+
+
+@pytest.mark.parametrize(
+    "example",
+    [pytest.param(example, id=example.name,
+                  marks=[pytest.mark.skipif(example.slow and not RUN_SLOW,
+                                            reason="slow: `make test-docs` runs it")])
+     for example in EXAMPLES if example.run])
+def test_console_example_prints_what_the_text_shows(example):
+    problems = run_example(example, ROOT, build_dir())
+    assert not problems, f"{example.name}:\n" + "\n".join(problems)
+
+
+def test_readme_is_a_front_page():
+    lines = (ROOT / "README.md").read_text().splitlines()
+    assert len(lines) <= README_MAX_LINES, f"README.md has {len(lines)} lines"
+
+
+def test_a_figure_beyond_the_tolerance_is_a_mismatch():
+    shown = "mean return 297.106 +- 0 over 1 episodes, mean length 300"
+    assert line_mismatch(shown, shown, 1e-3, None) is None
+    assert line_mismatch(shown, shown.replace("297.106", "297.2"), 1e-3, None) is None
+    assert line_mismatch(shown, shown.replace("297.106", "290.5"), 1e-3, None) is not None
+    assert line_mismatch(shown, shown.replace("300", "299"), 1e-3, None) is not None
+    assert line_mismatch(shown, shown.replace("return", "reward"), 1e-3, None) == "other words"
+    timing = "trained 2,048 steps in 00:03 (682 steps/s)"
+    assert line_mismatch(timing, timing.replace("682", "1000"), 1e-3,
+                         re.compile("steps/s")) is None
+    assert output_mismatches([shown, "video a.mp4: 46 frames"], f"x\n{shown}\n",
+                             "video a.mp4: 46 frames\n", 1e-3, None) == []
+    assert output_mismatches([shown], shown.replace("297.106", "-112.073"), "", 1e-3, None)
+
+
+def test_the_runner_fails_on_a_changed_figure(tmp_path):
+    """A real command whose text shows one figure changed: the runner reports that figure."""
+    page = tmp_path / "page.md"
+    command = ("$ upkie-rl rollout --env Upkie-Bullet-Pendulum --controller zero --episodes 1"
+               " --exact-start")
+    page.write_text("<!-- example: run -->\n```console\n" + command + "\n"
+                    "mean return -48.0 +- 0 over 1 episodes, mean length 216\n```\n")
+    [example] = find_examples(page)
+    problems = run_example(example, ROOT, build_dir())
+    assert len(problems) == 1 and "-48.0" in problems[0], problems
+
+
+def test_an_unmarked_block_and_a_bad_marker_are_found(tmp_path):
+    page = tmp_path / "page.md"
+    page.write_text("```console\n$ upkie-rl envs\n```\n\n<!-- example: not-run: a reason -->\n"
+                    "```sh\nmake train\n```\n\n```python\nprint(1)\n```\n")
+    unmarked, skipped = find_examples(page)
+    assert unmarked.marker is None and skipped.reason == "a reason" and not skipped.run
+    page.write_text("<!-- example: not-run: -->\n```console\n$ ls\n```\n")
+    with pytest.raises(ValueError, match="needs a reason"):
+        find_examples(page)
