@@ -22,11 +22,12 @@ block ends.
 
 What a command prints is compared with the text line by line: every printed line of the text
 must appear in the command's standard output or standard error, in order within each stream
-(`...` lines, and lines the text leaves out, are not compared). Two lines match when their
-words are the same and each figure is within the block's tolerance of the text's: by
+(`...` lines, and lines the text leaves out, are not compared; `...` inside a line stands
+for any text). Two lines match when their words are the same and each figure is within the block's tolerance of the text's: by
 default half a unit of the last digit the text shows (the text's rounding) or 0.1 % of it,
-whichever is larger; `tolerance=P%` widens the relative part to P %. On lines matching the
-block's `vary` regular expression (timings, dates) only the words are compared.
+whichever is larger; `tolerance=P%` widens the relative part to P %. The figures inside
+the text that the block's `vary` regular expression matches (timings, dates) are not
+compared, only the words around them.
 """
 
 from __future__ import annotations
@@ -45,7 +46,8 @@ from pathlib import Path
 SHELL_LANGUAGES = {"console", "sh", "bash", "shell", ""}
 MARKER = re.compile(r"^<!-- example: (?P<body>.*?) -->$")
 FENCE = re.compile(r"^(?P<indent>\s*)```(?P<language>[\w-]*)\s*$")
-NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+# A figure: thousands separated by commas (1,001,640) or not, a decimal part, an exponent.
+NUMBER = re.compile(r"[-+]?(?:\d{1,3}(?:,\d{3})+(?:\.\d+)?|\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 DEFAULT_RELATIVE_TOLERANCE = 1e-3
 REPOSITORY_LINKS = ("configs", "models", "tests", "examples")
 # A background command (a spine) gets this long to be ready before the next command runs.
@@ -157,27 +159,52 @@ def commands_of(example: Example) -> list[Command]:
     return commands
 
 
+def figure(text: str) -> float:
+    return float(text.replace(",", ""))
+
+
 def figure_tolerance(text: str, relative: float) -> float:
     """Half a unit of the figure's last shown digit, or `relative` of it."""
+    text = text.replace(",", "")
     mantissa = re.split(r"[eE]", text)[0]
     exponent = int(re.split(r"[eE]", text)[1]) if re.search(r"[eE]", text) else 0
     decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
     rounding = 0.5 * 10.0 ** (exponent - decimals)
-    return max(rounding, relative * abs(float(text)))
+    return max(rounding, relative * abs(figure(text)))
+
+
+def line_pattern(expected: str) -> re.Pattern:
+    """The expected line as a regular expression: its words literal, any run of white space
+    as white space, each figure a group, and `...` inside a line as any text."""
+    pattern = []
+    for token in re.split(rf"(\.\.\.|\s+|{NUMBER.pattern})", expected.strip()):
+        if not token:
+            continue
+        if token == "...":
+            pattern.append(".*?")
+        elif token.isspace():
+            pattern.append(r"\s+")
+        elif NUMBER.fullmatch(token):
+            pattern.append(f"({NUMBER.pattern})")
+        else:
+            pattern.append(re.escape(token))
+    return re.compile("".join(pattern))
 
 
 def line_mismatch(expected: str, actual: str, relative: float,
                   vary: re.Pattern | None) -> str | None:
     """None when the lines match, else why not."""
-    expected_words = NUMBER.split(" ".join(expected.split()))
-    actual_words = NUMBER.split(" ".join(actual.split()))
-    if expected_words != actual_words:
+    expected = expected.strip()
+    match = line_pattern(expected).fullmatch(actual.strip())
+    if match is None:
         return "other words"
-    if vary is not None and vary.search(expected):
-        return None
-    for shown, printed in zip(NUMBER.findall(expected), NUMBER.findall(actual)):
-        if abs(float(shown) - float(printed)) > figure_tolerance(shown, relative):
-            return f"figure {printed} is not {shown} (tolerance {figure_tolerance(shown, relative):g})"
+    varying = [span.span() for span in vary.finditer(expected)] if vary else []
+    for shown, printed in zip(NUMBER.finditer(expected), match.groups()):
+        if any(start <= shown.start() and shown.end() <= end for start, end in varying):
+            continue
+        tolerance = figure_tolerance(shown.group(), relative)
+        if abs(figure(shown.group()) - figure(printed)) > tolerance:
+            return f"figure {printed} is not {shown.group()} (tolerance {tolerance:g})"
     return None
 
 

@@ -53,9 +53,10 @@ def test_a_figure_beyond_the_tolerance_is_a_mismatch():
     assert line_mismatch(shown, shown.replace("297.106", "290.5"), 1e-3, None) is not None
     assert line_mismatch(shown, shown.replace("300", "299"), 1e-3, None) is not None
     assert line_mismatch(shown, shown.replace("return", "reward"), 1e-3, None) == "other words"
-    timing = "trained 2,048 steps in 00:03 (682 steps/s)"
-    assert line_mismatch(timing, timing.replace("682", "1000"), 1e-3,
-                         re.compile("steps/s")) is None
+    timing = "trained 2,048 steps in 00:03 (682 steps/s); mean return 12.5"
+    speed = re.compile(r"in \d+:\d+ \([\d,]+ steps/s\)")
+    assert line_mismatch(timing, timing.replace("682", "1,000"), 1e-3, speed) is None
+    assert line_mismatch(timing, timing.replace("12.5", "13.5"), 1e-3, speed) is not None
     assert output_mismatches([shown, "video a.mp4: 46 frames"], f"x\n{shown}\n",
                              "video a.mp4: 46 frames\n", 1e-3, None) == []
     assert output_mismatches([shown], shown.replace("297.106", "-112.073"), "", 1e-3, None)
