@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python typecheck-python bench train train-mujoco train-robust train-velocity sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python bench train train-mujoco train-robust train-velocity sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
 
 all: build
 
@@ -32,17 +32,35 @@ test-cpp:
 GYMNASIUM_NEWEST_PYTHON ?= .venv-gymnasium-newest/bin/python
 PYTEST_ENV = UPKIE_RL_BUILD_DIR=$(abspath $(BUILD_DIR)) PYTHONPATH=$(abspath $(BUILD_DIR))/python
 
+# The docs' console examples (test_doc_examples.py) run the CLI and Debian's interpreter
+# whichever Python runs pytest: they run once, in the first pass.
 test-python: typecheck-python
 	$(PYTEST_ENV) $(PYTHON) -m pytest -q python/tests
-	$(PYTEST_ENV) $(GYMNASIUM_NEWEST_PYTHON) -m pytest -q python/tests
+	$(PYTEST_ENV) $(GYMNASIUM_NEWEST_PYTHON) -m pytest -q python/tests \
+	  --ignore=python/tests/test_doc_examples.py
 
 typecheck-python:
 	$(PYTEST_ENV) $(PYTHON) -m mypy
 	MYPYPATH=$(abspath $(BUILD_DIR))/python $(PYTEST_ENV) $(PYTHON) -m mypy.stubtest upkie_rl._core --allowlist python/stubtest-allowlist.txt
 
 test: build
+	$(MAKE) docs
 	$(MAKE) test-cpp
 	$(MAKE) test-python
+
+# Every console example of README.md and docs/, the slow ones (trainings, grids) too, run and
+# compared with the text (python/tests/doc_examples.py says how); `make test` runs the quick ones.
+test-docs:
+	$(PYTEST_ENV) UPKIE_RL_DOCS_SLOW=1 $(PYTHON) -m pytest -q python/tests/test_doc_examples.py
+
+# The docs site: docs/ built by MkDocs (Material theme, mkdocstrings for the API page) in
+# strict mode into $(BUILD_DIR)/docs; the packages go to a venv of their own (DOCS_VENV).
+DOCS_VENV ?= .venv-docs
+docs:
+	DOCS_VENV=$(DOCS_VENV) PYTHON=$(PYTHON) bash scripts/install-docs-deps.sh
+	NO_MKDOCS_2_WARNING=1 $(DOCS_VENV)/bin/mkdocs build --strict --quiet \
+	  --site-dir $(abspath $(BUILD_DIR))/docs
+	@echo "docs site: $(BUILD_DIR)/docs/index.html"
 
 # Trains the seed's pendulum policy, evaluates the final model on 10 episodes and draws
 # the training figures. TRAIN_CONFIG and RUN_DIR can be overridden.
