@@ -83,3 +83,25 @@ def test_an_unmarked_block_and_a_bad_marker_are_found(tmp_path):
     page.write_text("<!-- example: not-run: -->\n```console\n$ ls\n```\n")
     with pytest.raises(ValueError, match="needs a reason"):
         find_examples(page)
+
+
+def test_the_readme_results_are_the_checked_examples_figures():
+    """Each row of the README's results table that is not marked `measured` shows figures
+    that a run example prints: of the page it links, or of the README's first result."""
+    text = (ROOT / "README.md").read_text()
+    table = text[text.index("## Results"):text.index("## Platforms")]
+    rows = [row for row in table.splitlines() if row.startswith("| ") and "---" not in row][1:]
+    checked = 0
+    for row in rows:
+        what, figures, reproduce = [cell.strip() for cell in row.strip().strip("|").split("|")]
+        if "measured" in figures:
+            continue
+        link = re.search(r"\(docs/([\w-]+\.md)", reproduce)
+        page = ROOT / "docs" / link.group(1) if link else ROOT / "README.md"
+        shown = "\n".join("\n".join(example.body) for example in find_examples(page)
+                          if example.run)
+        for figure in re.findall(r"\d+(?:\.\d+)?", figures):
+            assert re.search(rf"(?<![\d.]){re.escape(figure)}(?![\d])", shown), (
+                f"README result {figure!r} ({what}) is in no run example of {page.name}")
+        checked += 1
+    assert checked >= 3
