@@ -15,6 +15,7 @@ DEBIAN_PACKAGES=(
   libnlopt-dev  # `upkie-rl identify` fits a robot's log with NLopt's BOBYQA
   libonnx-dev  # ONNX export: the ONNX project's protobuf classes and checker
   python3-yaml  # upkie_rl.sb3_convert reads and writes training configurations
+  python3-venv  # the venvs of the newest-Gymnasium tests and of the docs site (make docs)
   # offscreen rendering without display or GPU (EGL, Mesa's llvmpipe), videos (H.264, GIF)
   libegl-dev libegl-mesa0 libgl1-mesa-dri ffmpeg
   # the browser viewer's tests: Debian's Chromium, driven by playwright-core (npm)

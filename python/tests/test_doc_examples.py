@@ -105,3 +105,12 @@ def test_the_readme_results_are_the_checked_examples_figures():
                 f"README result {figure!r} ({what}) is in no run example of {page.name}")
         checked += 1
     assert checked >= 3
+
+
+def test_every_make_target_is_in_the_commands_page():
+    makefile = (ROOT / "Makefile").read_text()
+    phony = re.search(r"^\.PHONY:(.*)$", makefile, flags=re.MULTILINE).group(1).split()
+    table = (ROOT / "docs" / "commands.md").read_text()
+    documented = set(re.findall(r"`make ([\w-]+)`", table))
+    missing = sorted(set(phony) - {"all"} - documented)
+    assert not missing, f"make targets docs/commands.md does not list: {missing}"
