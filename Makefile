@@ -32,12 +32,13 @@ test-cpp:
 GYMNASIUM_NEWEST_PYTHON ?= .venv-gymnasium-newest/bin/python
 PYTEST_ENV = UPKIE_RL_BUILD_DIR=$(abspath $(BUILD_DIR)) PYTHONPATH=$(abspath $(BUILD_DIR))/python
 
-# The docs' console examples (test_doc_examples.py) run the CLI and Debian's interpreter
-# whichever Python runs pytest: they run once, in the first pass.
+# The docs' console examples (test_doc_examples.py) run the CLI and Debian's interpreter, and
+# the docs site (test_docs_site.py) is built by its own venv, whichever Python runs pytest:
+# they run once, in the first pass.
 test-python: typecheck-python
 	$(PYTEST_ENV) $(PYTHON) -m pytest -q python/tests
 	$(PYTEST_ENV) $(GYMNASIUM_NEWEST_PYTHON) -m pytest -q python/tests \
-	  --ignore=python/tests/test_doc_examples.py
+	  --ignore=python/tests/test_doc_examples.py --ignore=python/tests/test_docs_site.py
 
 typecheck-python:
 	$(PYTEST_ENV) $(PYTHON) -m mypy
