@@ -1,16 +1,17 @@
 """upkie-rl: Upkie environments simulated in C++, as Gymnasium and SB3 environments.
 
->>> import gymnasium as gym
->>> import upkie_rl
->>> env = gym.make("Upkie-Bullet-Pendulum", frequency=200.0)
->>> venv = upkie_rl.make_vec("Upkie-Bullet-Pendulum", num_envs=10, num_threads=2, seed=0)
->>> sb3_venv = upkie_rl.make_sb3_vec_env("Upkie-Bullet-Pendulum", num_envs=10, seed=0)
->>> policy = upkie_rl.load_policy(path)  # a model_*.ckpt or model_*.pt of upkie-rl train
->>> actions, _ = policy.predict(observations)  # as SB3's model.predict
-
 Importing the package registers every id of ``upkie_rl.registered_env_ids()`` as
 ``upkie_rl/<id>``, and those of backends the public upkie package lacks (Bullet, MuJoCo)
 without the namespace too.
+
+Examples:
+    >>> import gymnasium as gym
+    >>> import upkie_rl
+    >>> env = gym.make("Upkie-Bullet-Pendulum", frequency=200.0)
+    >>> venv = upkie_rl.make_vec("Upkie-Bullet-Pendulum", num_envs=10, num_threads=2, seed=0)
+    >>> sb3_venv = upkie_rl.make_sb3_vec_env("Upkie-Bullet-Pendulum", num_envs=10, seed=0)
+    >>> policy = upkie_rl.load_policy(path)  # a model_*.ckpt or model_*.pt of upkie-rl train
+    >>> actions, _ = policy.predict(observations)  # as SB3's model.predict
 """
 
 import os as _os
