@@ -1,6 +1,6 @@
 /// @file
 /// libFuzzer target: the record files of `upkie-rl rollout --record`, as `upkie-rl render`
-/// and `upkie-rl view` read them (apps/record_file.hpp). Each input is a whole file, read
+/// and `upkie-rl view` read them (envs/record_file.hpp). Each input is a whole file, read
 /// from memory. Refusing it with RecordFileError is the expected outcome; a crash, a hang,
 /// a sanitizer report or another exception is a bug. Whatever is accepted must hold what
 /// the renderer and the viewer rely on: at least one row, finite times and base poses, a
@@ -14,13 +14,13 @@
 #include <sstream>
 #include <string>
 
-#include "apps/record_file.hpp"
+#include "envs/record_file.hpp"
 
 namespace {
 
-void check_accepted(const upkie_rl::apps::RecordFile& file) {
+void check_accepted(const upkie_rl::RecordFile& file) {
   if (file.steps.empty()) std::abort();
-  for (const upkie_rl::apps::RecordedStep& step : file.steps) {
+  for (const upkie_rl::RecordedStep& step : file.steps) {
     const upkie_rl::RobotPose& pose = step.pose;
     if (step.episode < 0 || step.step < 0 || !std::isfinite(step.time) ||
         !pose.base_position.allFinite() || !pose.base_orientation.coeffs().allFinite() ||
@@ -40,8 +40,8 @@ void check_accepted(const upkie_rl::apps::RecordFile& file) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
   try {
-    check_accepted(upkie_rl::apps::read_record_file(in, "input.csv"));
-  } catch (const upkie_rl::apps::RecordFileError&) {
+    check_accepted(upkie_rl::read_record_file(in, "input.csv"));
+  } catch (const upkie_rl::RecordFileError&) {
   }
   return 0;
 }

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "apps/command_error.hpp"
+
 extern char** environ;
 
 namespace upkie_rl::apps {
@@ -30,7 +32,7 @@ pid_t spawn_logged(const std::vector<std::string>& arguments, const std::filesys
   const int error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0) {
-    throw std::runtime_error("cannot start " + arguments[0] + ": " + std::strerror(error));
+    throw CommandError("cannot start " + arguments[0] + ": " + std::strerror(error));
   }
   return pid;
 }
@@ -39,7 +41,7 @@ std::optional<ChildExit> wait_for_child() {
   int status = 0;
   const pid_t pid = waitpid(-1, &status, 0);
   if (pid < 0 && errno == EINTR) return std::nullopt;
-  if (pid < 0) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+  if (pid < 0) throw CommandError(std::string("waitpid: ") + std::strerror(errno));
   ChildExit child;
   child.pid = pid;
   child.signalled = WIFSIGNALED(status);

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "apps/command_error.hpp"
+
 namespace upkie_rl::apps {
 
 namespace {
@@ -119,16 +121,16 @@ void run_gnuplot(const std::string& gnuplot, const std::string& text, FiguresAsi
           .string();
   const std::string command = gnuplot + " >'" + log_path + "' 2>&1";
   FILE* pipe = popen(command.c_str(), "w");
-  if (pipe == nullptr) throw std::runtime_error("cannot start " + gnuplot);
+  if (pipe == nullptr) throw CommandError("cannot start " + gnuplot);
   const std::size_t written = fwrite(text.data(), 1, text.size(), pipe);
   const int status = pclose(pipe);
   const std::string reason = gnuplot_reason(log_path);
   std::error_code error;
   std::filesystem::remove(log_path, error);
   if (written != text.size() || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error("gnuplot failed to draw " + figures.names() + " (exit status " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")" +
-                             (reason.empty() ? std::string() : ": " + reason));
+    throw CommandError("gnuplot failed to draw " + figures.names() + " (exit status " +
+                       std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")" +
+                       (reason.empty() ? std::string() : ": " + reason));
   }
   figures.commit();
 }
@@ -170,7 +172,7 @@ std::string find_gnuplot() {
     std::string candidate = directory + "/gnuplot";
     if (access(candidate.c_str(), X_OK) == 0) return candidate;
   }
-  throw std::runtime_error(
+  throw CommandError(
       "gnuplot not found on PATH: install it (Debian: apt-get install gnuplot-nox, or run "
       "scripts/install-deps.sh)");
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
 #include "onnx/onnx_metadata.hpp"
 #include "onnx/onnx_model_info.hpp"
@@ -87,18 +88,18 @@ void print_torchscript(const std::filesystem::path& path) {
     caffe2::serialize::PyTorchStreamReader reader(path.string());
     const char* record = "extra/metadata.json";
     if (!reader.hasRecord(record)) {
-      throw std::runtime_error("TorchScript file " + path.string() +
-                               " has no upkie-rl metadata (not exported by upkie-rl)");
+      throw CommandError("TorchScript file " + path.string() +
+                         " has no upkie-rl metadata (not exported by upkie-rl)");
     }
     auto [data, size] = reader.getRecord(record);
     text.assign(static_cast<const char*>(data.get()), size);
   } catch (const c10::Error& error) {
-    throw std::runtime_error("TorchScript file " + path.string() +
-                             ": unreadable archive: " + error.what_without_backtrace());
+    throw CommandError("TorchScript file " + path.string() +
+                       ": unreadable archive: " + error.what_without_backtrace());
   }
   const nlohmann::json metadata = nlohmann::json::parse(text, nullptr, false);
   if (!metadata.is_object()) {
-    throw std::runtime_error("TorchScript file " + path.string() + ": malformed metadata.json");
+    throw CommandError("TorchScript file " + path.string() + ": malformed metadata.json");
   }
   std::cout << "format: TorchScript\n";
   // The metadata's entries are named as those of the checkpoint header they copy, and its
@@ -119,7 +120,7 @@ void print_info(const std::filesystem::path& path) {
   const ModelFormat format = model_format(path);
   // The converter's own `info` reads an SB3 zip (its pickles are not read here).
   if (format == ModelFormat::kStableBaselines3) {
-    throw std::runtime_error(model_format_refusal(path));
+    throw CommandError(model_format_refusal(path));
   }
   std::cout << "model: " << path.string() << "\n";
   if (format == ModelFormat::kOnnx) {

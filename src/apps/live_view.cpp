@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "apps/command_error.hpp"
 #include "apps/common_flags.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/option_checks.hpp"
@@ -106,8 +107,8 @@ void LiveView::wait_for_browsers() {
   const InterruptHandlers interrupts;
   while (!server_->wait_for_clients(count, std::chrono::seconds(3600), &interrupt_requested)) {
     if (interrupt_requested.load()) {
-      throw std::runtime_error("interrupted while waiting for " + std::to_string(count) +
-                               " browser(s) (--view-wait)");
+      throw CommandError("interrupted while waiting for " + std::to_string(count) +
+                         " browser(s) (--view-wait)");
     }
   }
 }

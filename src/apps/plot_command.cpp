@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/option_checks.hpp"
@@ -69,13 +70,13 @@ struct RunLog {
 RunLog read_run(const std::string& run_dir) {
   const std::filesystem::path csv = std::filesystem::path(run_dir) / "progress.csv";
   if (!std::filesystem::exists(csv)) {
-    throw std::runtime_error("no progress.csv in " + run_dir +
-                             " (is it a run directory of `upkie-rl train`?)");
+    throw CommandError("no progress.csv in " + run_dir +
+                       " (is it a run directory of `upkie-rl train`?)");
   }
   RunLog run{std::filesystem::path(run_dir).lexically_normal().filename().string(),
              read_scalar_csv(csv)};
   if (run.name.empty()) run.name = std::filesystem::path(run_dir).parent_path().filename().string();
-  if (run.table.rows.empty()) throw std::runtime_error(csv.string() + ": no update logged yet");
+  if (run.table.rows.empty()) throw CommandError(csv.string() + ": no update logged yet");
   return run;
 }
 
@@ -117,10 +118,9 @@ void plot_one_run(const RunLog& run, std::size_t window, const std::filesystem::
     std::cout << "wrote " << figure.output.string() << std::endl;
   }
   if (!undrawn.empty()) {
-    throw std::runtime_error(undrawn + " not drawn: progress.csv of " + run.name +
-                             " has no value of them in its " +
-                             std::to_string(run.table.rows.size()) +
-                             " updates yet (no episode has ended); train longer, then plot again");
+    throw CommandError(undrawn + " not drawn: progress.csv of " + run.name +
+                       " has no value of them in its " + std::to_string(run.table.rows.size()) +
+                       " updates yet (no episode has ended); train longer, then plot again");
   }
 }
 

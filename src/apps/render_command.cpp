@@ -12,8 +12,8 @@
 
 #include "apps/commands.hpp"
 #include "apps/frame_clock.hpp"
-#include "apps/record_file.hpp"
 #include "apps/video_recorder.hpp"
+#include "envs/record_file.hpp"
 #include "sim/base_observer.hpp"
 
 namespace upkie_rl::apps {

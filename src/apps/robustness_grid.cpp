@@ -5,6 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/number_text.hpp"
+#include "model/split_fields.hpp"
+
 namespace upkie_rl::apps {
 namespace {
 
@@ -12,25 +15,12 @@ constexpr std::size_t kMaxAxes = 2;
 constexpr std::size_t kMaxValues = 1000;
 
 double parse_number(const std::string& text, const std::string& axis) {
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [stop, error] = std::from_chars(text.data(), end, value);
-  if (text.empty() || error != std::errc() || stop != end || !std::isfinite(value)) {
+  const std::optional<double> value = number_from_text<double>(text);
+  if (!value || !std::isfinite(*value)) {
     throw std::invalid_argument("grid axis \"" + axis + "\": \"" + text +
                                 "\" is not a finite number");
   }
-  return value;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t found = text.find(separator, start);
-    parts.push_back(text.substr(start, found == std::string::npos ? found : found - start));
-    if (found == std::string::npos) return parts;
-    start = found + 1;
-  }
+  return *value;
 }
 
 }  // namespace
@@ -44,7 +34,7 @@ std::string format_value(double value) {
 std::vector<GridAxis> parse_grid(const std::string& text) {
   std::vector<GridAxis> axes;
   if (text.empty()) return axes;
-  for (const std::string& item : split(text, ',')) {
+  for (const std::string& item : split_fields(text, ',')) {
     const std::size_t equal = item.find('=');
     if (equal == std::string::npos || equal == 0) {
       throw std::invalid_argument("grid axis \"" + item +
@@ -56,7 +46,7 @@ std::vector<GridAxis> parse_grid(const std::string& text) {
         throw std::invalid_argument("grid axis \"" + axis.name + "\" is given twice");
       }
     }
-    const std::vector<std::string> range = split(item.substr(equal + 1), ':');
+    const std::vector<std::string> range = split_fields(item.substr(equal + 1), ':');
     if (range.size() == 1) {
       axis.values.push_back(parse_number(range[0], axis.name));
     } else if (range.size() == 3) {

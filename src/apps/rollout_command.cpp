@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
 #include "apps/common_flags.hpp"
 #include "apps/controller_choice.hpp"
@@ -18,13 +19,13 @@
 #include "apps/gnuplot_figure.hpp"
 #include "apps/live_view.hpp"
 #include "apps/option_checks.hpp"
-#include "apps/record_file.hpp"
 #include "apps/tracking_report.hpp"
 #include "apps/velocity_view.hpp"
 #include "apps/video_recorder.hpp"
 #include "envs/env_settings.hpp"
 #include "envs/episode_runner.hpp"
 #include "envs/evaluation_start.hpp"
+#include "envs/record_file.hpp"
 #include "envs/registry.hpp"
 #include "envs/velocity_command_schedule.hpp"
 #include "envs/velocity_env.hpp"
@@ -56,7 +57,7 @@ struct RolloutOptions {
 void add_video_frame(VideoRecorder& video, const Env& env, double episode_return) {
   const Observation* full = env.full_observation();
   if (full == nullptr || !full->has_sim) {
-    throw std::runtime_error("--video needs a simulated environment (Bullet, MuJoCo or Mock)");
+    throw CommandError("--video needs a simulated environment (Bullet, MuJoCo or Mock)");
   }
   const VelocityEnv* velocity = find_velocity_env(env);
   if (velocity != nullptr) {
@@ -159,7 +160,7 @@ void open_outputs(const RolloutOptions& options, Rollout& rollout) {
   Env& env = *rollout.env;
   if (options.view.enabled) {
     if (env.full_observation() == nullptr) {
-      throw std::runtime_error("--view needs an environment with full observations");
+      throw CommandError("--view needs an environment with full observations");
     }
     ViewSession session;
     session.title =

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/live_view.hpp"
@@ -232,7 +233,7 @@ void run_spine(const SpineOptions& options) {
                  server.nb_cycles(), server.nb_simulation_steps());
   }  // the shared memory is unlinked here
   if (logger) logger->close();
-  if (!error.empty()) throw std::runtime_error("spine shut down: " + error);
+  if (!error.empty()) throw CommandError("spine shut down: " + error);
 }
 
 }  // namespace

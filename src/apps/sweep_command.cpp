@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "apps/child_process.hpp"
+#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
 #include "apps/common_flags.hpp"
 #include "apps/interrupt_handlers.hpp"
@@ -219,9 +220,9 @@ int run_pending(const Sweep& sweep, int jobs) {
     if (!report_exit(sweep, run, *child, stopping, stamp, progress)) ++failures;
   }
   if (stopping) {
-    throw std::runtime_error("interrupted; `upkie-rl sweep " + sweep.directory.string() +
-                             "` continues the sweep (stopped runs resume from their last "
-                             "checkpoint)");
+    throw CommandError("interrupted; `upkie-rl sweep " + sweep.directory.string() +
+                       "` continues the sweep (stopped runs resume from their last "
+                       "checkpoint)");
   }
   return failures;
 }
@@ -312,9 +313,9 @@ void run_sweep(const SweepOptions& options) {
             << (sweep.directory / "summary.csv").string()
             << "; return curves: " << (sweep.directory / "returns.png").string() << std::endl;
   if (failures > 0) {
-    throw std::runtime_error(plural(static_cast<std::size_t>(failures), "run") +
-                             " failed (see their logs); `upkie-rl sweep " +
-                             sweep.directory.string() + "` runs them again");
+    throw CommandError(plural(static_cast<std::size_t>(failures), "run") +
+                       " failed (see their logs); `upkie-rl sweep " + sweep.directory.string() +
+                       "` runs them again");
   }
 }
 

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "apps/command_error.hpp"
 #include "model/atomic_file.hpp"
 #include "model/input_file.hpp"
 
@@ -63,8 +64,8 @@ std::optional<SweepOutcome> read_sweep_outcome(const std::filesystem::path& run_
     outcome.evaluation.mean_length = number_of(evaluation.at("mean_length"));
     return outcome;
   } catch (const nlohmann::json::exception& error) {
-    throw std::runtime_error(path.string() + ": malformed (" + error.what() +
-                             "); delete it to evaluate the run again");
+    throw CommandError(path.string() + ": malformed (" + error.what() +
+                       "); delete it to evaluate the run again");
   }
 }
 

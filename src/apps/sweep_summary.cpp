@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "apps/command_error.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/progress_bar.hpp"
 #include "apps/sweep_outcome.hpp"
@@ -56,7 +57,7 @@ std::string run_status(const Sweep& sweep, const SweepRun& run,
 void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::trunc);
   out << text;
-  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
+  if (!out.flush()) throw CommandError("cannot write " + path.string());
 }
 
 std::string runs_csv(const std::vector<RunRow>& rows) {

@@ -12,12 +12,13 @@
 #include <thread>
 #include <vector>
 
+#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/live_view.hpp"
 #include "apps/option_checks.hpp"
-#include "apps/record_file.hpp"
 #include "apps/velocity_view.hpp"
+#include "envs/record_file.hpp"
 #include "envs/registry.hpp"
 #include "model/robot_model.hpp"
 #include "view/view_frame.hpp"
@@ -118,7 +119,7 @@ void run_view(const ViewOptions& options) {
     std::ofstream out(options.html_path, std::ios::out | std::ios::trunc | std::ios::binary);
     out << self_contained_viewer_page(session_json);
     out.close();
-    if (!out) throw std::runtime_error("cannot write " + options.html_path);
+    if (!out) throw CommandError("cannot write " + options.html_path);
     std::cout << "wrote " << options.html_path << " ("
               << std::filesystem::file_size(options.html_path)
               << " bytes): open it in a browser, no server needed" << std::endl;

@@ -3,13 +3,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "envs/record_file_error.hpp"
 #include "envs/velocity_env.hpp"
 
 namespace upkie_rl {
 
 EpisodeRecorder::EpisodeRecorder(const std::filesystem::path& path)
     : path_(path), out_(path, std::ios::out | std::ios::trunc) {
-  if (!out_) throw std::runtime_error("cannot write the record file " + path.string());
+  if (!out_) throw RecordFileError("cannot write the record file " + path.string());
   out_.precision(9);
 }
 
@@ -28,7 +29,7 @@ void EpisodeRecorder::write_header(const Env& env, std::span<const std::string> 
   for (const std::string& column : extra_columns) out_ << ',' << column;
   out_ << '\n';
   num_extra_columns_ = extra_columns.size();
-  if (!out_) throw std::runtime_error("cannot write the record file " + path_.string());
+  if (!out_) throw RecordFileError("cannot write the record file " + path_.string());
   observation_.resize(env.observation_space().size());
 }
 
@@ -77,7 +78,7 @@ void EpisodeRecorder::after_step(int episode, int step, std::span<const float> a
 
 void EpisodeRecorder::close() {
   out_.flush();
-  if (!out_) throw std::runtime_error("error writing the record file " + path_.string());
+  if (!out_) throw RecordFileError("error writing the record file " + path_.string());
   out_.close();
 }
 

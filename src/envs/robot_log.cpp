@@ -8,6 +8,8 @@
 
 #include "envs/record_columns.hpp"
 #include "model/input_file.hpp"
+#include "model/number_text.hpp"
+#include "model/split_fields.hpp"
 #include "sim/servo_command_fields.hpp"
 #include "spine/spine_log_reader.hpp"
 
@@ -15,27 +17,12 @@ namespace upkie_rl {
 
 namespace {
 
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields;
-  std::string field;
-  std::istringstream stream(line);
-  while (std::getline(stream, field, ',')) fields.push_back(field);
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
-
 double parse_field(const std::string& text, const std::string& column, const std::string& where) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size()) {
+  const std::optional<double> value = number_from_text<double>(text);
+  if (!value) {
     throw RobotLogError(where + "column " + column + " is not a number: \"" + text + "\"");
   }
-  return value;
+  return *value;
 }
 
 /// Where each value of a row goes in a LoggedCycle.
@@ -162,7 +149,7 @@ RobotLog read_record_log(std::string_view text, const std::string& name) {
   std::istringstream in{std::string(text)};
   std::string line;
   if (!std::getline(in, line)) throw RobotLogError("record file " + name + " is empty");
-  const std::vector<std::string> header = split_csv(line);
+  const std::vector<std::string> header = split_fields(line);
   RobotLog log{name, "record file", {}, {}};
   const std::vector<ColumnTarget> targets = record_targets(RecordHeader(header), name, log.signals);
   const std::optional<std::size_t> episode_column = RecordHeader(header).find(kEpisodeColumn);
@@ -173,7 +160,7 @@ RobotLog read_record_log(std::string_view text, const std::string& name) {
     ++line_number;
     if (line.empty()) continue;
     const std::string where = "record file " + name + ":" + std::to_string(line_number) + ": ";
-    const std::vector<std::string> fields = split_csv(line);
+    const std::vector<std::string> fields = split_fields(line);
     if (fields.size() != header.size()) {
       throw RobotLogError(where + std::to_string(fields.size()) + " fields, the header has " +
                           std::to_string(header.size()) + " (truncated file?)");

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "identify/identification_error.hpp"
 #include "model/number_text.hpp"
 
 namespace upkie_rl {
@@ -159,7 +160,7 @@ void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettin
   const nlopt_result status = nlopt_optimize(optimizer, x.data(), &best);
   nlopt_destroy(optimizer);
   if (status < 0)
-    throw std::runtime_error("identify: NLopt failed (" + std::to_string(status) + ")");
+    throw IdentificationError("identify: NLopt failed (" + std::to_string(status) + ")");
 }
 
 /// Uncertainties from the errors' Jacobian (forward differences), or why a parameter is not

@@ -21,17 +21,11 @@ const IdentifiedParameter& find_parameter(std::string_view name) {
 }
 
 double parse_bound(const std::string& text, const std::string& where) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(value)) {
+  const std::optional<double> value = number_from_text<double>(text);
+  if (!value || !std::isfinite(*value)) {
     throw std::invalid_argument(where + ": \"" + text + "\" is not a number");
   }
-  return value;
+  return *value;
 }
 
 }  // namespace

@@ -103,7 +103,12 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
       options_.emplace_back(name, value);
       continue;
     }
-    const double number = std::stod(value);
+    const std::optional<double> parsed = number_from_text<double>(value);
+    if (!parsed || !std::isfinite(*parsed)) {
+      throw std::invalid_argument("identify: option " + name + "=" + value +
+                                  ": not a finite number");
+    }
+    const double number = *parsed;
     if (name == "action_delay") {
       fixed_delay_ = static_cast<int>(number);
     } else {

@@ -33,10 +33,9 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
 }
 
 bool read_double(const std::string& raw, double* value) {
-  const std::string_view text = trim(raw);
-  const char* end = text.data() + text.size();
-  const auto [stop, error] = std::from_chars(text.data(), end, *value);
-  return !text.empty() && error == std::errc() && stop == end;
+  const std::optional<double> number = number_from_text<double>(raw);
+  if (number) *value = *number;
+  return number.has_value();
 }
 
 bool read_boolean(const std::string& raw, bool* value) {

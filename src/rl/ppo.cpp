@@ -104,9 +104,9 @@ void Ppo::reset_environments(std::uint64_t seed) {
   const auto start = Clock::now();
   const std::span<const float> observations = env_.reset(seed);
   if (observations.size() != last_observations_.size()) {
-    throw std::runtime_error("PPO: reset returned " + std::to_string(observations.size()) +
-                             " observation values, expected " +
-                             std::to_string(last_observations_.size()));
+    throw std::logic_error("PPO: reset returned " + std::to_string(observations.size()) +
+                           " observation values, expected " +
+                           std::to_string(last_observations_.size()));
   }
   std::copy(observations.begin(), observations.end(), last_observations_.begin());
   timings_.env_seconds += seconds_since(start);

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rl/run_file_error.hpp"
+
 namespace upkie_rl {
 
 namespace {
@@ -46,7 +48,7 @@ RunDirectoryLock::RunDirectoryLock(const std::filesystem::path& run_dir)
   const std::filesystem::path path = run_dir / kLockName;
   descriptor_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (descriptor_ < 0) {
-    throw std::runtime_error("cannot open " + path.string() + ": " + std::strerror(errno));
+    throw RunFileError("cannot open " + path.string() + ": " + std::strerror(errno));
   }
   if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
     char holder[32] = {};
@@ -54,8 +56,8 @@ RunDirectoryLock::RunDirectoryLock(const std::filesystem::path& run_dir)
     ::close(descriptor_);
     descriptor_ = -1;
     started_empty_ = false;  // the directory is the holder's: nothing of it is removed
-    throw std::runtime_error("run directory " + run_dir.string() + " is in use by another trainer" +
-                             (read > 0 ? " (process " + std::string(holder, read) + ")" : ""));
+    throw RunFileError("run directory " + run_dir.string() + " is in use by another trainer" +
+                       (read > 0 ? " (process " + std::string(holder, read) + ")" : ""));
   }
   const std::string pid = std::to_string(::getpid());
   if (::ftruncate(descriptor_, 0) == 0) {

@@ -11,19 +11,12 @@
 
 #include "model/input_file.hpp"
 #include "model/number_text.hpp"
+#include "model/split_fields.hpp"
+#include "rl/run_file_error.hpp"
 
 namespace upkie_rl {
 
 namespace {
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream stream(line);
-  std::string cell;
-  while (std::getline(stream, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
 
 std::string join(const std::vector<std::string>& cells) {
   std::string line;
@@ -38,12 +31,9 @@ std::string format_value(float value) {
 
 double parse_cell(const std::string& cell, const std::string& where) {
   if (cell.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
-  if (error != std::errc() || end != cell.data() + cell.size()) {
-    throw std::runtime_error(where + ": not a number: '" + cell + "'");
-  }
-  return value;
+  const std::optional<double> value = number_from_text<double>(cell);
+  if (!value) throw RunFileError(where + ": not a number: '" + cell + "'");
+  return *value;
 }
 
 }  // namespace
@@ -59,11 +49,11 @@ ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
     std::string line;
     // An empty file (left by an older version killed while it rewrote the log) has no rows.
     if (std::getline(existing, line) && !line.empty() && line != join(columns_)) {
-      throw std::runtime_error(path.string() + ": existing header differs from the logged tags");
+      throw RunFileError(path.string() + ": existing header differs from the logged tags");
     }
     while (std::getline(existing, line)) {
       if (line.empty()) continue;
-      const std::vector<std::string> cells = split(line);
+      const std::vector<std::string> cells = split_fields(line);
       if (cells.empty() || cells[0].empty()) continue;
       double step = 0.0;
       try {
@@ -78,7 +68,7 @@ ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
   }
   if (!resume_from_step) {
     file_.open(path, std::ios::trunc);
-    if (!file_) throw std::runtime_error("cannot write " + path.string());
+    if (!file_) throw RunFileError("cannot write " + path.string());
     file_ << join(columns_) << '\n';
     file_.flush();
     return;
@@ -91,7 +81,7 @@ ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
     out << join(columns_) << '\n';
     for (const std::string& line : kept) out << line << '\n';
     out.flush();
-    if (!out) throw std::runtime_error("cannot write " + aside.string());
+    if (!out) throw RunFileError("cannot write " + aside.string());
   }
   if (FILE* handle = std::fopen(aside.c_str(), "rb")) {
     fsync(fileno(handle));
@@ -101,10 +91,10 @@ ScalarCsvWriter::ScalarCsvWriter(const std::filesystem::path& path,
   std::filesystem::rename(aside, path, error);
   if (error) {
     std::filesystem::remove(aside, error);
-    throw std::runtime_error("cannot replace " + path.string() + ": " + error.message());
+    throw RunFileError("cannot replace " + path.string() + ": " + error.message());
   }
   file_.open(path, std::ios::app);
-  if (!file_) throw std::runtime_error("cannot write " + path.string());
+  if (!file_) throw RunFileError("cannot write " + path.string());
 }
 
 void ScalarCsvWriter::write_row(std::span<const ScalarValue> scalars) {
@@ -116,14 +106,14 @@ void ScalarCsvWriter::write_row(std::span<const ScalarValue> scalars) {
   }
   file_ << join(cells) << '\n';
   file_.flush();
-  if (!file_) throw std::runtime_error("cannot write " + path_.string());
+  if (!file_) throw RunFileError("cannot write " + path_.string());
 }
 
 std::size_t ScalarTable::index(const std::string& column) const {
   for (std::size_t i = 0; i < columns.size(); ++i) {
     if (columns[i] == column) return i;
   }
-  throw std::runtime_error("no column '" + column + "' in the scalar log");
+  throw RunFileError("no column '" + column + "' in the scalar log");
 }
 
 ScalarTable read_scalar_csv(const std::filesystem::path& path) {
@@ -132,18 +122,18 @@ ScalarTable read_scalar_csv(const std::filesystem::path& path) {
   ScalarTable table;
   std::string line;
   if (!std::getline(file, line) || line.empty()) {
-    throw std::runtime_error(path.string() + ": empty file, no header");
+    throw RunFileError(path.string() + ": empty file, no header");
   }
-  table.columns = split(line);
+  table.columns = split_fields(line);
   int line_number = 1;
   while (std::getline(file, line)) {
     ++line_number;
     if (line.empty()) continue;
     const std::string where = path.string() + ":" + std::to_string(line_number);
-    const std::vector<std::string> cells = split(line);
+    const std::vector<std::string> cells = split_fields(line);
     if (cells.size() != table.columns.size()) {
-      throw std::runtime_error(where + ": expected " + std::to_string(table.columns.size()) +
-                               " cells, got " + std::to_string(cells.size()));
+      throw RunFileError(where + ": expected " + std::to_string(table.columns.size()) +
+                         " cells, got " + std::to_string(cells.size()));
     }
     std::vector<double> row;
     row.reserve(cells.size());

@@ -10,7 +10,9 @@
 
 #include "model/atomic_file.hpp"
 #include "model/input_file.hpp"
+#include "model/integer_text.hpp"
 #include "rl/config_file_limit.hpp"
+#include "rl/run_file_error.hpp"
 
 namespace upkie_rl {
 
@@ -20,14 +22,13 @@ constexpr const char* kPlanFile = "sweep.yaml";
 constexpr const char* kConfigFile = "config.yaml";
 
 std::uint64_t parse_seed(const std::string& text, const std::string& whole) {
-  std::uint64_t value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+  const std::optional<std::uint64_t> value = integer_from_text<std::uint64_t>(text);
+  if (!value) {
     throw std::invalid_argument("seeds '" + whole +
                                 "': expected A:B (seeds A to B-1), A,B,C or A, with "
                                 "non-negative integers");
   }
-  return value;
+  return *value;
 }
 
 /// Splits at the commas that are outside brackets.
@@ -280,10 +281,10 @@ void write_sweep(const std::filesystem::path& directory, const TrainingConfig& b
   const std::filesystem::path plan_path = directory / kPlanFile;
   if (std::filesystem::exists(plan_path)) {
     if (read_text(plan_path) != plan_text || read_text(directory / kConfigFile) != config_text) {
-      throw std::runtime_error(directory.string() +
-                               " already holds another sweep: choose another --output, or run "
-                               "`upkie-rl sweep " +
-                               directory.string() + "` to continue that one");
+      throw RunFileError(directory.string() +
+                         " already holds another sweep: choose another --output, or run "
+                         "`upkie-rl sweep " +
+                         directory.string() + "` to continue that one");
     }
     return;
   }

@@ -10,6 +10,7 @@
 
 #include "model/input_file.hpp"
 #include "policy/crc32c.hpp"
+#include "rl/run_file_error.hpp"
 
 namespace upkie_rl {
 
@@ -69,15 +70,15 @@ class Reader {
   std::uint64_t varint() {
     std::uint64_t value = 0;
     for (int shift = 0; shift < 64; shift += 7) {
-      if (done()) throw std::runtime_error("truncated varint");
+      if (done()) throw RunFileError("truncated varint");
       const auto byte = static_cast<std::uint8_t>(data_[position_++]);
       value |= static_cast<std::uint64_t>(byte & 0x7F) << shift;
       if ((byte & 0x80) == 0) return value;
     }
-    throw std::runtime_error("varint too long");
+    throw RunFileError("varint too long");
   }
   std::string_view bytes(std::size_t size) {
-    if (size > data_.size() - position_) throw std::runtime_error("truncated field");
+    if (size > data_.size() - position_) throw RunFileError("truncated field");
     std::string_view out = data_.substr(position_, size);
     position_ += size;
     return out;
@@ -103,7 +104,7 @@ class Reader {
         bytes(4);
         break;
       default:
-        throw std::runtime_error("unsupported wire type " + std::to_string(wire_type));
+        throw RunFileError("unsupported wire type " + std::to_string(wire_type));
     }
   }
 
@@ -193,7 +194,7 @@ TensorBoardWriter::TensorBoardWriter(const std::filesystem::path& directory) {
     if (!std::filesystem::exists(path_)) break;
   }
   file_.open(path_, std::ios::binary);
-  if (!file_) throw std::runtime_error("cannot create event file " + path_.string());
+  if (!file_) throw RunFileError("cannot create event file " + path_.string());
   TensorBoardEvent first;
   first.wall_time = now;
   first.file_version = "brain.Event:2";
@@ -212,7 +213,7 @@ void TensorBoardWriter::add_scalars(std::int64_t step, std::span<const ScalarVal
 
 void TensorBoardWriter::flush() {
   file_.flush();
-  if (!file_) throw std::runtime_error("cannot write event file " + path_.string());
+  if (!file_) throw RunFileError("cannot write event file " + path_.string());
 }
 
 void TensorBoardWriter::write_record(const std::string& data) {
@@ -233,27 +234,27 @@ std::vector<TensorBoardEvent> read_event_file(const std::filesystem::path& path)
   while (position < content.size()) {
     const std::string where = path.string() + ": record " + std::to_string(events.size()) +
                               " at byte " + std::to_string(position);
-    if (content.size() - position < 12) throw std::runtime_error(where + ": truncated header");
+    if (content.size() - position < 12) throw RunFileError(where + ": truncated header");
     std::uint64_t length;
     std::uint32_t length_crc;
     std::memcpy(&length, content.data() + position, 8);
     std::memcpy(&length_crc, content.data() + position + 8, 4);
     if (mask_crc32c(crc32c(std::string_view(content.data() + position, 8))) != length_crc) {
-      throw std::runtime_error(where + ": bad length CRC");
+      throw RunFileError(where + ": bad length CRC");
     }
     position += 12;
     if (length > content.size() - position || content.size() - position - length < 4) {
-      throw std::runtime_error(where + ": truncated data");
+      throw RunFileError(where + ": truncated data");
     }
     const std::string_view data(content.data() + position, length);
     std::uint32_t data_crc;
     std::memcpy(&data_crc, content.data() + position + length, 4);
-    if (mask_crc32c(crc32c(data)) != data_crc) throw std::runtime_error(where + ": bad data CRC");
+    if (mask_crc32c(crc32c(data)) != data_crc) throw RunFileError(where + ": bad data CRC");
     position += length + 4;
     try {
       events.push_back(decode_event(data));
     } catch (const std::runtime_error& error) {
-      throw std::runtime_error(where + ": malformed event: " + error.what());
+      throw RunFileError(where + ": malformed event: " + error.what());
     }
   }
   return events;

@@ -8,6 +8,7 @@
 #include "policy/checkpoint_header.hpp"
 #include "policy/provenance.hpp"
 #include "rl/ppo_checkpoint.hpp"
+#include "rl/run_file_error.hpp"
 
 namespace upkie_rl {
 
@@ -76,8 +77,8 @@ void export_torchscript(const ActorCritic& policy, const ObservationNormalizer& 
   try {
     module.save(path.string(), extra_files);
   } catch (const c10::Error& error) {
-    throw std::runtime_error("cannot write TorchScript model " + path.string() + ": " +
-                             error.what_without_backtrace());
+    throw RunFileError("cannot write TorchScript model " + path.string() + ": " +
+                       error.what_without_backtrace());
   }
 }
 

@@ -17,6 +17,7 @@
 #include "rl/ppo_checkpoint.hpp"
 #include "rl/rank_agreement.hpp"
 #include "rl/run_directory_lock.hpp"
+#include "rl/run_file_error.hpp"
 #include "rl/torchscript_export.hpp"
 #include "vec/make_vector_env.hpp"
 
@@ -195,9 +196,9 @@ TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::pa
   if (!writes_outputs()) return;
   if (std::filesystem::exists(run_dir_ / "config.yaml")) {
     if (holds_checkpoints(run_dir_)) {
-      throw std::runtime_error("run directory " + run_dir_.string() +
-                               " already holds a run; choose another --run-dir or --resume a "
-                               "checkpoint");
+      throw RunFileError("run directory " + run_dir_.string() +
+                         " already holds a run; choose another --run-dir or --resume a "
+                         "checkpoint");
     }
     // A run killed before its first checkpoint: nothing to resume, so it starts over and
     // its logs, which describe steps about to be redone, go.
@@ -212,7 +213,7 @@ TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::pa
   lock_->note_created(run_dir_ / "config.yaml");
   std::ofstream file(run_dir_ / "config.yaml");
   file << to_yaml(config_);
-  if (!file) throw std::runtime_error("cannot write " + (run_dir_ / "config.yaml").string());
+  if (!file) throw RunFileError("cannot write " + (run_dir_ / "config.yaml").string());
 }
 
 TrainingRun::TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path run_dir,

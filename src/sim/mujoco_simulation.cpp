@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "model/robot_model.hpp"
 #include "sim/mass_properties.hpp"
 #include "sim/tire_contact.hpp"
 
@@ -37,7 +38,7 @@ MujocoSimulation::MujocoSimulation(std::shared_ptr<const RobotModel> model,
       compiled_(std::move(compiled)),
       episode_model_(compiled_->model.get()),
       data_(mj_makeData(compiled_->model.get())) {
-  if (!data_) throw std::runtime_error("MuJoCo could not allocate its simulation data");
+  if (!data_) throw ModelError("MuJoCo could not allocate its simulation data");
   reset(ResetState{});
 }
 
@@ -114,7 +115,7 @@ void MujocoSimulation::apply_model_variation(const Eigen::Vector3d& gravity) {
   }
   if (!varied_model_) {
     varied_model_.reset(mj_copyModel(nullptr, nominal));
-    if (!varied_model_) throw std::runtime_error("MuJoCo could not copy the model");
+    if (!varied_model_) throw ModelError("MuJoCo could not copy the model");
   }
   mjModel* varied = varied_model_.get();
   episode_model_ = varied;

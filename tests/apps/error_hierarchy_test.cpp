@@ -5,10 +5,15 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <type_traits>
+#include <vector>
 
 #include "agent/agent_error.hpp"
-#include "apps/record_file_error.hpp"
+#include "apps/command_error.hpp"
+#include "envs/record_file_error.hpp"
+#include "identify/identification_error.hpp"
 #include "model/error.hpp"
 #include "model/robot_model.hpp"
 #include "onnx/onnx_error.hpp"
@@ -17,6 +22,7 @@
 #include "policy/policy_output_error.hpp"
 #include "render/render_error.hpp"
 #include "rl/communicator.hpp"
+#include "rl/run_file_error.hpp"
 #include "sim/servo_command.hpp"
 #include "sim/simulation.hpp"
 #include "spine/spine_error.hpp"
@@ -35,7 +41,8 @@ TEST(ErrorHierarchy, EveryDomainErrorHasTheOneRoot) {
   static_assert(all_derive_from_error<ModelError, CheckpointError, SimulationDivergedError,
                                       InvalidCommandError, RenderError, DistributedError, ViewError,
                                       SpineError, SpineTimeoutError, OnnxError, AgentError,
-                                      SupervisorTrip, apps::RecordFileError, PolicyOutputError>());
+                                      SupervisorTrip, RecordFileError, PolicyOutputError,
+                                      RunFileError, IdentificationError, apps::CommandError>());
   // Not an option mistake: those stay std::invalid_argument.
   static_assert(!std::is_base_of_v<std::invalid_argument, InvalidCommandError>);
 }
@@ -55,6 +62,25 @@ TEST(ErrorHierarchy, RealFailuresAreCaughtAsTheRoot) {
     EXPECT_NE(std::string(error.what()).find("bad magic"), std::string::npos);
   }
   std::filesystem::remove(garbage);
+}
+
+// Every error the code raises on purpose is a domain error or an option mistake
+// (std::invalid_argument); a bare std::runtime_error would escape `except upkie_rl.Error`
+// and the error-kind tables.
+TEST(ErrorHierarchy, NoBareRuntimeErrorIsThrown) {
+  const std::filesystem::path sources = std::filesystem::path(UPKIE_RL_SOURCE_DIR) / "src";
+  std::vector<std::string> throwing;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(sources)) {
+    const std::string extension = entry.path().extension().string();
+    if (extension != ".cpp" && extension != ".hpp") continue;
+    std::stringstream text;
+    text << std::ifstream(entry.path()).rdbuf();
+    if (text.str().find("throw std::runtime_error(") != std::string::npos) {
+      throwing.push_back(entry.path().lexically_relative(sources).string());
+    }
+  }
+  EXPECT_TRUE(throwing.empty()) << "throw std::runtime_error in "
+                                << ::testing::PrintToString(throwing);
 }
 
 }  // namespace

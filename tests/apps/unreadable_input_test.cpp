@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "apps/record_file.hpp"
 #include "apps/sweep_outcome.hpp"
 #include "common/child_call.hpp"
 #include "common/temp_files.hpp"
+#include "envs/record_file.hpp"
 #include "onnx/onnx_model_info.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "rl/scalar_csv_writer.hpp"
@@ -106,7 +106,7 @@ std::vector<std::pair<std::string, std::string>> reader_errors(const std::filesy
   const std::filesystem::path directory = path.parent_path();
   return {
       {"config file", child_call_error([&] { load_training_config(path.string()); })},
-      {"record file", child_call_error([&] { apps::read_record_file(path); })},
+      {"record file", child_call_error([&] { read_record_file(path); })},
       {"scalar log", child_call_error([&] { read_scalar_csv(path); })},
       {"event file", child_call_error([&] { read_event_file(path); })},
       {"checkpoint", child_call_error([&] { read_checkpoint_file(path); })},

@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "apps/record_file_error.hpp"
 #include "envs/episode_recorder.hpp"
+#include "envs/record_file_error.hpp"
 #include "envs/velocity_command.hpp"
 #include "render/robot_renderer.hpp"
 
-namespace upkie_rl::apps {
+namespace upkie_rl {
 
 /// What `upkie-rl render` and `upkie-rl view` need of one row of a record file.
 struct RecordedStep {
@@ -60,4 +60,4 @@ RecordFile read_record_file(const std::filesystem::path& path);
 /// @throws RecordFileError as above.
 RecordFile read_record_file(std::istream& in, const std::string& name);
 
-}  // namespace upkie_rl::apps
+}  // namespace upkie_rl

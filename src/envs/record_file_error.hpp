@@ -4,7 +4,7 @@
 
 #include "model/error.hpp"
 
-namespace upkie_rl::apps {
+namespace upkie_rl {
 
 /// Raised on a record file that cannot be read: missing, empty, a missing column, a value
 /// that is not a number, a row of the wrong length, no ground truth, no rows. The message
@@ -14,4 +14,4 @@ class RecordFileError : public Error {
   using Error::Error;
 };
 
-}  // namespace upkie_rl::apps
+}  // namespace upkie_rl

@@ -1,4 +1,4 @@
-#include "apps/record_file.hpp"
+#include "envs/record_file.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -8,35 +8,22 @@
 #include <utility>
 
 #include "model/input_file.hpp"
+#include "model/number_text.hpp"
+#include "model/split_fields.hpp"
 #include "sim/base_observer.hpp"
 
-namespace upkie_rl::apps {
+namespace upkie_rl {
 
 namespace {
 
-std::vector<std::string> split_fields(const std::string& line) {
-  std::vector<std::string> fields;
-  std::string field;
-  std::istringstream stream(line);
-  while (std::getline(stream, field, ',')) fields.push_back(field);
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
-
 double parse_number(const std::string& text, const std::string& path, long line,
                     const std::string& column) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size()) {
+  const std::optional<double> value = number_from_text<double>(text);
+  if (!value) {
     throw RecordFileError(path + ":" + std::to_string(line) + ": column " + column +
                           " is not a number: \"" + text + "\"");
   }
-  return value;
+  return *value;
 }
 
 /// The columns the reader takes, in the order of a row's values, each with its position in
@@ -192,4 +179,4 @@ RecordFile read_record_file(std::istream& in, const std::string& path) {
   return file;
 }
 
-}  // namespace upkie_rl::apps
+}  // namespace upkie_rl
