@@ -9,6 +9,9 @@ namespace upkie_rl {
 
 namespace {
 
+/// A crouch within this of straight legs is straight legs [m].
+constexpr double kStraightTolerance = 1e-6;
+
 /// Position in the base frame, at q = 0, of the axis of servo `servo` (its child link).
 Eigen::Vector3d joint_position(const RobotModel& model, const std::vector<Eigen::Isometry3d>& poses,
                                std::size_t servo) {
@@ -44,7 +47,9 @@ CrouchPose LegKinematics::crouch_pose(double base_height) const {
   const double longest = thigh_length_ + shin_length_;
   const double shortest = std::abs(thigh_length_ - shin_length_) + 1e-6;
   const double reach = std::clamp(base_height - hip_depth_ - wheel_radius_, shortest, longest);
-  if (reach >= longest) return {};  // straight legs, exactly
+  // Straight legs, exactly, within a micrometre: the observation carries the command as a
+  // float, and 0.557f is 2e-8 m below 0.557.
+  if (reach >= longest - kStraightTolerance) return {};
   const double cos_knee =
       (reach * reach - thigh_length_ * thigh_length_ - shin_length_ * shin_length_) /
       (2.0 * thigh_length_ * shin_length_);
