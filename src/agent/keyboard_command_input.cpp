@@ -13,6 +13,7 @@
 #include <string>
 
 #include "agent/agent_error.hpp"
+#include "envs/velocity_command_sampler.hpp"
 
 namespace upkie_rl {
 
@@ -34,8 +35,8 @@ KeyboardCommandInput::KeyboardCommandInput(int fd) : fd_(fd) {
   }
   spdlog::info(
       "keyboard commands: w/Up +{} m/s, s/Down -{} m/s, a/Left +{} rad/s (left), d/Right -{} "
-      "rad/s, space or 0 stop",
-      kForwardStep, kForwardStep, kYawStep, kYawStep);
+      "rad/s, r/f base height +-{} m, space or 0 stop",
+      kForwardStep, kForwardStep, kYawStep, kYawStep, kHeightStep);
 }
 
 KeyboardCommandInput::~KeyboardCommandInput() {
@@ -72,9 +73,16 @@ bool KeyboardCommandInput::on_key(char key) {
     case 'd':
       command_.yaw_rate -= kYawStep;
       return true;
+    case 'r':
+      command_.height = std::min(command_.height + kHeightStep, kStandingBaseHeight);
+      return true;
+    case 'f':
+      command_.height = std::max(command_.height - kHeightStep, kLowestHeightCommand);
+      return true;
     case ' ':
     case '0':
-      command_ = VelocityCommand{};
+      command_.forward_velocity = 0.0;
+      command_.yaw_rate = 0.0;
       return true;
     default:
       return false;
@@ -99,6 +107,7 @@ std::optional<VelocityCommand> KeyboardCommandInput::poll(double /*time*/) {
   // Steps of 0.1 accumulate rounding (0.30000000000000004): commands are kept to 1e-9.
   command_.forward_velocity = std::round(command_.forward_velocity * 1e9) / 1e9;
   command_.yaw_rate = std::round(command_.yaw_rate * 1e9) / 1e9;
+  command_.height = std::round(command_.height * 1e9) / 1e9;
   return command_;
 }
 

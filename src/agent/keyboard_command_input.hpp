@@ -11,14 +11,17 @@
 namespace upkie_rl {
 
 /// Keys change the command by steps: w or Up faster forward, s or Down faster backward,
-/// a or Left turn left (counterclockwise) faster, d or Right turn right faster, space or 0
-/// stop (zero command). On a terminal, keys are read as they are pressed (no Enter, no
-/// echo; Ctrl-C still interrupts) and the terminal is restored on destruction; from a pipe,
-/// the same characters are read as they come. Other keys are ignored.
+/// a or Left turn left (counterclockwise) faster, d or Right turn right faster, r raise and
+/// f lower the base (height command), space or 0 stop (zero velocities, the height kept). On a
+/// terminal, keys are read as they are pressed (no Enter, no echo; Ctrl-C still interrupts) and the
+/// terminal is restored on destruction; from a pipe, the same characters are read as they come.
+/// Other keys are ignored.
 class KeyboardCommandInput final : public VelocityCommandInput {
  public:
   static constexpr double kForwardStep = 0.1;  ///< [m/s] per key press
   static constexpr double kYawStep = 0.25;     ///< [rad/s] per key press
+  static constexpr double kHeightStep = 0.02;  ///< [m] per key press, within a deep crouch
+                                               ///< (kLowestHeightCommand) and standing
 
   /// Reads `fd` (not owned), e.g. 0; prints the keys' meaning.
   /// @throws AgentError when the terminal cannot be set up.

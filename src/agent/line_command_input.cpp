@@ -17,15 +17,18 @@ std::optional<VelocityCommand> LineCommandInput::parse_line() const {
   if (line.find_first_not_of(" \t\r") == std::string_view::npos || line.front() == '#') {
     return std::nullopt;
   }
-  std::array<double, 2> values{};
-  if (!parse_number_row(line, values) || !std::isfinite(values[0]) || !std::isfinite(values[1])) {
+  std::array<double, 3> values{0.0, 0.0, kStandingBaseHeight};
+  const bool with_height = parse_number_row(line, values);
+  if (!(with_height || parse_number_row(line, std::span<double>(values).first(2))) ||
+      !std::isfinite(values[0]) || !std::isfinite(values[1]) || !std::isfinite(values[2])) {
     spdlog::warn(
-        "commands: ignored the line '{}' of the standard input: expected vx,wz (two "
-        "finite numbers, m/s and rad/s)",
+        "commands: ignored the line '{}' of the standard input: expected vx,wz or vx,wz,height "
+        "(finite numbers, m/s, rad/s and m)",
         line);
     return std::nullopt;
   }
-  return VelocityCommand{values[0], values[1]};
+  if (!with_height) values[2] = kStandingBaseHeight;
+  return VelocityCommand{values[0], values[1], values[2]};
 }
 
 std::optional<VelocityCommand> LineCommandInput::poll(double /*time*/) {

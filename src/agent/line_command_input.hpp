@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// LineCommandInput: commands typed or piped as lines `vx,wz` (the standard input).
+/// LineCommandInput: commands typed or piped as lines `vx,wz` or `vx,wz,height` (the
+/// standard input; without a height: standing).
 
 #include <array>
 #include <cstddef>

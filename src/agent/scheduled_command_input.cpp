@@ -13,6 +13,9 @@ VelocityCommandRanges widest_command_ranges() {
   VelocityCommandRanges ranges;
   ranges.max_forward_velocity = kOptionHuge;
   ranges.max_yaw_rate = kOptionHuge;
+  ranges.height_command = true;
+  ranges.min_height = kLowestHeightCommand;
+  ranges.max_height = kStandingBaseHeight;
   return ranges;
 }
 

@@ -12,8 +12,8 @@
 namespace upkie_rl {
 
 /// Holds the velocity task on a command set from outside (never the training's random
-/// ones): zero (stand still) until the input gives one, each clamped to the ranges the
-/// policy was trained on, each change logged.
+/// ones): zero (stand still, standing height) until the input gives one, each clamped to
+/// the ranges the policy was trained on (clamp_to_trained), each change logged.
 class VelocityCommander {
  public:
   /// @param env Outlives this object. @param input May be null: zero all along.
@@ -34,6 +34,12 @@ class VelocityCommander {
   std::unique_ptr<VelocityCommandInput> input_;
   VelocityCommandRanges trained_;
 };
+
+/// `wanted` clamped to the `trained` ranges: velocities to their ±bounds, the height to
+/// [min_height_command, max_height_command] (a policy without a height command: its
+/// standing height, whatever is asked).
+VelocityCommand clamp_to_trained(const VelocityCommand& wanted,
+                                 const VelocityCommandRanges& trained);
 
 /// The input the options ask for: `--commands FILE` (a schedule), `--commands -` (lines of
 /// the standard input), `--keyboard`, or null (neither).

@@ -70,8 +70,13 @@ void run_drive(const DriveOptions& options) {
   std::unique_ptr<Controller> controller =
       make_run_controller(options.env_id, options.controller, options.model, env_options, *env);
   const VelocityCommandRanges& ranges = velocity.command_ranges();
-  auto drive = std::make_shared<DriveControl>(
-      DriveLimits{ranges.max_forward_velocity, ranges.max_yaw_rate}, options.rate);
+  DriveLimits limits;
+  limits.max_forward_velocity = ranges.max_forward_velocity;
+  limits.max_yaw_rate = ranges.max_yaw_rate;
+  limits.height_command = ranges.height_command;
+  limits.min_height = ranges.min_height;
+  limits.max_height = ranges.max_height;
+  auto drive = std::make_shared<DriveControl>(limits, options.rate);
   ViewSession session;
   session.title =
       options.env_id + ": " + (options.model.empty() ? options.controller : options.model);
@@ -86,7 +91,8 @@ void run_drive(const DriveOptions& options) {
     recorder->write_header(*env);
   }
   view.wait_for_browsers();
-  std::cout << "drive: open the page and press the arrow keys or WASD (or use a gamepad); "
+  std::cout << "drive: open the page and press the arrow keys or WASD (Q/Z raise and lower "
+               "the base with a height command; or use a gamepad); "
                "Ctrl-C ends"
             << std::endl;
   DriveSummary summary;

@@ -50,7 +50,8 @@ void DriveLoop::start_episode() {
 }
 
 DriveSummary DriveLoop::run(const std::atomic<bool>& stop) {
-  velocity_.set_command_override(VelocityCommand{});  // standing still until a page drives
+  // Standing still until a page drives.
+  velocity_.set_command_override(velocity_.command_ranges().rest_command());
   start_episode();
   while (!stop.load()) {
     if (settings_.duration > 0.0 && summary_.simulated_time >= settings_.duration) break;
@@ -62,7 +63,11 @@ DriveSummary DriveLoop::run(const std::atomic<bool>& stop) {
     DriveInputs inputs;
     if (!take_inputs(stop, inputs)) break;
     if (inputs.new_command) {
-      velocity_.set_command_override(VelocityCommand{inputs.forward_velocity, inputs.yaw_rate});
+      VelocityCommand command{inputs.forward_velocity, inputs.yaw_rate, inputs.height};
+      if (!velocity_.command_ranges().height_command) {
+        command.height = velocity_.command_ranges().rest_command().height;
+      }
+      velocity_.set_command_override(command);
     }
     // A push taken with a reset acts on the new episode rather than being lost.
     if (inputs.reset) start_episode();

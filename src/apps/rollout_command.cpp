@@ -75,8 +75,11 @@ struct VelocityTrace {
   std::vector<double> time;
   std::vector<double> target_forward, commanded_forward, measured_forward;
   std::vector<double> target_yaw, commanded_yaw, measured_yaw;
+  std::vector<double> target_height, commanded_height, measured_height;
+  bool height_command = false;
 
   void add(double t, const VelocityEnv& env) {
+    height_command = env.command_ranges().height_command;
     const VelocityCommand& target = env.last_step_target();
     const VelocityCommand& command = env.last_step_command();
     const BaseVelocity velocity = env.measured_velocity();
@@ -87,9 +90,13 @@ struct VelocityTrace {
     target_yaw.push_back(target.yaw_rate);
     commanded_yaw.push_back(command.yaw_rate);
     measured_yaw.push_back(velocity.yaw_rate);
+    target_height.push_back(target.height);
+    commanded_height.push_back(command.height);
+    measured_height.push_back(velocity.height);
   }
 
-  /// <prefix>_forward_velocity.png and <prefix>_yaw_rate.png.
+  /// <prefix>_forward_velocity.png and <prefix>_yaw_rate.png (and <prefix>_height.png with a
+  /// height command).
   void draw(const std::string& prefix, const std::string& title) const {
     const auto figure = [&](const char* name, const char* label, const std::vector<double>& target,
                             const std::vector<double>& wanted,
@@ -107,6 +114,9 @@ struct VelocityTrace {
     figure("forward_velocity", "forward velocity [m/s]", target_forward, commanded_forward,
            measured_forward);
     figure("yaw_rate", "yaw rate [rad/s]", target_yaw, commanded_yaw, measured_yaw);
+    if (height_command) {
+      figure("height", "base height [m]", target_height, commanded_height, measured_height);
+    }
   }
 };
 

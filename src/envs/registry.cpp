@@ -269,6 +269,36 @@ EnvOptions task_options(const std::string& source_id, const EnvOptions& options,
   return kept;
 }
 
+namespace {
+
+bool names_option(const EnvOptions& options, const std::string& name) {
+  return std::any_of(options.begin(), options.end(),
+                     [&name](const auto& option) { return option.first == name; });
+}
+
+}  // namespace
+
+EnvOptions with_recorded_defaults(const std::string& id, const EnvOptions& recorded) {
+  EnvOptions options;
+  for (const OptionInfo& info : env_option_info(id)) {
+    if (!info.recorded_default.empty() && !names_option(recorded, info.name)) {
+      options.emplace_back(info.name, info.recorded_default);
+    }
+  }
+  options.insert(options.end(), recorded.begin(), recorded.end());
+  return options;
+}
+
+EnvOptions with_pinned_defaults(const std::string& id, const EnvOptions& options) {
+  EnvOptions pinned = options;
+  for (const OptionInfo& info : env_option_info(id)) {
+    if (!info.recorded_default.empty() && !names_option(options, info.name)) {
+      pinned.emplace_back(info.name, info.default_value);
+    }
+  }
+  return pinned;
+}
+
 std::vector<OptionInfo> env_option_info(const std::string& id) {
   EnvSettings settings;
   return env_option_table(parse_env_id(id), settings).info();

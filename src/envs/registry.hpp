@@ -43,6 +43,19 @@ std::vector<std::string> env_option_help(const std::string& id);
 EnvOptions task_options(const std::string& source_id, const EnvOptions& options,
                         const std::string& target_id);
 
+/// `recorded`, the options a configuration recorded for `id` (a checkpoint's env.options),
+/// preceded by name=OptionInfo::recorded_default for each option it does not name that has
+/// one: the options that rebuild the environment it was recorded with, although defaults
+/// changed since (the velocity task's height command, its leg_action_scale).
+/// @throws std::invalid_argument on an unknown id.
+EnvOptions with_recorded_defaults(const std::string& id, const EnvOptions& recorded);
+
+/// `options` followed by name=current default for each option of `id` with an
+/// OptionInfo::recorded_default that `options` does not name: what a training records,
+/// so that with_recorded_defaults reads its checkpoints back as they were made.
+/// @throws std::invalid_argument on an unknown id.
+EnvOptions with_pinned_defaults(const std::string& id, const EnvOptions& options);
+
 /// The options `id` accepts, typed, with their defaults and bounds.
 /// @throws std::invalid_argument on an unknown id.
 std::vector<OptionInfo> env_option_info(const std::string& id);

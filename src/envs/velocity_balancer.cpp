@@ -39,12 +39,13 @@ double velocity_task_pitch(std::span<const float> observation) {
 double velocity_task_pitch_rate(std::span<const float> observation) { return observation[kGyroY]; }
 
 VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& gains)
-    : gains_(gains) {
+    : gains_(gains), legs_(velocity_env(env).servos().model()) {
   const VelocityEnv& velocity = velocity_env(env);
   const RobotModel& model = velocity.servos().model();
   wheel_radius_ = model.wheel_radius();
   yaw_factor_ = 0.5 * model.track() / wheel_radius_;
   wheel_velocity_scale_ = velocity.task().config().wheel_velocity_scale;
+  leg_action_scale_ = velocity.task().config().leg_action_scale;
   timestep_ = env.timestep();
   touchdown_steps_ = static_cast<int>(std::lround(kTouchdownTime / timestep_));
 }
@@ -107,6 +108,25 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   };
   action[kLeftWheel] = normalized(ground_velocity_ / wheel_radius_ + turn);
   action[kRightWheel] = normalized(-ground_velocity_ / wheel_radius_ + turn);
+  if (observation.size() > VelocityTask::kHeightCommandIndex) crouch(observation, action);
+}
+
+void VelocityBalancer::crouch(std::span<const float> observation, std::span<float> action) const {
+  // Leaning forward tilts the crouched shins further from the vertical: the crouch is
+  // limited so that the ankles' boxes clear the floor (kCrouchShinTilt).
+  const double lean = std::max(0.0, velocity_task_pitch(observation));
+  const double lowest =
+      legs_.height_at_shin_tilt(std::max(0.0, kCrouchShinTilt - kCrouchLeanGain * lean));
+  const double height =
+      std::max(static_cast<double>(observation[VelocityTask::kHeightCommandIndex]), lowest);
+  const CrouchPose pose = legs_.crouch_pose(height);
+  const auto normalized = [this](double angle) {
+    return static_cast<float>(std::clamp(angle / leg_action_scale_, -1.0, 1.0));
+  };
+  action[kLeftHip] = normalized(pose.hip);
+  action[kLeftKnee] = normalized(pose.knee);
+  action[kRightHip] = normalized(-pose.hip);  // the right leg mirrors the left
+  action[kRightKnee] = normalized(-pose.knee);
 }
 
 }  // namespace upkie_rl

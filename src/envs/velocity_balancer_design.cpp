@@ -72,7 +72,9 @@ VelocityBalanceModel identify_velocity_balance(Env& env, const VelocityBalancerG
   std::vector<Eigen::Vector3d> outputs;             // next x
   std::mt19937_64 generator(seed);
   for (int episode = 0; episode < episodes; ++episode) {
-    velocity->set_command_override(VelocityCommand{});
+    // Standing at the top of the height range: the gains are designed standing.
+    const VelocityCommand rest = velocity->command_ranges().rest_command();
+    velocity->set_command_override(rest);
     env.reset(seed + static_cast<std::uint64_t>(episode), observation);
     balancer.reset();
     Eigen::Matrix<double, 5, 1> previous;
@@ -82,7 +84,7 @@ VelocityBalanceModel identify_velocity_balance(Env& env, const VelocityBalancerG
         balancer.set_excitation(uniform_symmetric(generator, kExcitation));
       }
       if (step % kCommandHoldSteps == 0) {
-        VelocityCommand command;
+        VelocityCommand command = rest;
         command.forward_velocity = uniform_symmetric(generator, max_reference);
         velocity->set_command_override(command);
       }

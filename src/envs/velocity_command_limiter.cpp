@@ -17,15 +17,17 @@ double approach(double current, double target, double max_rate, double dt) {
 
 }  // namespace
 
-void VelocityCommandLimiter::start(const VelocityCommand& target) {
+void VelocityCommandLimiter::start(const VelocityCommand& target, double rest_height) {
   command_.forward_velocity = max_acceleration_ > 0.0 ? 0.0 : target.forward_velocity;
   command_.yaw_rate = max_yaw_acceleration_ > 0.0 ? 0.0 : target.yaw_rate;
+  command_.height = max_height_velocity_ > 0.0 ? rest_height : target.height;
 }
 
 const VelocityCommand& VelocityCommandLimiter::advance(const VelocityCommand& target, double dt) {
   command_.forward_velocity =
       approach(command_.forward_velocity, target.forward_velocity, max_acceleration_, dt);
   command_.yaw_rate = approach(command_.yaw_rate, target.yaw_rate, max_yaw_acceleration_, dt);
+  command_.height = approach(command_.height, target.height, max_height_velocity_, dt);
   return command_;
 }
 

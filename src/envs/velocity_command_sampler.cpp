@@ -13,6 +13,9 @@ namespace upkie_rl {
 
 namespace {
 
+/// Stream of the height generator, derived from the sampler's seed.
+constexpr std::uint64_t kHeightStream = 1;
+
 std::string negative_problem(const char* option, double value) {
   if (std::isfinite(value) && value >= 0.0) return "";
   return std::string(option) + " must be finite and non-negative, got " + std::to_string(value);
@@ -29,13 +32,31 @@ std::string VelocityCommandRanges::problem() const {
         std::pair{"command_resample_time_max", resample_time_max},
         std::pair{"command_max_acceleration", max_acceleration},
         std::pair{"command_max_yaw_acceleration", max_yaw_acceleration},
-        std::pair{"command_start_delay", start_delay}}) {
+        std::pair{"command_start_delay", start_delay},
+        std::pair{"standing_height_probability", standing_height_probability},
+        std::pair{"command_max_height_velocity", max_height_velocity}}) {
     std::string negative = negative_problem(option, value);
     if (!negative.empty()) return negative;
   }
   if (zero_command_probability > 1.0) {
     return "zero_command_probability must be at most 1, got " +
            std::to_string(zero_command_probability);
+  }
+  if (standing_height_probability > 1.0) {
+    return "standing_height_probability must be at most 1, got " +
+           std::to_string(standing_height_probability);
+  }
+  for (const auto& [option, value] :
+       {std::pair{"min_height_command", min_height}, std::pair{"max_height_command", max_height}}) {
+    if (!(value >= kLowestHeightCommand && value <= kStandingBaseHeight)) {
+      return std::string(option) + " must be in [" + std::to_string(kLowestHeightCommand) + ", " +
+             std::to_string(kStandingBaseHeight) + "] m (a deep crouch to standing), got " +
+             std::to_string(value);
+    }
+  }
+  if (min_height > max_height) {
+    return "min_height_command (" + std::to_string(min_height) + ") exceeds max_height_command (" +
+           std::to_string(max_height) + ")";
   }
   if (resample_time_min > resample_time_max) {
     return "command_resample_time_min (" + std::to_string(resample_time_min) +
@@ -45,6 +66,12 @@ std::string VelocityCommandRanges::problem() const {
 }
 
 void VelocityCommandRanges::validate() const { throw_problem(problem()); }
+
+VelocityCommand VelocityCommandRanges::rest_command() const {
+  VelocityCommand rest;
+  rest.height = max_height;
+  return rest;
+}
 
 void VelocityCommandRanges::declare_options(OptionTable& table) {
   table.add_real("max_forward_velocity", &max_forward_velocity, 0.0, kOptionHuge,
@@ -66,6 +93,20 @@ void VelocityCommandRanges::declare_options(OptionTable& table) {
   table.add_real("command_start_delay", &start_delay, 0.0, kOptionHuge,
                  "the command is zero for this long after reset, then the random commands "
                  "start [s] (a robot run starts standing still)");
+  table.add_choice("height_command", &height_command, {{"true", true}, {"false", false}},
+                   "the command has a base height: drawn, observed (command.height), rewarded "
+                   "(track_height) and followed by the baseline's legs; false: standing, the "
+                   "20-component observation of the policies trained before it");
+  table.set_recorded_default("height_command", "false");
+  table.add_real("min_height_command", &min_height, kLowestHeightCommand, kStandingBaseHeight,
+                 "lowest random base height command [m] (0.53: the ankles clear the floor)");
+  table.add_real("max_height_command", &max_height, kLowestHeightCommand, kStandingBaseHeight,
+                 "highest random base height command [m] (standing: 0.557)");
+  table.add_real("standing_height_probability", &standing_height_probability, 0.0, 1.0,
+                 "share of random height commands at max_height_command (standing)");
+  table.add_real("command_max_height_velocity", &max_height_velocity, 0.0, kOptionHuge,
+                 "the followed base height moves toward the drawn or set command at most this "
+                 "fast [m/s], 0 for steps");
   table.add_rule([this] { return problem(); });
 }
 
@@ -75,9 +116,12 @@ VelocityCommandSampler::VelocityCommandSampler(const VelocityCommandRanges& rang
 }
 
 void VelocityCommandSampler::reset(const std::uint64_t* seed) {
-  if (seed != nullptr) generator_.seed(*seed);
+  if (seed != nullptr) {
+    generator_.seed(*seed);
+    height_generator_.seed(derive_seed(*seed, kHeightStream));
+  }
   if (ranges_.start_delay > 0.0) {
-    command_ = VelocityCommand{};
+    command_ = ranges_.rest_command();
     time_left_ = ranges_.start_delay;  // advance() draws the first command after it
     return;
   }
@@ -102,6 +146,17 @@ void VelocityCommandSampler::draw() {
   command_.forward_velocity = zero ? 0.0 : forward;
   command_.yaw_rate = zero ? 0.0 : yaw;
   time_left_ = ranges_.resample_time_max > 0.0 ? hold : std::numeric_limits<double>::infinity();
+  command_.height = ranges_.height_command ? draw_height() : kStandingBaseHeight;
+}
+
+double VelocityCommandSampler::draw_height() {
+  // Two draws whatever the outcome, as above. The curriculum's scale narrows the range
+  // toward standing.
+  const double standing_draw = uniform_unit(height_generator_);
+  const double depth =
+      uniform_between(height_generator_, 0.0, ranges_.max_height - ranges_.min_height);
+  if (standing_draw < ranges_.standing_height_probability) return ranges_.max_height;
+  return ranges_.max_height - scale_ * depth;
 }
 
 }  // namespace upkie_rl

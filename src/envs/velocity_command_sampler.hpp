@@ -12,6 +12,16 @@
 
 namespace upkie_rl {
 
+/// Lowest base height a height command may ask for [m]: knees at -2.3 rad, 0.2 rad inside
+/// their joint limit (2.51 rad), with the wheel under the hip (LegKinematics::crouch_pose).
+/// Below about 0.53 m the ankles' collision boxes touch the floor (kMaxShinTilt): lower
+/// heights are for a robot description without them, or with terminate_on_contact=false.
+inline constexpr double kLowestHeightCommand = 0.36;
+
+}  // namespace upkie_rl
+
+namespace upkie_rl {
+
 /// Ranges of the random commands (environment options of the same names).
 struct VelocityCommandRanges {
   double max_forward_velocity = 1.0;      ///< Forward velocity drawn in ± it [m/s].
@@ -32,6 +42,23 @@ struct VelocityCommandRanges {
   /// run starts standing still with no command (the reality suite's worlds use 1 s). 0
   /// (default): the first command is drawn at reset.
   double start_delay = 0.0;
+  /// Whether the command has a base height (drawn here, observed, rewarded and followed by
+  /// the baseline's legs). false: the legs' default pose at standing height and the
+  /// observation of 20 components of the policies trained before the height command (a
+  /// checkpoint that does not name the option is read with false).
+  bool height_command = true;
+  /// Lowest base height drawn [m]. 0.53: the crouch with the wheel under the hip
+  /// (LegKinematics::crouch_pose: hips 0.41 rad, knees -0.80 rad) whose shins tilt by
+  /// kMaxShinTilt, the most the ankles' collision boxes allow before they touch the floor;
+  /// the joint limits alone would allow 0.36 m (kLowestHeightCommand).
+  double min_height = 0.53;
+  /// Highest base height drawn [m]: standing with straight legs (kStandingBaseHeight).
+  double max_height = kStandingBaseHeight;
+  /// Share of draws at max_height (standing); the others are uniform in [min, max].
+  double standing_height_probability = 0.3;
+  /// The followed height moves toward each drawn (or set) one at most this fast [m/s]; 0:
+  /// at once. 0.1 m/s crouches the whole default range in 1.6 s, inside the shortest hold.
+  double max_height_velocity = 0.1;
 
   /// What is wrong, naming the option at fault: a negative or non-finite value, a
   /// probability above 1, or resample_time_min above resample_time_max; "" if nothing.
@@ -39,14 +66,21 @@ struct VelocityCommandRanges {
   /// @throws std::invalid_argument with problem(), if any.
   void validate() const;
 
+  /// The command at rest: no velocity, the base at max_height.
+  VelocityCommand rest_command() const;
+
   /// Declares the options max_forward_velocity, max_yaw_rate, zero_command_probability,
   /// command_resample_time_min, command_resample_time_max, command_max_acceleration and
-  /// command_max_yaw_acceleration, command_start_delay, and problem() as their rule.
+  /// command_max_yaw_acceleration, command_start_delay, height_command, min_height_command,
+  /// max_height_command, standing_height_probability, command_max_height_velocity, and
+  /// problem() as their rule.
   void declare_options(OptionTable& table);
 };
 
 /// Draws a command at reset, then a new one whenever the current one has held its drawn
-/// duration. Allocation-free; deterministic given its generator's seed.
+/// duration; with a height command, each draw also draws a height from a generator of its
+/// own (seeded from the same seed), so that the velocity commands of a seed are the same
+/// with and without a height command. Allocation-free; deterministic given the seed.
 class VelocityCommandSampler {
  public:
   /// @throws std::invalid_argument as VelocityCommandRanges::validate.
@@ -67,9 +101,12 @@ class VelocityCommandSampler {
 
  private:
   void draw();
+  /// A height draw of the ranges (height_command only) [m].
+  double draw_height();
 
   VelocityCommandRanges ranges_;
   std::mt19937_64 generator_{0};
+  std::mt19937_64 height_generator_{0};
   VelocityCommand command_;
   double scale_ = 1.0;
   double time_left_ = 0.0;  ///< Until the next draw [s]; infinite without resampling.

@@ -29,12 +29,14 @@ class VelocityCommandSchedule {
   ///         times are negative or not increasing.
   explicit VelocityCommandSchedule(std::vector<Row> rows);
 
-  /// Reads a CSV file of rows `time,vx,wz` ([s], [m/s], [rad/s]) of at most
+  /// Reads a CSV file of rows `time,vx,wz` or `time,vx,wz,height` ([s], [m/s], [rad/s],
+  /// [m]; a row without height: ranges.max_height, standing by default) of at most
   /// kMaxCommandFileBytes; the first line that is neither blank nor a comment may be a header
   /// (not numbers); blank lines and lines starting with '#' are skipped. Every time must be in
   /// [0, kOptionHuge], every vx in ±ranges.max_forward_velocity and every wz in
-  /// ±ranges.max_yaw_rate (the task's command ranges: a command the task never draws is a
-  /// typo, and 1e30 would only make the summary's errors 1e30).
+  /// ±ranges.max_yaw_rate, every height in [ranges.min_height, ranges.max_height] with
+  /// ranges.height_command (none without it) (the task's command ranges: a command the task
+  /// never draws is a typo, and 1e30 would only make the summary's errors 1e30).
   /// @throws std::invalid_argument naming the file, line, column and value at fault, a file
   ///         that is not regular or too large, or as the constructor.
   static VelocityCommandSchedule load(const std::filesystem::path& path,

@@ -17,13 +17,30 @@ constexpr std::uint64_t kCommandStream = 7;
 
 }  // namespace
 
+/// Refuses a height range whose deepest crouch needs leg targets beyond leg_action_scale:
+/// neither the baseline nor a policy could reach it.
+void VelocityEnv::check_crouch_reach(const VelocityTaskConfig& task,
+                                     const VelocityCommandRanges& commands) const {
+  if (!commands.height_command) return;
+  const CrouchPose deepest = task_.legs().crouch_pose(commands.min_height);
+  const double largest = std::max(std::abs(deepest.hip), std::abs(deepest.knee));
+  if (largest > task.leg_action_scale) {
+    throw std::invalid_argument(
+        "min_height_command " + std::to_string(commands.min_height) + " m needs leg targets of " +
+        std::to_string(largest) + " rad, beyond leg_action_scale " +
+        std::to_string(task.leg_action_scale) + " rad: raise leg_action_scale");
+  }
+}
+
 VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskConfig& task,
                          const VelocityCommandRanges& commands)
     : ServosWrapperEnv(std::move(servos), "VelocityEnv"),
-      task_(servos_->model(), task),
+      task_(servos_->model(), task, commands.height_command),
       sampler_(commands),
-      limiter_(commands.max_acceleration, commands.max_yaw_acceleration) {
-  observation_space_ = VelocityTask::make_observation_space();
+      limiter_(commands.max_acceleration, commands.max_yaw_acceleration,
+               commands.height_command ? commands.max_height_velocity : 0.0) {
+  observation_space_ = VelocityTask::make_observation_space(commands.height_command);
+  check_crouch_reach(task, commands);
   action_space_ = VelocityTask::make_action_space();
   if (!task.base_controller.empty()) {
     try {
@@ -35,8 +52,18 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
 }
 
 void VelocityEnv::set_command_override(const std::optional<VelocityCommand>& command) {
-  if (command && !(std::isfinite(command->forward_velocity) && std::isfinite(command->yaw_rate))) {
-    throw std::invalid_argument("velocity command: forward_velocity and yaw_rate must be finite");
+  if (command && !(std::isfinite(command->forward_velocity) && std::isfinite(command->yaw_rate) &&
+                   std::isfinite(command->height))) {
+    throw std::invalid_argument(
+        "velocity command: forward_velocity, yaw_rate and height must be finite");
+  }
+  const VelocityCommandRanges& ranges = sampler_.ranges();
+  if (command && ranges.height_command &&
+      (command->height < ranges.min_height || command->height > ranges.max_height)) {
+    throw std::invalid_argument("velocity command: height " + std::to_string(command->height) +
+                                " m is outside [min_height_command, max_height_command] = [" +
+                                std::to_string(ranges.min_height) + ", " +
+                                std::to_string(ranges.max_height) + "] m");
   }
   override_ = command;
 }
@@ -47,7 +74,7 @@ const VelocityCommand& VelocityEnv::refresh_target() {
 }
 
 BaseVelocity VelocityEnv::measured_velocity() const {
-  return VelocityTask::measured_velocity(*servos_->full_observation());
+  return task_.measure(*servos_->full_observation());
 }
 
 void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
@@ -58,7 +85,8 @@ void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> obse
   } else {
     sampler_.reset(nullptr);
   }
-  limiter_.start(refresh_target());
+  // A reset leaves the robot standing on straight legs.
+  limiter_.start(refresh_target(), task_.legs().standing_height());
   held_command_ = command();
   held_target_ = target_;
   action_.fill(0.0f);
@@ -74,7 +102,8 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   previous_action_ = action_;
   clamp_to_space(action_space_, action, action_);
   if (base_) {
-    base_->act(last_observation_, base_action_);
+    base_->act(std::span<const float>(last_observation_).first(task_.observation_size()),
+               base_action_);
     const double scale = task_.config().residual_scale;
     for (std::size_t i = 0; i < action_.size(); ++i) {
       action_[i] =

@@ -39,7 +39,8 @@ class VelocityEnv final : public ServosWrapperEnv {
   /// command its observation showed; the followed command ramps toward it within the
   /// acceleration limits); for a script, a runner or a browser. std::nullopt goes back to
   /// the random ones.
-  /// @throws std::invalid_argument on a non-finite component.
+  /// @throws std::invalid_argument on a non-finite component, or a height outside the
+  ///         command ranges' [min_height_command, max_height_command] with a height command.
   void set_command_override(const std::optional<VelocityCommand>& command);
   const std::optional<VelocityCommand>& command_override() const { return override_; }
 
@@ -51,7 +52,7 @@ class VelocityEnv final : public ServosWrapperEnv {
   const VelocityCommand& last_step_command() const { return held_command_; }
   /// The target while the last step was taken.
   const VelocityCommand& last_step_target() const { return held_target_; }
-  /// The base velocity measured after the last reset or step.
+  /// The base velocity and height measured after the last reset or step.
   BaseVelocity measured_velocity() const;
 
   /// Ranges of the random commands (the limits of a browser's commands too).
@@ -68,6 +69,8 @@ class VelocityEnv final : public ServosWrapperEnv {
   std::span<const double> reward_terms() const override { return task_.reward().terms(); }
 
  private:
+  void check_crouch_reach(const VelocityTaskConfig& task,
+                          const VelocityCommandRanges& commands) const;
   /// The target of the next observation: the override, or the sampler's command.
   const VelocityCommand& refresh_target();
 
@@ -81,7 +84,7 @@ class VelocityEnv final : public ServosWrapperEnv {
   std::array<float, VelocityTask::kActionSize> action_{};
   std::array<float, VelocityTask::kActionSize> previous_action_{};
   std::unique_ptr<Controller> base_;  ///< Residual mode's controller, or null.
-  std::array<float, VelocityTask::kObservationSize> last_observation_{};
+  std::array<float, VelocityTask::kMaxObservationSize> last_observation_{};
   std::array<float, VelocityTask::kActionSize> base_action_{};
   ServoAction servo_action_{};
 };

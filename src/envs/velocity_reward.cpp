@@ -34,6 +34,11 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
       weights_.w_upright * std::exp(-(g.x() * g.x() + g.y() * g.y()) / kUprightWidth);
   terms_[kPose] = weights_.w_pose * std::exp(-pose_error / kPoseWidth);
   terms_[kActionRate] = -weights_.w_action_rate * action_change;
+  terms_[kTrackHeight] =
+      inputs.track_height
+          ? weights_.w_track_height *
+                kernel(inputs.command.height - inputs.velocity.height, weights_.height_sigma)
+          : 0.0;
   double sum = 0.0;
   for (const double term : terms_) sum += term;
   return sum;
@@ -53,6 +58,10 @@ void VelocityRewardWeights::declare_options(OptionTable& table) {
                  "width of the forward velocity tracking kernel [m/s]");
   table.add_real("yaw_rate_sigma", &yaw_rate_sigma, 1e-6, kOptionHuge,
                  "width of the yaw rate tracking kernel [rad/s]");
+  table.add_real("w_track_height", &w_track_height, 0.0, kOptionHuge,
+                 "reward weight of base height tracking (with height_command)");
+  table.add_real("height_sigma", &height_sigma, 1e-6, kOptionHuge,
+                 "width of the base height tracking kernel [m]");
 }
 
 }  // namespace upkie_rl

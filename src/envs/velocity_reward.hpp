@@ -23,6 +23,10 @@ struct VelocityRewardWeights {
   double w_action_rate = 0.1;            ///< Subtracted: a penalty.
   double forward_velocity_sigma = 0.25;  ///< Width of the forward tracking kernel [m/s].
   double yaw_rate_sigma = 0.5;           ///< Width of the yaw tracking kernel [rad/s].
+  double w_track_height = 1.0;           ///< With a height command only.
+  /// Width of the height tracking kernel [m]: a 5 cm error keeps 1/e of the weight, a
+  /// third of the default crouch range.
+  double height_sigma = 0.05;
 
   /// Declares the options of the fields, by their names.
   void declare_options(OptionTable& table);
@@ -30,18 +34,20 @@ struct VelocityRewardWeights {
 
 /// What a step gives the reward.
 struct VelocityRewardInputs {
-  VelocityCommand command;  ///< Held during the step.
-  BaseVelocity velocity;    ///< Measured at the end of the step.
+  VelocityCommand command;    ///< Held during the step.
+  BaseVelocity velocity;      ///< Measured at the end of the step.
+  bool track_height = false;  ///< Whether the command's height is tracked (a height command).
   Eigen::Vector3d gravity_in_base = Eigen::Vector3d(0.0, 0.0, -1.0);  ///< Unit vector.
   std::array<double, 4> leg_deviation{};   ///< Hip and knee angles minus the default pose [rad].
   std::span<const float> action;           ///< Normalised action of the step.
   std::span<const float> previous_action;  ///< Of the step before (zero at reset).
 };
 
-/// r = w_vx·exp(-(vx* - vx)²/σ_vx²) + w_wz·exp(-(ωz* - ωz)²/σ_wz²)
+/// r = w_vx·exp(-(vx* - vx)²/σ_vx²) + w_wz·exp(-(ωz* - ωz)²/σ_wz²) [+ w_h·exp(-(h* - h)²/σ_h²)]
 ///   + w_upright·exp(-(g_x² + g_y²)/0.1) + w_pose·exp(-Σ Δq²/0.25) - w_action_rate·Σ Δu²
 /// where g is the unit gravity vector in the base frame, Δq the leg joints' deviations from
-/// the default pose and Δu the change of the normalised action. Every term is bounded, so a
+/// the pose reference (VelocityTask) and Δu the change of the normalised action. The height
+/// term (track_height) is 0 without a height command. Every term is bounded, so a
 /// fall costs the rewards of the steps it forfeits.
 class VelocityReward {
  public:
@@ -51,11 +57,12 @@ class VelocityReward {
     kUpright,
     kPose,
     kActionRate,
+    kTrackHeight,
     kNumTerms
   };
   /// Term names, as logged (`episode/reward_<name>`).
   static constexpr std::array<std::string_view, kNumTerms> kTermNames = {
-      "track_forward_velocity", "track_yaw_rate", "upright", "pose", "action_rate"};
+      "track_forward_velocity", "track_yaw_rate", "upright", "pose", "action_rate", "track_height"};
 
   explicit VelocityReward(const VelocityRewardWeights& weights = {}) : weights_(weights) {}
 

@@ -15,12 +15,18 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 }  // namespace
 
-VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& config)
-    : config_(config), reward_(config.reward) {
-  for (std::size_t i = 0; i < kNumServos; ++i) effort_[i] = model.servo_limits(i).effort;
+VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& config,
+                           bool height_command)
+    : config_(config), height_command_(height_command), legs_(model), reward_(config.reward) {
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const JointLimits& limits = model.servo_limits(i);
+    effort_[i] = limits.effort;
+    lower_limit_[i] = limits.lower;
+    upper_limit_[i] = limits.upper;
+  }
 }
 
-BoxSpace VelocityTask::make_observation_space() {
+BoxSpace VelocityTask::make_observation_space(bool height_command) {
   BoxSpace space;
   for (const std::size_t joint : kLegJoints) {
     space.add(std::string(kServoNames[joint]) + ".position", -kInf, kInf);
@@ -33,6 +39,7 @@ BoxSpace VelocityTask::make_observation_space() {
     space.add("last_action." + std::string(joint), -1.0f, 1.0f);
   }
   for (const char* column : kCommandColumns) space.add(column, -kInf, kInf);
+  if (height_command) space.add(kHeightCommandColumn, -kInf, kInf);
   return space;
 }
 
@@ -53,7 +60,9 @@ void VelocityTask::servo_action(std::span<const float> action, ServoAction& comm
       command.kp_scale = 0.0;
       command.kd_scale = config_.wheel_kd_scale;
     } else {
-      command.position = config_.leg_action_scale * action[i];  // default pose: 0
+      // Default pose: 0; within the joint limits (a wide leg_action_scale spans more).
+      command.position =
+          std::clamp(config_.leg_action_scale * action[i], lower_limit_[i], upper_limit_[i]);
       command.velocity = 0.0;
       command.kp_scale = config_.leg_kp_scale;
       command.kd_scale = config_.leg_kd_scale;
@@ -84,13 +93,37 @@ BaseVelocity VelocityTask::measured_velocity(const Observation& full) {
   return velocity;
 }
 
+BaseVelocity VelocityTask::measure(const Observation& full) const {
+  BaseVelocity measured = measured_velocity(full);
+  std::array<double, 4> leg_angles{};
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
+    leg_angles[k] = full.servo[kLegJoints[k]].position;
+  }
+  measured.height = legs_.base_height(leg_angles, full.base_orientation.rotation_base_to_world);
+  return measured;
+}
+
+std::array<double, 4> VelocityTask::leg_deviation(const Observation& full,
+                                                  const VelocityCommand& command) const {
+  std::array<double, 4> reference{};  // straight legs
+  if (height_command_) {
+    const CrouchPose crouch = legs_.crouch_pose(command.height);
+    reference = {crouch.hip, crouch.knee, -crouch.hip, -crouch.knee};  // the right mirrors
+  }
+  std::array<double, 4> deviation{};
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
+    deviation[k] = full.servo[kLegJoints[k]].position - reference[k];
+  }
+  return deviation;
+}
+
 void VelocityTask::write_observation(const Observation& full, std::span<const float> last_action,
                                      const VelocityCommand& command,
                                      std::span<float> observation) const {
-  if (observation.size() != kObservationSize || last_action.size() != kActionSize) {
+  if (observation.size() != observation_size() || last_action.size() != kActionSize) {
     throw std::invalid_argument("VelocityTask: observation buffer has " +
                                 std::to_string(observation.size()) + " components, expected " +
-                                std::to_string(kObservationSize));
+                                std::to_string(observation_size()));
   }
   std::size_t k = 0;
   for (const std::size_t joint : kLegJoints) {
@@ -106,6 +139,7 @@ void VelocityTask::write_observation(const Observation& full, std::span<const fl
   for (const float u : last_action) observation[k++] = u;
   observation[k++] = static_cast<float>(command.forward_velocity);
   observation[k++] = static_cast<float>(command.yaw_rate);
+  if (height_command_) observation[k++] = static_cast<float>(command.height);
 }
 
 StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand& command,
@@ -113,11 +147,10 @@ StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand
                                   std::span<const float> previous_action) {
   VelocityRewardInputs inputs;
   inputs.command = command;
-  inputs.velocity = measured_velocity(full);
+  inputs.velocity = height_command_ ? measure(full) : measured_velocity(full);
+  inputs.track_height = height_command_;
   inputs.gravity_in_base = gravity_in_base(full);
-  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
-    inputs.leg_deviation[k] = full.servo[kLegJoints[k]].position;
-  }
+  inputs.leg_deviation = leg_deviation(full, command);
   inputs.action = action;
   inputs.previous_action = previous_action;
   StepResult result;
@@ -136,7 +169,9 @@ void VelocityTaskConfig::declare_options(OptionTable& table) {
   table.add_real("wheel_velocity_scale", &wheel_velocity_scale, 1e-6, kOptionHuge,
                  "wheel velocity target at action 1 [rad/s]");
   table.add_real("leg_action_scale", &leg_action_scale, 1e-6, 10.0,
-                 "hip and knee target offset from the default pose at action 1 [rad]");
+                 "hip and knee target offset from the default pose at action 1 [rad] (1.0: the "
+                 "default crouch and room around it; 0.5 before the height command)");
+  table.set_recorded_default("leg_action_scale", "0.5");
   table.add_real("leg_kp_scale", &leg_kp_scale, 0.0, ServosEnv::kMaxGainScale,
                  "kp_scale of hips and knees");
   table.add_real("leg_kd_scale", &leg_kd_scale, 0.0, ServosEnv::kMaxGainScale,

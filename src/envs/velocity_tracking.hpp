@@ -8,7 +8,8 @@
 
 namespace upkie_rl {
 
-/// Sums of squared errors between command and measured base velocity over the steps where
+/// Sums of squared errors between command and measured base velocity (and height, with a
+/// height command: LegKinematics::base_height) over the steps where
 /// the robot is up (steps that did not end in a termination): against the command the robot
 /// followed (ramped within the acceleration limits, VelocityCommandLimiter) and against the
 /// target it ramped toward (the random draw or the scripted row).
@@ -17,12 +18,17 @@ struct VelocityTracking {
   double squared_yaw_error = 0.0;             ///< [rad²/s²]
   double squared_forward_target_error = 0.0;  ///< Against the target [m²/s²]
   double squared_yaw_target_error = 0.0;      ///< [rad²/s²]
+  double squared_height_error = 0.0;          ///< Against the followed command [m²]
+  double squared_height_target_error = 0.0;   ///< Against the target [m²]
   int steps = 0;
+  /// Whether the steps were of a task with a height command (the height errors count).
+  bool height_command = false;
   bool active = false;  ///< Whether a velocity task's step was offered (even a terminated one).
 
   /// Adds the step `env` just took, unless it `terminated`.
   void add(const VelocityEnv& env, bool terminated) {
     active = true;
+    height_command = height_command || env.command_ranges().height_command;
     if (terminated) return;
     add(env.last_step_command(), env.last_step_target(), env.measured_velocity());
   }
@@ -40,6 +46,8 @@ struct VelocityTracking {
     squared_yaw_error += square(command.yaw_rate - velocity.yaw_rate);
     squared_forward_target_error += square(target.forward_velocity - velocity.forward_velocity);
     squared_yaw_target_error += square(target.yaw_rate - velocity.yaw_rate);
+    squared_height_error += square(command.height - velocity.height);
+    squared_height_target_error += square(target.height - velocity.height);
     ++steps;
     active = true;
   }
@@ -49,8 +57,11 @@ struct VelocityTracking {
     squared_yaw_error += other.squared_yaw_error;
     squared_forward_target_error += other.squared_forward_target_error;
     squared_yaw_target_error += other.squared_yaw_target_error;
+    squared_height_error += other.squared_height_error;
+    squared_height_target_error += other.squared_height_target_error;
     steps += other.steps;
     active = active || other.active;
+    height_command = height_command || other.height_command;
     return *this;
   }
 
@@ -62,6 +73,13 @@ struct VelocityTracking {
   double rms_forward_target() const { return rms(squared_forward_target_error); }
   /// RMS yaw rate error against the target [rad/s] (NaN without steps).
   double rms_yaw_target() const { return rms(squared_yaw_target_error); }
+  /// RMS base height error against the followed command [m] (NaN without steps or
+  /// without a height command).
+  double rms_height() const { return height_command ? rms(squared_height_error) : std::nan(""); }
+  /// RMS base height error against the target [m] (NaN as rms_height).
+  double rms_height_target() const {
+    return height_command ? rms(squared_height_target_error) : std::nan("");
+  }
 
  private:
   double rms(double sum_of_squares) const {

@@ -178,6 +178,10 @@ void OptionTable::mark_randomization(std::size_t first) {
   for (std::size_t i = first; i < entries_.size(); ++i) entries_[i].info.randomization = true;
 }
 
+void OptionTable::set_recorded_default(const std::string& name, std::string value) {
+  const_cast<Entry&>(entry(name)).info.recorded_default = std::move(value);  // NOLINT: ours
+}
+
 const OptionTable::Entry* OptionTable::find(const std::string& name) const {
   for (const Entry& entry : entries_) {
     if (entry.info.name == name) return &entry;

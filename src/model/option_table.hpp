@@ -42,6 +42,10 @@ struct OptionInfo {
   /// perturbations, noise, lag) rather than the task: a trained policy carries its task
   /// options to a rollout, not these.
   bool randomization = false;
+  /// What a recorded configuration (a checkpoint's env.options) that does not name the
+  /// option means: its default before the option existed or its default changed; empty
+  /// when a recorded configuration means the current default.
+  std::string recorded_default;
 };
 
 /// An OptionInfo of the fields every option has.
@@ -107,6 +111,9 @@ class OptionTable {
   std::size_t size() const { return entries_.size(); }
   /// Marks the options from index `first` on as randomisation (OptionInfo::randomization).
   void mark_randomization(std::size_t first);
+  /// Sets option `name`'s OptionInfo::recorded_default to `value` (text the table reads).
+  /// @throws std::invalid_argument naming an unknown option.
+  void set_recorded_default(const std::string& name, std::string value);
 
   /// Reads every option into its field, in order (a repeated key: the last one wins), then
   /// runs check(). Errors start with "<context>: option <name>".

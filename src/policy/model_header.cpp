@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "envs/registry.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/checkpoint_header.hpp"
 #include "policy/network_limits.hpp"
@@ -89,7 +90,12 @@ EnvOptions checkpoint_env_options(const nlohmann::json& header) {
   } catch (const YAML::Exception& error) {
     throw CheckpointError(std::string("configuration's env.options: ") + error.what());
   }
-  return options;
+  // A checkpoint made before an option's default changed means its former default.
+  try {
+    return with_recorded_defaults(checkpoint_env_id(header), options);
+  } catch (const std::invalid_argument&) {
+    return options;  // an id this build does not know: checked where it is used
+  }
 }
 
 }  // namespace upkie_rl

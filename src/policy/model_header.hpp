@@ -48,8 +48,10 @@ std::string checkpoint_config_yaml(const nlohmann::json& header);
 /// configuration parser. Throws CheckpointError if absent.
 std::string checkpoint_env_id(const nlohmann::json& header);
 
-/// The environment options (env.options) of the training configuration, in order; empty
-/// when it has none.
+/// The environment options (env.options) of the training configuration, in order, preceded
+/// by the former defaults of the options it does not name that changed since
+/// (envs/registry.hpp with_recorded_defaults: a velocity policy of before the height command
+/// reads height_command=false leg_action_scale=0.5); empty when it has none.
 /// @throws CheckpointError when the configuration is missing or env.options is malformed.
 EnvOptions checkpoint_env_options(const nlohmann::json& header);
 

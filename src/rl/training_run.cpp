@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "envs/registry.hpp"
 #include "policy/checkpoint_header.hpp"
 #include "policy/observation_normalizer.hpp"
 #include "policy/provenance.hpp"
@@ -188,9 +189,25 @@ const std::filesystem::path& checked_fresh_run_dir(const std::filesystem::path& 
 
 }  // namespace
 
+namespace {
+
+/// `config` whose env.options name every option whose default changed since former
+/// checkpoints (envs/registry.hpp with_pinned_defaults), so that its checkpoints are read
+/// back with the defaults it ran with.
+TrainingConfig with_pinned_env_defaults(TrainingConfig config) {
+  try {
+    config.env_options = with_pinned_defaults(config.env_id, config.env_options);
+  } catch (const std::invalid_argument&) {
+    // An unknown id: validate() says so.
+  }
+  return config;
+}
+
+}  // namespace
+
 TrainingRun::TrainingRun(const TrainingConfig& config, const std::filesystem::path& run_dir,
                          std::shared_ptr<Communicator> communicator, bool allow_non_run_dir)
-    : TrainingRun(ResumeTag{}, config,
+    : TrainingRun(ResumeTag{}, with_pinned_env_defaults(config),
                   checked_fresh_run_dir(run_dir, communicator.get(), allow_non_run_dir),
                   std::move(communicator)) {
   if (!writes_outputs()) return;
@@ -280,6 +297,8 @@ std::unique_ptr<TrainingRun> TrainingRun::resume(const std::filesystem::path& ch
     throw CheckpointError("checkpoint " + checkpoint_path.string() +
                           ": bad configuration: " + error.what());
   }
+  // A checkpoint made before an option's default changed resumes with its former default.
+  config.env_options = with_recorded_defaults(config.env_id, config.env_options);
   if (!run_dir) run_dir = own_run_dir(checkpoint_path);
   std::unique_ptr<TrainingRun> run(
       new TrainingRun(ResumeTag{}, config, *run_dir, std::move(communicator)));

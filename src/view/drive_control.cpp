@@ -25,6 +25,12 @@ DriveControl::DriveControl(const DriveLimits& limits, const DriveRateSettings& r
   if (!positive(limits.max_forward_velocity) || !positive(limits.max_yaw_rate)) {
     throw ViewError("drive: the command limits must be finite and positive");
   }
+  if (limits.height_command &&
+      !(limits.min_height > 0.0 && limits.min_height <= limits.max_height &&
+        std::isfinite(limits.max_height))) {
+    throw ViewError("drive: the height limits must be finite, positive and increasing");
+  }
+  pending_.height = limits.max_height;                      // standing until a page asks otherwise
   RateLimiter check(rate.messages_per_second, rate.burst);  // throws on a bad rate
   (void)check;
 }
@@ -72,6 +78,7 @@ DriveControl::Reply DriveControl::handle(ClientId client, std::string_view text,
       ++statistics_.commands;
       pending_.forward_velocity = message.forward_velocity;
       pending_.yaw_rate = message.yaw_rate;
+      pending_.height = message.height;
       pending_.sequence = message.sequence;
       pending_.new_command = true;
       received_at_ = now;
@@ -99,7 +106,8 @@ bool DriveControl::disconnect(ClientId client) {
   const std::lock_guard lock(mutex_);
   rates_.erase(client);
   if (!arbiter_.release(client)) return false;
-  // Nobody holds the controls: the robot stands still, and a paused run goes on.
+  // Nobody holds the controls: the robot stands still (at the height it has), and a paused
+  // run goes on.
   pending_.forward_velocity = 0.0;
   pending_.yaw_rate = 0.0;
   pending_.sequence = 0;

@@ -32,6 +32,7 @@ struct DriveRateSettings {
 struct DriveInputs {
   double forward_velocity = 0.0;  ///< The command to follow [m/s].
   double yaw_rate = 0.0;          ///< [rad/s]
+  double height = 0.557;          ///< Base height [m] (the limits' top until a page sets one).
   std::uint64_t sequence = 0;     ///< The page's number of that command (0: none yet).
   bool new_command = false;  ///< A command (or the zero of a release) came since the last take.
   bool reset = false;        ///< The driver asked for a new episode.

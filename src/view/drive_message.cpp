@@ -31,6 +31,23 @@ double bounded_at(const nlohmann::json& message, const char* key, double limit) 
   return value;
 }
 
+/// The optional height of a command message [m]: within the limits' height range, or their
+/// top (standing) when absent.
+double height_at(const nlohmann::json& message, const DriveLimits& limits) {
+  if (!message.contains(drive_keys::kHeight)) return limits.max_height;
+  if (!limits.height_command) {
+    throw DriveMessageError(std::string("\"") + drive_keys::kHeight +
+                            "\" given, but the task has no height command");
+  }
+  const double value = number_at(message, drive_keys::kHeight);
+  if (value < limits.min_height || value > limits.max_height) {
+    throw DriveMessageError(
+        std::string("\"") + drive_keys::kHeight + "\" " + std::to_string(value) + " is outside [" +
+        std::to_string(limits.min_height) + ", " + std::to_string(limits.max_height) + "]");
+  }
+  return value;
+}
+
 }  // namespace
 
 DriveMessage parse_drive_message(std::string_view text, const DriveLimits& limits) {
@@ -53,6 +70,7 @@ DriveMessage parse_drive_message(std::string_view text, const DriveLimits& limit
     parsed.sequence = static_cast<std::uint64_t>(sequence);
     parsed.forward_velocity = bounded_at(message, k::kForwardVelocity, limits.max_forward_velocity);
     parsed.yaw_rate = bounded_at(message, k::kYawRate, limits.max_yaw_rate);
+    parsed.height = height_at(message, limits);
   } else if (name == k::kReset) {
     parsed.kind = DriveMessage::Kind::kReset;
   } else if (name == k::kPause) {

@@ -15,6 +15,7 @@ nlohmann::json drive_protocol_json(const DriveLimits& limits) {
       {"seq", k::kSequence},
       {"forward_velocity", k::kForwardVelocity},
       {"yaw_rate", k::kYawRate},
+      {"height", k::kHeight},
       {"reset", k::kReset},
       {"pause", k::kPause},
       {"push", k::kPush},
@@ -28,10 +29,13 @@ nlohmann::json drive_protocol_json(const DriveLimits& limits) {
       {"watcher", k::kWatcher},
       {"free", k::kFree},
   };
-  return {{"keys", keys},
-          {"limits",
-           {{"max_forward_velocity", limits.max_forward_velocity},
-            {"max_yaw_rate", limits.max_yaw_rate}}}};
+  nlohmann::json bounds = {{"max_forward_velocity", limits.max_forward_velocity},
+                           {"max_yaw_rate", limits.max_yaw_rate}};
+  if (limits.height_command) {
+    bounds["min_height"] = limits.min_height;
+    bounds["max_height"] = limits.max_height;
+  }
+  return {{"keys", keys}, {"limits", bounds}};
 }
 
 }  // namespace upkie_rl

@@ -206,3 +206,98 @@ TEST(VelocityRunnerOptions, CommandsNeedAVelocityPolicy) {
 
 }  // namespace
 }  // namespace upkie_rl
+
+namespace upkie_rl {
+namespace {
+
+/// A velocity policy with the body-height command (a short training made here, as above).
+class HeightRunner : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const auto run_dir = temp_path("agent_height_run");
+    std::filesystem::remove_all(run_dir);
+    const std::string configs = std::string(UPKIE_RL_TEST_DATA_DIR) + "/../../configs/";
+    BackgroundProcess train({UPKIE_RL_CLI_PATH, "train",
+                             "--config",        configs + "velocity.yaml",
+                             "--set",           "env.options.height_command=true",
+                             "--set",           "env.options.leg_action_scale=1",
+                             "--set",           "ppo.total_timesteps=1024",
+                             "--set",           "ppo.n_steps=1024",
+                             "--set",           "ppo.batch_size=512",
+                             "--set",           "env.num_envs=2",
+                             "--set",           "env.threads=1",
+                             "--run-dir",       run_dir.string()},
+                            "agent_height_train");
+    ASSERT_EQ(train.wait(), 0) << train.output();
+    for (const auto& entry : std::filesystem::directory_iterator(run_dir)) {
+      if (entry.path().extension() == ".ckpt") model_ = entry.path().string();
+    }
+    ASSERT_FALSE(model_.empty()) << train.output();
+  }
+
+  static std::string run_agent(const std::string& tag, std::vector<std::string> extra,
+                               const std::string& feed = "") {
+    Spine spine("height_" + tag, {}, "mujoco");
+    std::vector<std::string> args = {"--duration", "2", "--max-pitch", "1.2"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::string command = "(" + (feed.empty() ? std::string("sleep 3") : feed) + ") | " +
+                          UPKIE_RL_AGENT_PATH + " --model " + model_ + " --shm-name " +
+                          spine.shm_name();
+    for (const std::string& arg : args) command += " " + arg;
+    BackgroundProcess agent({"sh", "-c", command}, "height_" + tag);
+    const int status = agent.wait();
+    const std::string output = agent.output();
+    EXPECT_TRUE(status == 0 || status == 2) << output;
+    return output;
+  }
+
+  static inline std::string model_;
+};
+
+TEST_F(HeightRunner, FileHeightsAreClampedToTheTrainedRangeAndObserved) {
+  const auto commands = temp_path("agent_height_commands.csv");
+  testing::write_bytes(commands, "time,vx,wz,height\n0,0,0,0.55\n0.1,0,0,0.37\n");
+  const auto record = temp_path("agent_height_file.csv");
+  const std::string output =
+      run_agent("file", {"--commands", commands.string(), "--record", record.string()});
+  EXPECT_NE(output.find("forward velocity 0 m/s, yaw rate 0 rad/s, height 0.55 m"),
+            std::string::npos)
+      << output;
+  // 0.37 m is a height the task accepts (a file is refused below 0.36 m) but below the
+  // trained range's 0.53 m.
+  EXPECT_NE(output.find("(0 m/s, 0 rad/s, 0.37 m) clamped to the trained ranges"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("height 0.53 m"), std::string::npos) << output;
+  const RecordTable table = read_record(record.string());
+  const std::size_t height = table.column("command.height");
+  ASSERT_LT(height, table.columns.size());
+  ASSERT_GT(table.rows.size(), 10u) << output;
+  // The followed height ramps down from standing at 0.1 m/s toward the clamped target.
+  double previous = 1.0;
+  for (const auto& row : table.rows) {
+    const double value = std::stod(row.at(height));
+    EXPECT_LE(value, previous + 1e-6);
+    EXPECT_GE(value, 0.53 - 1e-6);
+    previous = value;
+  }
+  EXPECT_LT(previous, 0.557 - 0.005) << "the height came down";
+}
+
+TEST_F(HeightRunner, StandardInputAndKeysCarryAHeight) {
+  const std::string lines = run_agent("stdin", {"--commands", "-"}, "echo 0.1,0,0.54; sleep 3");
+  EXPECT_NE(lines.find("from standard input: forward velocity 0.1 m/s, yaw rate 0 rad/s, height "
+                       "0.54 m"),
+            std::string::npos)
+      << lines;
+  // Two steps down ask 0.517 m: clamped to the trained range's 0.53 m.
+  const std::string keys =
+      run_agent("keyboard", {"--keyboard"}, "printf 'f'; sleep 0.5; printf 'f'; sleep 3");
+  EXPECT_NE(keys.find("from keyboard: forward velocity 0 m/s, yaw rate 0 rad/s, height 0.537 m"),
+            std::string::npos)
+      << keys;
+  EXPECT_NE(keys.find("0.517 m) clamped to the trained ranges"), std::string::npos) << keys;
+}
+
+}  // namespace
+}  // namespace upkie_rl

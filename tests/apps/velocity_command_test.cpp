@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "apps/cli_runner.hpp"
 #include "rl/scalar_csv_writer.hpp"
@@ -107,6 +108,25 @@ TEST(VelocityCommand, CheckedInPolicyFollowsTheScriptedCommands) {
       << result.output;
   EXPECT_NEAR(summary.at("tracking_rms_wz_target").get<double>(),
               summary.at("tracking_rms_wz").get<double>(), 1e-9);  // yaw steps
+}
+
+// A checkpoint of before the body-height command records no height_command nor
+// leg_action_scale: it is read with their former defaults (false, 0.5), rebuilds the
+// 20-component task it was trained on, and acts as it did: the returns of these three
+// episodes, measured with the build of before the height command (main at 5db9ec1).
+TEST(VelocityCommand, CheckpointOfBeforeTheHeightCommandActsAsBefore) {
+  const auto result =
+      run_cli("rollout --env Upkie-MuJoCo-Velocity --model " + std::string(UPKIE_RL_TEST_DATA_DIR) +
+              "/policies/velocity_mujoco_seed0.ckpt --episodes 3 --json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = last_json(result.output);
+  const std::vector<double> before = {2589.0620772488796, 2514.6033751864097, 2547.7981916660606};
+  const auto returns = summary.at("returns").get<std::vector<double>>();
+  ASSERT_EQ(returns.size(), before.size()) << result.output;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    EXPECT_NEAR(returns[i], before[i], 1e-9 * before[i]) << "episode " << i;
+  }
+  EXPECT_TRUE(summary.at("tracking_rms_height").is_null()) << result.output;
 }
 
 TEST(VelocityCommand, ZeroControllerFallsAndMetricsSaySo) {

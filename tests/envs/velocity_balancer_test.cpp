@@ -23,7 +23,11 @@ constexpr const char* kMujocoBaseline =
     "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
     "-0.000164539185,1.00066929,0.0579007226,0.13798033";
 
+/// A hand-made observation of the task without the height command (the balancer's legs
+/// stay straight).
 using Obs = std::array<float, VelocityTask::kObservationSize>;
+/// An observation of the default task (with the height command).
+using EnvObs = std::array<float, VelocityTask::kMaxObservationSize>;
 using Act = std::array<float, VelocityTask::kActionSize>;
 
 /// An upright observation (gravity straight down in the base frame) with a command.
@@ -139,7 +143,7 @@ struct DrivenRun {
   std::unique_ptr<Env> env;
   VelocityEnv* velocity;
   std::unique_ptr<Controller> controller;
-  Obs observation{};
+  EnvObs observation{};
   Act action{};
 
   DrivenRun(const std::string& id, const std::string& spec, const VelocityCommand& command)
@@ -290,8 +294,8 @@ TEST(VelocityEnv, ResidualModeAddsTheScaledActionToTheBase) {
   auto residual =
       make_env("Upkie-Mock-Velocity", {{"base_controller", base}, {"residual_scale", "0.5"}});
   auto plain = make_env("Upkie-Mock-Velocity");
-  Obs observation{};
-  Obs plain_observation{};
+  EnvObs observation{};
+  EnvObs plain_observation{};
   residual->reset(3, observation);
   plain->reset(3, plain_observation);
   VelocityBalancer balancer(*plain, {{10, 1, 2, 0.5}, 0.01, 0.0, 0.0, 1.0});

@@ -55,7 +55,7 @@ TEST(VelocityEnv, FollowedCommandRampsTowardTheTarget) {
   VelocityEnv* velocity = find_velocity_env(*env);
   ASSERT_NE(velocity, nullptr);
   velocity->set_command_override(VelocityCommand{0.3, 1.0});
-  std::array<float, VelocityTask::kObservationSize> observation{};
+  std::array<float, VelocityTask::kMaxObservationSize> observation{};
   env->reset(0, observation);
   EXPECT_EQ(velocity->target(), (VelocityCommand{0.3, 1.0}));
   EXPECT_EQ(velocity->command(), (VelocityCommand{0.0, 0.0}));

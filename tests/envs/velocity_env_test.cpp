@@ -18,7 +18,10 @@
 namespace upkie_rl {
 namespace {
 
-using Obs = std::array<float, VelocityTask::kObservationSize>;
+/// An observation of the default task (with the height command).
+using Obs = std::array<float, VelocityTask::kMaxObservationSize>;
+/// An observation of the task without the height command.
+using LegacyObs = std::array<float, VelocityTask::kObservationSize>;
 using Act = std::array<float, VelocityTask::kActionSize>;
 
 /// The error message of `make`, or "" when it does not throw std::invalid_argument.
@@ -173,7 +176,7 @@ TEST(VelocityTask, MeasuredVelocityAlongTheHeadingAndAboutTheVertical) {
 }
 
 TEST(VelocityTask, TerminatesOnTiltAndOnNonWheelContact) {
-  VelocityTask task(*RobotModel::default_model(), {});
+  VelocityTask task(*RobotModel::default_model(), {}, /*height_command=*/false);
   const Act action{};
   const auto pitched = [](double angle) {
     return Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()).toRotationMatrix();
@@ -189,21 +192,21 @@ TEST(VelocityTask, TerminatesOnTiltAndOnNonWheelContact) {
   EXPECT_EQ(task.termination_reason(), VelocityTermination::kContact);
   VelocityTaskConfig lenient;
   lenient.terminate_on_contact = false;
-  VelocityTask without_contact(*RobotModel::default_model(), lenient);
+  VelocityTask without_contact(*RobotModel::default_model(), lenient, false);
   EXPECT_FALSE(without_contact.evaluate(full, {}, action, action).terminated);
 }
 
 TEST(VelocityTask, GravityAndPitchOfTheObservation) {
-  VelocityTask task(*RobotModel::default_model(), {});
+  VelocityTask task(*RobotModel::default_model(), {}, /*height_command=*/false);
   const Eigen::Matrix3d pitched =
       Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()).toRotationMatrix();
   Observation full = base_state(pitched, {}, {0.0, 0.5, 0.0});
   full.servo[kLeftKnee].position = 0.3;
   full.servo[kRightWheel].velocity = -4.0;
-  Obs observation{};
+  LegacyObs observation{};
   const Act last{0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
   task.write_observation(full, last, {0.7, -0.2}, observation);
-  const BoxSpace space = VelocityTask::make_observation_space();
+  const BoxSpace space = VelocityTask::make_observation_space(false);
   EXPECT_FLOAT_EQ(observation[space.index_of("left_knee.position")], 0.3f);
   EXPECT_FLOAT_EQ(observation[space.index_of("right_wheel.velocity")], -4.0f);
   // Leaning forward by θ: gravity (sin θ, 0, -cos θ) in the base frame.
@@ -218,9 +221,14 @@ TEST(VelocityTask, GravityAndPitchOfTheObservation) {
 TEST(VelocityEnv, ActionMappingAroundTheDefaultPose) {
   auto simulation = std::make_unique<testing::ScriptedSimulation>(0.02);
   testing::ScriptedSimulation* scripted = simulation.get();
+  // The policies of before the height command: legs within ±0.5 rad, 20 observations.
+  VelocityTaskConfig task;
+  task.leg_action_scale = 0.5;
+  VelocityCommandRanges commands;
+  commands.height_command = false;
   VelocityEnv env(std::make_unique<ServosEnv>(std::move(simulation), RobotModel::default_model()),
-                  {}, {});
-  Obs observation{};
+                  task, commands);
+  LegacyObs observation{};
   env.reset(0, observation);
   const Act action{1.0f, -0.5f, 0.5f, 0.0f, 3.0f, -1.0f};
   env.step(action, observation);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "view/drive_message.hpp"
+#include "view/drive_protocol.hpp"
 #include "view/driver_arbiter.hpp"
 #include "view/rate_limiter.hpp"
 #include "view/view_error.hpp"
@@ -256,9 +257,59 @@ TEST(DriveControl, AcknowledgesAppliedCommandsToTheDriverAndMeasuresLatency) {
   EXPECT_EQ(calls, 1);
 }
 
+// The body-height command of a velocity task with one.
+
+DriveLimits height_limits() {
+  DriveLimits limits{1.0, 1.5};
+  limits.height_command = true;
+  limits.min_height = 0.53;
+  limits.max_height = 0.557;
+  return limits;
+}
+
+std::string height_command(std::uint64_t seq, const nlohmann::json& height) {
+  nlohmann::json message = parsed(command(seq, 0.2, 0.0));
+  message[drive_keys::kHeight] = height;
+  return message.dump();
+}
+
+TEST(DriveMessage, HeightWithinTheRangeOrStandingWhenAbsent) {
+  EXPECT_EQ(parse_drive_message(height_command(1, 0.54), height_limits()).height, 0.54);
+  EXPECT_EQ(parse_drive_message(command(2, 0.2, 0.0), height_limits()).height, 0.557);
+  const auto refusal = [](const std::string& text, const DriveLimits& limits) {
+    try {
+      parse_drive_message(text, limits);
+    } catch (const DriveMessageError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(
+      refusal(height_command(3, 0.5), height_limits()).rfind("\"height\" 0.500000 is outside", 0),
+      0u);
+  EXPECT_EQ(refusal(height_command(4, "low"), height_limits()), "\"height\" is not a number");
+  EXPECT_EQ(refusal(height_command(5, 0.54), kLimits),
+            "\"height\" given, but the task has no height command");
+}
+
+TEST(DriveControl, TheHeightReachesTheLoopAndTheLimitsTellThePage) {
+  DriveControl control(height_limits());
+  EXPECT_EQ(control.take().height, 0.557);  // standing until a page asks
+  control.receive(1, height_command(1, 0.535), Clock::now());
+  EXPECT_EQ(control.take().height, 0.535);
+  const nlohmann::json with = drive_protocol_json(height_limits());
+  EXPECT_EQ(with["limits"]["min_height"], 0.53);
+  EXPECT_EQ(with["limits"]["max_height"], 0.557);
+  EXPECT_EQ(with["keys"]["height"], drive_keys::kHeight);
+  EXPECT_FALSE(drive_protocol_json(kLimits)["limits"].contains("min_height"));
+}
+
 TEST(DriveControl, RefusesLimitsThatAreNotPositive) {
   EXPECT_THROW(DriveControl(DriveLimits{0.0, 1.0}), ViewError);
   EXPECT_THROW(DriveControl(DriveLimits{1.0, std::nan("")}), ViewError);
+  DriveLimits empty_heights = height_limits();
+  empty_heights.min_height = 0.6;
+  EXPECT_THROW(DriveControl{empty_heights}, ViewError);
 }
 
 }  // namespace

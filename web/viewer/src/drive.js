@@ -4,9 +4,12 @@
 //
 // Keys: up/W forward, down/S backward, left/A turn left, right/D turn right (half the range;
 // with Shift the full range), R reset, P pause, B push the robot forward (Shift+B backward);
-// a click on the robot pushes it away from the camera.
+// with a height command (session.drive.limits.min_height), Q raises and Z lowers the base
+// by a tenth of the height range per press (it starts standing, at the top); a click on the
+// robot pushes it away from the camera.
 // Gamepad (standard mapping): left stick up/down forward velocity, right stick left/right
-// yaw rate, Back/Select (button 8) reset, Start (button 9) pause, A/cross (button 0) push.
+// yaw rate, Back/Select (button 8) reset, Start (button 9) pause, A/cross (button 0) push,
+// D-pad up/down (buttons 12/13) raise/lower the base.
 import { guard } from './errors.js';
 
 const KEY_FRACTION = 0.5;  // of the range, without Shift
@@ -16,6 +19,9 @@ const CLICK_SLOP = 5;  // pixels a click may move and still be a click, not an o
 const BUTTON_RESET = 8;
 const BUTTON_PAUSE = 9;
 const BUTTON_PUSH = 0;
+const BUTTON_RAISE = 12;
+const BUTTON_LOWER = 13;
+const HEIGHT_STEPS = 10;  // presses from the top of the height range to its bottom
 const AXIS_FORWARD = 1;  // left stick, up is -1
 const AXIS_YAW = 2;  // right stick, right is +1
 // Latencies and refusals the page keeps (the newest), and commands awaiting their "applied":
@@ -24,6 +30,7 @@ const MAX_SAMPLES = 256;
 
 const FORWARD_KEYS = { ArrowUp: 1, KeyW: 1, ArrowDown: -1, KeyS: -1 };
 const YAW_KEYS = { ArrowLeft: 1, KeyA: 1, ArrowRight: -1, KeyD: -1 };
+const HEIGHT_KEYS = { KeyQ: 1, KeyZ: -1 };
 
 /** Appends `value` to `samples`, forgetting the oldest beyond MAX_SAMPLES. */
 function pushBounded(samples, value) {
@@ -32,7 +39,7 @@ function pushBounded(samples, value) {
 }
 
 function sameFraction(a, b) {
-  return a.forward === b.forward && a.yaw === b.yaw;
+  return a.forward === b.forward && a.yaw === b.yaw && a.height === b.height;
 }
 
 function deadzone(value) {
@@ -60,9 +67,12 @@ function keyboardFraction(held, shift) {
 export function createDrive(session, { send, hud, robotYaw, pushDirection, canvas }) {
   const K = session.drive.keys;
   const limits = session.drive.limits;
+  const hasHeight = typeof limits.min_height === 'number' && typeof limits.max_height === 'number';
   const state = {
     role: null, paused: false, reason: '', refusals: [], sent: 0,
-    command: { forward: 0, yaw: 0 },  // fractions of the range, last sent and not refused
+    // Fractions of the ranges, last sent and not refused; height 1 is the top (standing).
+    command: { forward: 0, yaw: 0, height: 1 },
+    height: 1,  // the height asked by Q/Z or the D-pad, a fraction of the height range
     latencies: [],  // key press (or stick move) to the server's "applied" [ms], the newest
     testGamepad: null,  // a gamepad-like {axes, buttons} that replaces the real ones (tests)
   };
@@ -71,7 +81,7 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
   let sequence = 0;
   // The command last sent, refused or not: a page that watches sends each change once, not
   // again at every tick while the other page drives.
-  let attempted = { forward: 0, yaw: 0 };
+  let attempted = { forward: 0, yaw: 0, height: 1 };
   const pressedAt = new Map();  // sequence -> time of the input that caused it, oldest first
   let lastButtons = [];
 
@@ -84,11 +94,15 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
   function sendCommand(fraction, inputTime) {
     if (sameFraction(fraction, attempted)) return;
     sequence += 1;
-    const ok = message(K.command, {
+    const fields = {
       [K.seq]: sequence,
       [K.forward_velocity]: fraction.forward * limits.max_forward_velocity,
       [K.yaw_rate]: fraction.yaw * limits.max_yaw_rate,
-    });
+    };
+    if (hasHeight) {
+      fields[K.height] = limits.min_height + fraction.height * (limits.max_height - limits.min_height);
+    }
+    const ok = message(K.command, fields);
     if (!ok) return;  // disconnected: tried again at the next tick
     attempted = fraction;
     state.command = fraction;
@@ -108,15 +122,23 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
     return pressed && !lastButtons[index];
   }
 
-  /** The command to send now: held keys first, else the gamepad's sticks. */
+  /** The command to send now: held keys first, else the gamepad's sticks; the height asked. */
   function currentFraction(pad) {
     const keys = keyboardFraction(held, shift);
-    if (keys) return keys;
-    if (!pad) return { forward: 0, yaw: 0 };
+    if (keys) return { ...keys, height: state.height };
+    if (!pad) return { forward: 0, yaw: 0, height: state.height };
     return {
       forward: Math.max(-1, Math.min(1, -deadzone(pad.axes[AXIS_FORWARD] ?? 0))),
       yaw: Math.max(-1, Math.min(1, -deadzone(pad.axes[AXIS_YAW] ?? 0))),
+      height: state.height,
     };
+  }
+
+  /** Raises (direction 1) or lowers (-1) the height asked by a step, within the range. */
+  function stepHeight(direction) {
+    if (!hasHeight) return;
+    const steps = Math.round(state.height * HEIGHT_STEPS) + direction;
+    state.height = Math.max(0, Math.min(HEIGHT_STEPS, steps)) / HEIGHT_STEPS;
   }
 
   function tick() {
@@ -125,6 +147,8 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
       if (pressedEdge(pad, BUTTON_RESET)) message(K.reset);
       if (pressedEdge(pad, BUTTON_PAUSE)) message(K.pause);
       if (pressedEdge(pad, BUTTON_PUSH)) message(K.push, { [K.heading]: 0 });
+      if (pressedEdge(pad, BUTTON_RAISE)) stepHeight(1);
+      if (pressedEdge(pad, BUTTON_LOWER)) stepHeight(-1);
       lastButtons = pad.buttons.map((button) => Boolean(button?.pressed));
     }
     sendCommand(currentFraction(pad), performance.now());
@@ -136,6 +160,9 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
     if (event.code in FORWARD_KEYS || event.code in YAW_KEYS) {
       event.preventDefault();  // arrows would scroll
       held.add(event.code);
+      sendCommand(currentFraction(gamepad()), event.timeStamp);
+    } else if (event.code in HEIGHT_KEYS) {
+      stepHeight(HEIGHT_KEYS[event.code]);  // a held key repeats: the base keeps moving
       sendCommand(currentFraction(gamepad()), event.timeStamp);
     } else if (event.repeat) {
       // held R, P or B: once
@@ -177,7 +204,10 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
     const latency = state.latencies.length > 0 ? ` · key→sim ${state.latencies[state.latencies.length - 1].toFixed(0)} ms` : '';
     const last = state.refusals[state.refusals.length - 1];
     const refusal = last && performance.now() - last.at < 3000 ? ` · refused: ${last.reason}` : '';
-    hud.setDrive(`${roleText}${state.paused ? ' · paused' : ''}${latency}${refusal}`,
+    const height = hasHeight
+      ? ` · height ${(limits.min_height + state.height * (limits.max_height - limits.min_height)).toFixed(2)} m (Q/Z)`
+      : '';
+    hud.setDrive(`${roleText}${state.paused ? ' · paused' : ''}${height}${latency}${refusal}`,
       state.role === K.driver ? 'ok' : 'idle');
   }
 
@@ -191,12 +221,12 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
       // Control changed hands (or the page reconnected): the held command is sent once
       // more, which takes the controls when they are free.
       if (state.role !== K.driver) {
-        state.command = { forward: 0, yaw: 0 };
+        state.command = { forward: 0, yaw: 0, height: state.height };
         attempted = state.command;
       }
     } else if (type === K.refused) {
       pushBounded(state.refusals, { reason: String(received[K.reason] ?? ''), at: performance.now() });
-      if (state.role !== K.driver) state.command = { forward: 0, yaw: 0 };
+      if (state.role !== K.driver) state.command = { forward: 0, yaw: 0, height: state.height };
     } else if (type === K.applied) {
       const seq = received[K.seq];
       if (pressedAt.has(seq)) {

@@ -110,6 +110,32 @@ describe('drive', () => {
     console.log(`key press to applied, headless page [ms]: ${latencies.map((l) => l.toFixed(1)).join(', ')}`);
   });
 
+  test('Z lowers and Q raises the base (height command)', async () => {
+    const drive = await startDrive();
+    const { page, errors } = await openViewer(browser, `${drive.url}?plots=0`, SMALL);
+    await waitForRole(page, 'free');
+    for (let press = 0; press < 5; press += 1) await page.keyboard.press('KeyZ');
+    await page.waitForTimeout(2500);
+    await page.keyboard.press('KeyQ');
+    await page.waitForTimeout(1000);
+    const state = await driveState(page);
+    assert.equal(state.role, 'driver');
+    assert.equal(state.height, 0.6, 'five steps down, one up: 0.6 of the height range');
+    assert.deepEqual(errors, []);
+    await page.context().close();
+    const { rows } = await stopDrive(drive);
+    const standing = rows[0]['command.height'];
+    const lowest = Math.min(...rows.map((row) => row['command.height']));
+    // Five tenths of the default range (0.53-0.557 m) below standing.
+    assert.ok(Math.abs(standing - lowest - 0.5 * (0.557 - 0.53)) < 1e-6, `commanded ${lowest} m`);
+    const crouched = rows.filter((row) => row['command.height'] === lowest);
+    assert.ok(crouched.length > 0, 'the crouch reached the simulation');
+    const settled = crouched[crouched.length - 1];
+    const start = rows.find((row) => row.t > 0.5);
+    assert.ok(start.base_z - settled.base_z > 0.01,
+      `the base went down: ${start.base_z} m to ${settled.base_z} m`);
+  });
+
   test('a scripted gamepad drives, pauses, pushes and resets', async () => {
     const drive = await startDrive();
     const { page, errors } = await openViewer(browser, `${drive.url}?plots=0`, SMALL);
