@@ -45,7 +45,8 @@ for version in "${versions[@]}"; do
   echo "wheels: building $tag with $python" >&2
   start=$(date +%s)
   "$python" -m pip wheel . --no-deps --no-build-isolation --disable-pip-version-check \
-    -w "$raw_dir" -C build-dir="build-wheels/$tag" -C cmake.define.MUJOCO_ROOT="$mujoco_root"
+    -w "$raw_dir" --config-settings=build-dir="build-wheels/$tag" \
+    --config-settings=cmake.define.MUJOCO_ROOT="$mujoco_root"
   raw_wheel=$(ls "$raw_dir"/upkie_rl-*-"$tag"-"$tag"-linux_x86_64.whl)
   rm -f "$dist_dir"/upkie_rl-*-"$tag"-"$tag"-*.whl
   "$tools/bin/auditwheel" repair --plat "$plat" --exclude 'libmujoco.so.*' \
