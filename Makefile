@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python bench train train-mujoco train-robust train-velocity sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
 
 all: build
 
@@ -62,6 +62,21 @@ docs:
 	NO_MKDOCS_2_WARNING=1 $(DOCS_VENV)/bin/mkdocs build --strict --quiet \
 	  --site-dir $(abspath $(BUILD_DIR))/docs
 	@echo "docs site: $(BUILD_DIR)/docs/index.html"
+
+# Python wheels (docs/wheels.md): manylinux wheels of the upkie_rl package for CPython
+# 3.10-3.13 in dist/, built by scikit-build-core and repaired by auditwheel
+# (scripts/wheels/build.sh; the interpreters: scripts/wheels/python-for.sh).
+WHEEL_PYTHONS ?= 3.10 3.11 3.12 3.13
+wheel:
+	JOBS=$(JOBS) bash scripts/wheels/build.sh $(WHEEL_PYTHONS)
+
+# The cp312 wheel, built (again, incrementally) then installed into a bare pyenv 3.12 venv
+# and tested from outside the repository (scripts/wheels/test.sh). Not part of `make test`:
+# it needs PyPI (build requirements, the wheel's dependencies) and takes a cold build of its
+# own. WHEEL_TEST_SB3=1 adds SB3 and PyPI's torch (about 3 GB) for the training tests.
+test-wheel:
+	JOBS=$(JOBS) bash scripts/wheels/build.sh 3.12
+	bash scripts/wheels/test.sh
 
 # Trains the seed's pendulum policy, evaluates the final model on 10 episodes and draws
 # the training figures. TRAIN_CONFIG and RUN_DIR can be overridden.
