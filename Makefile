@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity train-scratch sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
 
 all: build
 
@@ -136,6 +136,24 @@ train-velocity:
 	  echo "wrote $$run/velocity.mp4 and $$run/velocity_still.png" && \
 	  $(BUILD_DIR)/upkie-rl evaluate --suite reality --model policy=$$model --controller lqr \
 	    --output $$run/reality-suite
+
+# The whole robot from scratch (configs/velocity_scratch.yaml, no classical controller
+# underneath): trains, evaluates beside the classical baseline on MuJoCo and alone on Bullet at
+# the reference 1 ms (sim-to-sim), plots and films the scripted commands.
+SCRATCH_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000
+train-scratch:
+	$(MAKE) train TRAIN_CONFIG=configs/velocity_scratch.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
+	  RUN_DIR=runs/velocity-scratch-$(shell date +%Y%m%d-%H%M%S)
+	@run=$$(ls -td runs/velocity-scratch-* | head -n 1); model=$$(ls -t $$run/model_*.ckpt | head -n 1); \
+	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-MuJoCo-Velocity --model scratch=$$model \
+	    --controller lqr $(SCRATCH_EVAL) --output $$run/scratch-mujoco && \
+	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-Bullet-Velocity --model scratch=$$model \
+	    $(SCRATCH_EVAL) --output $$run/scratch-bullet && \
+	  $(BUILD_DIR)/upkie-rl rollout --env Upkie-MuJoCo-Velocity --model $$model \
+	    --commands configs/velocity_commands.csv --max-steps 1000 --env-option max_episode_steps=1000 \
+	    --plot $$run/scratch --json --video $$run/scratch.mp4 && \
+	  ffmpeg -loglevel error -y -ss 10 -i $$run/scratch.mp4 -frames:v 1 $$run/scratch_still.png && \
+	  echo "wrote $$run/scratch.mp4 and $$run/scratch_still.png"
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done
