@@ -10,6 +10,7 @@
 #include "agent/keyboard_command_input.hpp"
 #include "agent/line_command_input.hpp"
 #include "agent/scheduled_command_input.hpp"
+#include "agent/velocity_commander.hpp"
 #include "common/temp_files.hpp"
 
 namespace upkie_rl {
@@ -53,13 +54,44 @@ TEST(LineCommandInput, TakesTheLastCompleteLineAndNeverBlocks) {
 TEST(LineCommandInput, IgnoresCommentsMalformedAndOverlongLinesAndHoldsAtTheEnd) {
   Pipe pipe;
   LineCommandInput input(pipe.read_end());
-  pipe.write("# comment\n\nfast please\n1,2,3\nnan,0\n" +
+  pipe.write("# comment\n\nfast please\n1,2,3,4\nnan,0\n0,0,nan\n" +
              std::string(LineCommandInput::kMaxLine + 10, '1') + "\n");
   EXPECT_FALSE(input.poll(0.0).has_value());
   pipe.write("-0.3,0.1\n");
   pipe.close_write_end();
   EXPECT_EQ(input.poll(0.0), (VelocityCommand{-0.3, 0.1}));
   EXPECT_FALSE(input.poll(0.0).has_value());  // end of input: the last command holds
+}
+
+TEST(LineCommandInput, AThirdNumberIsTheHeightWithoutItStanding) {
+  Pipe pipe;
+  LineCommandInput input(pipe.read_end());
+  pipe.write("0.1,0,0.54\n");
+  EXPECT_EQ(input.poll(0.0), (VelocityCommand{0.1, 0.0, 0.54}));
+  pipe.write("0.2,0\n");
+  EXPECT_EQ(input.poll(0.0), (VelocityCommand{0.2, 0.0, kStandingBaseHeight}));
+}
+
+TEST(KeyboardCommandInput, RAndFStepTheHeightWithinACrouchAndStanding) {
+  Pipe pipe;
+  KeyboardCommandInput input(pipe.read_end());
+  pipe.write("r");  // already standing: the top
+  EXPECT_EQ(input.poll(0.0), (VelocityCommand{0.0, 0.0, kStandingBaseHeight}));
+  pipe.write("ff");
+  EXPECT_NEAR(input.poll(0.0)->height, kStandingBaseHeight - 0.04, 1e-9);
+  pipe.write("w ");  // a stop keeps the height
+  EXPECT_NEAR(input.poll(0.0)->height, kStandingBaseHeight - 0.04, 1e-9);
+  pipe.write(std::string(20, 'f'));
+  EXPECT_EQ(input.poll(0.0)->height, kLowestHeightCommand);
+}
+
+TEST(VelocityCommander, ClampsTheHeightToTheTrainedRange) {
+  VelocityCommandRanges trained;  // heights in [0.53, 0.557] m
+  EXPECT_EQ(clamp_to_trained({0.0, 0.0, 0.40}, trained).height, 0.53);
+  EXPECT_EQ(clamp_to_trained({0.0, 0.0, 0.545}, trained).height, 0.545);
+  EXPECT_EQ(clamp_to_trained({2.0, 0.0, 0.545}, trained).forward_velocity, 1.0);
+  trained.height_command = false;  // a policy without a height command stands
+  EXPECT_EQ(clamp_to_trained({0.0, 0.0, 0.54}, trained).height, kStandingBaseHeight);
 }
 
 TEST(KeyboardCommandInput, LettersAndArrowsStepTheCommandSpaceStops) {
