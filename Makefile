@@ -119,7 +119,7 @@ train-robust:
 # reality suite (configs/suites/reality.yaml, docs/reality.md) on the policy and the baseline.
 VELOCITY_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000 \
   --env-option push_force=20 --env-option push_duration=0.2 --env-option push_interval=3 \
-  --env-option push_direction=any
+  --env-option push_direction=any --env-option height_command=false --env-option leg_action_scale=0.5
 train-velocity:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
 	  RUN_DIR=runs/velocity-$(shell date +%Y%m%d-%H%M%S)
