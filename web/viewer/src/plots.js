@@ -1,6 +1,7 @@
 // Time plots (uPlot) of pitch, ground position and actions. Live: a sliding window over the
 // current episode. Replay: the whole episode with a marker at the time drawn.
 import uPlot from 'uplot';
+import { tickLabels } from './ticks.js';
 
 const LIVE_WINDOW = 10.0;  // seconds of the current episode kept in live plots
 const ACTION_COLORS = ['#e8590c', '#7048e8', '#d6336c', '#1098ad', '#5c940d', '#495057'];
@@ -34,8 +35,13 @@ function chartSpecs(layout) {
   return specs;
 }
 
-const axis = (label) => ({
+/** An axis named `label` whose tick labels go through tickLabels and into `drawn`. */
+const axis = (label, drawn) => ({
   label,
+  values: (plot, splits, axisIndex, space, increment) => {
+    drawn[axisIndex] = tickLabels(splits, increment);
+    return drawn[axisIndex];
+  },
   labelSize: 18,
   labelFont: '11px system-ui, sans-serif',
   font: '11px system-ui, sans-serif',
@@ -48,6 +54,7 @@ export function createPlots(panel, layout) {
   const timeIndex = layout.index.time;
   const specs = chartSpecs(layout);
   const charts = specs.map((spec, chartIndex) => {
+    const drawn = [[], []];  // the tick labels last drawn: time axis, value axis
     const wrapper = document.createElement('div');
     wrapper.className = 'plot';
     panel.append(wrapper);
@@ -64,13 +71,14 @@ export function createPlots(panel, layout) {
         ...spec.series.map(({ label, stroke }) => ({ label, stroke, width: 1.5 })),
       ],
       // The charts share their time axis: the last one names it.
-      axes: [axis(chartIndex === specs.length - 1 ? 'time [s]' : null), { ...axis(null), size: 52 }],
+      axes: [axis(chartIndex === specs.length - 1 ? 'time [s]' : null, drawn),
+        { ...axis(null, drawn), size: 52 }],
     }, [[], ...spec.series.map(() => [])], wrapper);
     const marker = document.createElement('div');
     marker.className = 'plot-marker';
     marker.hidden = true;
     plot.over.append(marker);
-    return { spec, wrapper, plot, marker, columns: [[], ...spec.series.map(() => [])] };
+    return { spec, wrapper, plot, marker, drawn, columns: [[], ...spec.series.map(() => [])] };
   });
 
   // Fit each chart to its share of the panel: what uPlot draws outside its canvas (title,
@@ -141,5 +149,18 @@ export function createPlots(panel, layout) {
     }
   }
 
-  return { append, flush, showEpisode, mark, fit };
+  /** Each chart's title, the tick labels it last drew and its values' range (tests). */
+  function describe() {
+    return charts.map(({ spec, drawn, plot }) => ({
+      title: spec.title,
+      timeTicks: drawn[0],
+      valueTicks: drawn[1],
+      series: spec.series.map(({ label }, i) => {
+        const values = (plot.data[i + 1] ?? []).filter(Number.isFinite);
+        return { label, min: Math.min(...values), max: Math.max(...values) };
+      }),
+    }));
+  }
+
+  return { append, flush, showEpisode, mark, fit, describe };
 }
