@@ -15,6 +15,7 @@
 #include "apps/commands.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/option_checks.hpp"
+#include "apps/smoothing_window.hpp"
 #include "rl/rolling_mean.hpp"
 #include "rl/scalar_csv_writer.hpp"
 
@@ -77,12 +78,6 @@ RunLog read_run(const std::string& run_dir) {
   if (run.name.empty()) run.name = std::filesystem::path(run_dir).parent_path().filename().string();
   if (run.table.rows.empty()) throw std::runtime_error(csv.string() + ": no update logged yet");
   return run;
-}
-
-/// The legend's name of the trailing mean: it lags the data by about half a window.
-std::string smoothing_label(std::size_t window) {
-  return "mean of the last " + std::to_string(window) + " updates (lags ~" +
-         std::to_string(window / 2) + ")";
 }
 
 bool has_a_value(const std::vector<double>& values) {
@@ -153,7 +148,15 @@ void run_plot(const PlotOptions& options) {
   const std::filesystem::path output(options.output_dir.empty() ? options.run_dirs.front()
                                                                 : options.output_dir);
   std::filesystem::create_directories(output);
-  const auto window = static_cast<std::size_t>(options.window);
+  // The window fits the shortest run; saying so when it is not the one asked.
+  std::size_t updates = runs.front().table.rows.size();
+  for (const RunLog& run : runs) updates = std::min(updates, run.table.rows.size());
+  const auto asked = static_cast<std::size_t>(options.window);
+  const std::size_t window = fitted_window(asked, updates);
+  if (window != asked) {
+    std::cout << "smoothing window: " << window << " updates (--window " << asked
+              << " is more than a tenth of the " << updates << " updates logged)" << std::endl;
+  }
   if (runs.size() == 1) {
     plot_one_run(runs.front(), window, output);
   } else {
@@ -171,7 +174,9 @@ void add_plot_command(CLI::App& app) {
       "several runs are overlaid, one colour each");
   command->add_option("run_dirs", options->run_dirs, "Run directories of `upkie-rl train`")
       ->required();
-  command->add_option("--window", options->window, "Trailing-mean window, in updates")
+  command
+      ->add_option("--window", options->window,
+                   "Trailing-mean window, in updates (at most a tenth of the run's updates)")
       ->check(finite_range(1, 1'000'000))
       ->capture_default_str();
   command
