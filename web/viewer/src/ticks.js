@@ -31,7 +31,7 @@ export function tickLabels(values, increment) {
     labels = exact(shown, spacing, (v) => withoutNegativeZero(v.toFixed(decimals)));
   }
   for (let digits = 0; digits <= MAX_DIGITS && !labels; digits++) {
-    labels = exact(shown, spacing, (v) => withoutNegativeZero(v.toExponential(digits)));
+    labels = exact(shown, spacing, (v) => (v === 0 ? '0' : v.toExponential(digits)));
   }
   labels ??= shown.map((v) => String(v));
   let next = 0;

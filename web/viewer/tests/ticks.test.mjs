@@ -23,6 +23,10 @@ test('tiny spacings switch to exponent notation and stay distinct', () => {
   assert.deepEqual(labels, ['1.00e-7', '1.25e-7', '1.50e-7', '1.75e-7', '2.00e-7']);
 });
 
+test('zero reads 0 among exponent labels', () => {
+  assert.deepEqual(tickLabels([-2.5e-6, 0, 2.5e-6], 2.5e-6), ['-2.5e-6', '0', '2.5e-6']);
+});
+
 test('labels are distinct at every scale and offset', () => {
   for (let exponent = -12; exponent <= 6; exponent++) {
     for (const mantissa of [1, 2, 2.5, 5]) {
