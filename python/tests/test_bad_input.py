@@ -82,3 +82,16 @@ def test_id_that_is_not_a_string_is_a_one_line_type_error(make):
     with pytest.raises(TypeError) as raised:
         make()
     assert str(raised.value).startswith("env_id: ") and "\n" not in str(raised.value)
+
+
+@pytest.mark.parametrize("make", [
+    lambda: upkie_rl.env_options("Upkie\nPendulum"),
+    lambda: upkie_rl.make_vec("Upkie-Mock-Pendulum\r\x01", 1),
+    lambda: upkie_rl.UpkieEnv("Upkie-Mock-Pendulum", **{"fall\npitch": 1.0}),
+], ids=["env_options", "make_vec", "option_name"])
+def test_control_characters_in_an_error_are_escaped_onto_one_line(make):
+    with pytest.raises(ValueError) as raised:
+        make()
+    message = str(raised.value)
+    assert "\n" not in message and "\r" not in message, message
+    assert "\\n" in message or "\\r" in message, message

@@ -9,6 +9,7 @@ rather than being silently stringified.
 from __future__ import annotations
 
 import functools
+import json
 import numbers
 from typing import Any, Dict, List, Tuple
 
@@ -54,8 +55,10 @@ def to_env_options(env_id: str, options: Dict[str, Any]) -> List[Tuple[str, str]
     pairs = []
     for name, value in options.items():
         if name not in table:
+            # json.dumps: the name in quotes, a newline in it escaped (one line).
             raise ValueError(
-                f'{env_id}: unknown option "{name}"; valid options: {", ".join(table)}'
+                f"{env_id}: unknown option {json.dumps(str(name), ensure_ascii=False)}; "
+                f'valid options: {", ".join(table)}'
             )
         pairs.append((name, _format(env_id, table[name], value)))
     return pairs
