@@ -26,6 +26,7 @@ namespace {
 struct PlotOptions {
   std::vector<std::string> run_dirs;
   int window = 50;
+  bool window_given = false;  ///< --window given: say so when the run cannot take it
   std::string output_dir;
 };
 
@@ -148,12 +149,12 @@ void run_plot(const PlotOptions& options) {
   const std::filesystem::path output(options.output_dir.empty() ? options.run_dirs.front()
                                                                 : options.output_dir);
   std::filesystem::create_directories(output);
-  // The window fits the shortest run; saying so when it is not the one asked.
+  // The window fits the shortest run (the figures name it), said when --window asked another.
   std::size_t updates = runs.front().table.rows.size();
   for (const RunLog& run : runs) updates = std::min(updates, run.table.rows.size());
   const auto asked = static_cast<std::size_t>(options.window);
   const std::size_t window = fitted_window(asked, updates);
-  if (window != asked) {
+  if (options.window_given && window != asked) {
     std::cout << "smoothing window: " << window << " updates (--window " << asked
               << " is more than a tenth of the " << updates << " updates logged)" << std::endl;
   }
@@ -174,17 +175,21 @@ void add_plot_command(CLI::App& app) {
       "several runs are overlaid, one colour each");
   command->add_option("run_dirs", options->run_dirs, "Run directories of `upkie-rl train`")
       ->required();
-  command
-      ->add_option("--window", options->window,
-                   "Trailing-mean window, in updates (at most a tenth of the run's updates)")
-      ->check(finite_range(1, 1'000'000))
-      ->capture_default_str();
+  CLI::Option* window =
+      command
+          ->add_option("--window", options->window,
+                       "Trailing-mean window, in updates (at most a tenth of the run's updates)")
+          ->check(finite_range(1, 1'000'000))
+          ->capture_default_str();
   command
       ->add_option("--output", options->output_dir,
                    "Directory for the figures (default: the run directory; required for "
                    "several runs)")
       ->check(kNonEmptyPath);
-  command->callback([options] { run_plot(*options); });
+  command->callback([options, window] {
+    options->window_given = window->count() > 0;
+    run_plot(*options);
+  });
 }
 
 }  // namespace upkie_rl::apps
