@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity train-scratch sanitize sanitize-thread fuzz fuzz-long format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity train-scratch sanitize sanitize-thread fuzz fuzz-long fuzz-python format tidy clean pi
 
 all: build
 
@@ -78,8 +78,9 @@ test-wheel:
 	JOBS=$(JOBS) bash scripts/wheels/build.sh 3.12
 	bash scripts/wheels/test.sh
 
-# Trains the seed's pendulum policy, evaluates the final model on 10 episodes and draws
-# the training figures. TRAIN_CONFIG and RUN_DIR can be overridden.
+# Trains the seed's pendulum policy, evaluates the final model on 10 episodes from the
+# exact start (the seed's protocol) and 10 from the evaluations' random starts (each summary
+# line says which), and draws the training figures. TRAIN_CONFIG and RUN_DIR can be overridden.
 TRAIN_CONFIG ?= configs/pendulum.yaml
 TRAIN_ENV ?= Upkie-Bullet-Pendulum
 TRAIN_SET ?=
@@ -90,8 +91,9 @@ endif
 train: build
 	$(BUILD_DIR)/upkie-rl train --config $(TRAIN_CONFIG) $(TRAIN_SET) --run-dir $(RUN_DIR)
 	@model=$$(ls -t $(RUN_DIR)/model_*.ckpt | head -n 1); \
-	  echo "evaluating $$model on 10 episodes"; \
-	  $(BUILD_DIR)/upkie-rl rollout --env $(TRAIN_ENV) --model $$model --episodes 10 \
+	  echo "evaluating $$model on 10 episodes from the exact start, then 10 from random starts"; \
+	  { $(BUILD_DIR)/upkie-rl rollout --env $(TRAIN_ENV) --model $$model --episodes 10 --exact-start && \
+	    $(BUILD_DIR)/upkie-rl rollout --env $(TRAIN_ENV) --model $$model --episodes 10; } \
 	    > $(RUN_DIR)/evaluation.txt 2>&1; status=$$?; cat $(RUN_DIR)/evaluation.txt; exit $$status
 	$(BUILD_DIR)/upkie-rl plot $(RUN_DIR)
 	@echo "run directory: $(RUN_DIR) (config.yaml, progress.csv, TensorBoard events," \
@@ -209,6 +211,16 @@ fuzz:
 
 fuzz-long:
 	$(MAKE) fuzz FUZZ_SECONDS=3600
+
+# Hypothesis on the Python package (python/tests/fuzz_inputs.py): the SB3 zip and
+# VecNormalize readers, the model readers, the registry's and make functions, a policy's
+# inputs and the sb3_convert command, FUZZ_PYTHON_TOTAL inputs over the targets (shared by
+# their cost, fuzz_inputs.SHARES); `make test-python` runs each on a few hundred.
+FUZZ_PYTHON_TOTAL ?= 1000000
+FUZZ_PYTHON_TARGETS ?=
+fuzz-python:
+	$(PYTEST_ENV) $(PYTHON) python/tests/fuzz_inputs.py --total $(FUZZ_PYTHON_TOTAL) \
+	  $(if $(FUZZ_PYTHON_TARGETS),--targets $(FUZZ_PYTHON_TARGETS))
 
 # The robot's bundle: upkie-rl-agent cross-compiled for aarch64 (Raspberry Pi 4), its arm64
 # libraries, a policy (PI_POLICY), the URDF, a run script and a README, in $(PI_DIR)/bundle.

@@ -210,7 +210,8 @@ def main() -> None:
     print(f"{args.backend}: trained {model.num_timesteps:,} steps in {train_time:.1f} s "
           f"({summary['steps_per_second']:,.0f} steps/s)")
     print(f"evaluation: mean return {summary['mean_return']:.1f} +- {summary['std_return']:.1f}"
-          f" over {len(returns)} episodes, lengths {lengths}")
+          f" over {len(returns)} episodes from the environment's own start (no"
+          f" initial-state randomisation), lengths {lengths}")
     print(f"wall time {summary['wall_seconds']:.1f} s (evaluation {eval_time:.1f} s)")
     if args.json:
         args.json.write_text(json.dumps(summary, indent=2))

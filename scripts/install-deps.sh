@@ -47,12 +47,14 @@ fi
 # with it (its wheels accept numpy 1.x).
 # gymnasium: the oldest release the package supports (pyproject.toml), which SB3 2.4.1 also
 # accepts; the newest is tested in a venv of its own (below). mypy: `make test-python`
-# type-checks the package and its stubs.
+# type-checks the package and its stubs. hypothesis: the fuzzing of the package's readers
+# and public functions (python/tests/fuzz_inputs.py, `make fuzz-python`).
 PYTHON_PACKAGES=(
   "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium==1.0.0" "msgpack:msgpack"
   "upkie:upkie" "tensorboard:tensorboard" "scikit_build_core:scikit-build-core"
   "pybind11:pybind11" "cloudpickle:cloudpickle" "pandas:pandas" "matplotlib:matplotlib"
   "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy" "mpacklog:mpacklog" "onnxruntime:onnxruntime" "mypy:mypy"
+  "hypothesis:hypothesis"
 )
 # Installed without their dependencies, which are listed above: Debian's torch calls
 # itself 1.13.0a0, a pre-release that SB3's "torch>=1.13" refuses, so pip would fetch

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <exception>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "bindings.hpp"
@@ -74,6 +76,59 @@ const std::array kErrorClasses = {
 
 std::array<PyObject*, kErrorClasses.size()> python_classes{};
 
+/// `message` on one line: control characters (a newline in an id or an option's value that
+/// the message quotes) written as escapes, "\n", "\x01", so that no error spans lines.
+std::string one_line(const char* message) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string line;
+  for (const char* c = message; *c != '\0'; ++c) {
+    const auto byte = static_cast<unsigned char>(*c);
+    if (byte == '\n') {
+      line += "\\n";
+    } else if (byte == '\r') {
+      line += "\\r";
+    } else if (byte == '\t') {
+      line += "\\t";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      line += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
+    } else {
+      line += *c;
+    }
+  }
+  return line;
+}
+
+/// The Python exception of a C++ one, its message on one line: the hierarchy's classes,
+/// and pybind11's usual built-in ones for the standard exceptions (others, such as
+/// std::bad_alloc, rethrown to pybind11's own translator).
+void set_python_error(std::exception_ptr pointer) {
+  try {
+    std::rethrow_exception(pointer);
+  } catch (const Error& error) {
+    for (std::size_t i = kErrorClasses.size(); i-- > 0;) {
+      if (kErrorClasses[i].matches(error)) {
+        PyErr_SetString(python_classes[i], one_line(error.what()).c_str());
+        return;
+      }
+    }
+    PyErr_SetString(PyExc_RuntimeError, one_line(error.what()).c_str());
+  } catch (const std::invalid_argument& error) {
+    PyErr_SetString(PyExc_ValueError, one_line(error.what()).c_str());
+  } catch (const std::domain_error& error) {
+    PyErr_SetString(PyExc_ValueError, one_line(error.what()).c_str());
+  } catch (const std::length_error& error) {
+    PyErr_SetString(PyExc_ValueError, one_line(error.what()).c_str());
+  } catch (const std::out_of_range& error) {
+    PyErr_SetString(PyExc_IndexError, one_line(error.what()).c_str());
+  } catch (const std::range_error& error) {
+    PyErr_SetString(PyExc_ValueError, one_line(error.what()).c_str());
+  } catch (const std::overflow_error& error) {
+    PyErr_SetString(PyExc_OverflowError, one_line(error.what()).c_str());
+  } catch (const std::runtime_error& error) {
+    PyErr_SetString(PyExc_RuntimeError, one_line(error.what()).c_str());
+  }
+}
+
 PyObject* make_class(py::module_& module, const ErrorClass& error) {
   // The parent class (none for the root), and the built-in exception unless the parent
   // derives from it already: CheckpointError is (Error, ValueError), SpineError (Error,).
@@ -96,17 +151,10 @@ void bind_errors(py::module_& module) {
   for (std::size_t i = 0; i < kErrorClasses.size(); ++i) {
     python_classes[i] = make_class(module, kErrorClasses[i]);
   }
+  // Other exceptions (std::runtime_error, std::bad_alloc, ...) are left to pybind11: its
+  // translator runs when this one rethrows them.
   py::register_exception_translator([](std::exception_ptr pointer) {
-    try {
-      if (pointer) std::rethrow_exception(pointer);
-    } catch (const Error& error) {
-      for (std::size_t i = kErrorClasses.size(); i-- > 0;) {
-        if (kErrorClasses[i].matches(error)) {
-          PyErr_SetString(python_classes[i], error.what());
-          return;
-        }
-      }
-    }
+    if (pointer) set_python_error(pointer);
   });
 }
 

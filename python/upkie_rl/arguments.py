@@ -60,3 +60,13 @@ def flag_argument(name: str, value: Any) -> bool:
 def render_size(width: Any, height: Any) -> Tuple[int, int]:
     """(width, height) of frames, checked against the renderer's bounds."""
     return integer_argument("render_width", width), integer_argument("render_height", height)
+
+
+def env_id_argument(env_id: Any) -> str:
+    """``env_id`` if it is a string (an id is checked by the registry); TypeError otherwise,
+    before pybind11 answers with its four-line "incompatible function arguments"."""
+    if not isinstance(env_id, str):
+        raise TypeError(
+            f"env_id: {env_id!r} is not a string; expected an id such as 'Upkie-Bullet-Pendulum'"
+        )
+    return env_id

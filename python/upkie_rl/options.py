@@ -9,10 +9,12 @@ rather than being silently stringified.
 from __future__ import annotations
 
 import functools
+import json
 import numbers
 from typing import Any, Dict, List, Tuple
 
 from . import _core
+from .arguments import env_id_argument
 
 
 @functools.lru_cache(maxsize=None)
@@ -48,13 +50,15 @@ def _format(env_id: str, option: dict, value: Any) -> str:
 
 def to_env_options(env_id: str, options: Dict[str, Any]) -> List[Tuple[str, str]]:
     """Registry options of keyword arguments; raises ValueError on an unknown name (listing
-    the valid ones) and TypeError on a value of the wrong type."""
-    table = option_table(env_id)
+    the valid ones) and TypeError on a value of the wrong type or an id that is not a string."""
+    table = option_table(env_id_argument(env_id))
     pairs = []
     for name, value in options.items():
         if name not in table:
+            # json.dumps: the name in quotes, a newline in it escaped (one line).
             raise ValueError(
-                f'{env_id}: unknown option "{name}"; valid options: {", ".join(table)}'
+                f"{env_id}: unknown option {json.dumps(str(name), ensure_ascii=False)}; "
+                f'valid options: {", ".join(table)}'
             )
         pairs.append((name, _format(env_id, table[name], value)))
     return pairs

@@ -87,6 +87,7 @@ def load_allowlisted(path: Union[str, Path]) -> object:
     except UnsafePickleError as error:
         raise UnsafePickleError(f"{path}: {error}") from None
     except Exception as error:  # Any malformed pickle: truncated, bad opcode, bad args.
+        reason = " ".join(str(error).split())  # pickle's messages may span lines
         raise UnsafePickleError(
-            f"{path}: not a readable VecNormalize pickle ({type(error).__name__}: {error})"
+            f"{path}: not a readable VecNormalize pickle ({type(error).__name__}: {reason})"
         ) from None

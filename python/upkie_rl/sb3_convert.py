@@ -95,6 +95,35 @@ def _read_zip(path: Path) -> Dict[str, bytes]:
     return contents
 
 
+def _json_member(contents: Dict[str, bytes], name: str, where: str):
+    """The zip member ``name`` read as JSON; ConversionError for text that is not JSON or
+    nests deeper than Python's parser recurses (a hostile ``[[[[...`` member)."""
+    try:
+        return json.loads(contents[name])
+    except (UnicodeDecodeError, ValueError) as error:
+        raise ConversionError(f"{where}: '{name}' is not JSON ({error})") from None
+    except RecursionError:
+        raise ConversionError(f"{where}: '{name}' nests too deeply to be SB3's JSON") from None
+
+
+def _sb3_data(contents: Dict[str, bytes], where: str) -> dict:
+    """The zip's ``data`` member: SB3's JSON object of the model's settings."""
+    data = _json_member(contents, "data", where)
+    if not isinstance(data, dict):
+        raise ConversionError(f"{where}: 'data' is not a JSON object")
+    return data
+
+
+def _object(data: dict, key: str, where: str) -> dict:
+    """The JSON object ``data[key]`` ({} when absent or null, as SB3 writes no kwargs)."""
+    value = data.get(key)
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise ConversionError(f"{where}: {key} is a {type(value).__name__}, not an object")
+    return value
+
+
 def _class_name(entry) -> str:
     """The class an SB3 data entry names ('<class 'torch.nn...ReLU'>' -> 'ReLU')."""
     match = re.search(r"([A-Za-z_][A-Za-z0-9_]*)'>$", str(entry))
@@ -126,8 +155,11 @@ def _sb3_box(data: dict, key: str, where: str) -> Tuple[np.ndarray, np.ndarray]:
     if not isinstance(entry, dict) or "gymnasium.spaces.box.Box" not in str(entry.get(":type:")):
         kind = entry.get(":type:") if isinstance(entry, dict) else type(entry).__name__
         raise ConversionError(f"{where}: {key} is {kind}, only Box spaces can be converted")
-    shape = json.loads(str(entry.get("_shape", "null")).replace("(", "[").replace(",)", "]"))
-    if not isinstance(shape, list) or len(shape) != 1:
+    try:
+        shape = json.loads(str(entry.get("_shape", "null")).replace("(", "[").replace(",)", "]"))
+    except (ValueError, RecursionError):
+        shape = None
+    if not isinstance(shape, list) or len(shape) != 1 or type(shape[0]) is not int:
         raise ConversionError(
             f"{where}: {key} has shape {entry.get('_shape')}; only flat vectors can be "
             "converted (image and multi-dimensional observations are not)"
@@ -142,7 +174,7 @@ def _sb3_box(data: dict, key: str, where: str) -> Tuple[np.ndarray, np.ndarray]:
 
 
 def _activation(data: dict, where: str) -> str:
-    kwargs = data.get("policy_kwargs") or {}
+    kwargs = _object(data, "policy_kwargs", where)
     name = _class_name(kwargs.get("activation_fn", "<class 'Tanh'>"))  # SB3's default
     if name not in ACTIVATIONS:
         raise ConversionError(
@@ -166,7 +198,7 @@ def _check_ppo(data: dict, where: str) -> None:
         )
     if data.get("use_sde"):
         raise ConversionError(f"{where}: trained with gSDE (use_sde), which is not supported")
-    kwargs = data.get("policy_kwargs") or {}
+    kwargs = _object(data, "policy_kwargs", where)
     extractor = kwargs.get("features_extractor_class")
     if extractor is not None and _class_name(extractor) != "FlattenExtractor":
         raise ConversionError(
@@ -365,13 +397,8 @@ def import_sb3(
     zip_path, output = Path(zip_path), Path(output)
     options = {str(k): str(v) for k, v in (env_options or {}).items()}
     contents = _read_zip(zip_path)
-    try:
-        data = json.loads(contents["data"])
-    except (UnicodeDecodeError, ValueError) as error:
-        raise ConversionError(f"{zip_path}: 'data' is not JSON ({error})") from None
-    if not isinstance(data, dict):
-        raise ConversionError(f"{zip_path}: 'data' is not a JSON object")
     where = str(zip_path)
+    data = _sb3_data(contents, where)
     _check_ppo(data, where)
     observation_bounds = _sb3_box(data, "observation_space", where)
     action_bounds = _sb3_box(data, "action_space", where)
@@ -457,7 +484,7 @@ def _embedded_provenance(contents: Dict[str, bytes]):
         return None
     try:
         value = json.loads(raw)
-    except (UnicodeDecodeError, ValueError):
+    except (UnicodeDecodeError, ValueError, RecursionError):
         return None
     return value.get(_KEY["PROVENANCE"]) if isinstance(value, dict) else None
 
@@ -644,16 +671,15 @@ def describe_sb3(zip_path: PathLike) -> dict:
     """What an SB3 zip says of itself (read as in import, nothing executed)."""
     zip_path = Path(zip_path)
     contents = _read_zip(zip_path)
-    try:
-        data = json.loads(contents["data"])
-    except (UnicodeDecodeError, ValueError) as error:
-        raise ConversionError(f"{zip_path}: 'data' is not JSON ({error})") from None
+    data = _sb3_data(contents, str(zip_path))
+    provenance = (_json_member(contents, PROVENANCE_MEMBER, str(zip_path))
+                  if PROVENANCE_MEMBER in contents else None)
     return {
         "policy_class": _policy_class_name(data),
         "stable_baselines3_version": contents.get("_stable_baselines3_version", b"unknown")
         .decode("utf-8", "replace").strip(),
         "hyperparameters": _readable(data),
-        "upkie_rl": json.loads(contents[PROVENANCE_MEMBER]) if PROVENANCE_MEMBER in contents else None,
+        "upkie_rl": provenance,
     }
 
 

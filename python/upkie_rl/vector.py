@@ -12,6 +12,7 @@ from gymnasium.vector.utils import batch_space
 from . import _core
 from .actions import as_action_array
 from .arguments import (
+    env_id_argument,
     flag_argument,
     index_argument,
     integer_argument,
@@ -252,6 +253,8 @@ def make_vec(
 
 
 def canonical_id(env_id: str) -> str:
-    """The registry's id of a Gymnasium id (without the ``upkie_rl/`` namespace)."""
+    """The registry's id of a Gymnasium id (without the ``upkie_rl/`` namespace); TypeError
+    for an id that is not a string."""
+    env_id = env_id_argument(env_id)
     prefix = "upkie_rl/"
     return env_id[len(prefix) :] if env_id.startswith(prefix) else env_id

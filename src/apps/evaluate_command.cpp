@@ -58,8 +58,10 @@ std::string percent(int successes, int episodes) {
 
 /// The grid of one contender: rows the first axis (or one row), columns the second.
 void print_table(std::ostream& out, const Contender& contender, const std::vector<GridAxis>& axes,
-                 const std::vector<CellResult>& results, int episodes) {
-  out << contender.label << " (success rate over " << episodes << " episodes per cell)\n";
+                 const std::vector<CellResult>& results, int episodes,
+                 const std::string& start_words) {
+  out << contender.label << " (success rate over " << episodes << " episodes per cell "
+      << start_words << ")\n";
   const std::size_t rows = axes.empty() ? 1 : axes[0].values.size();
   const std::size_t columns = axes.size() < 2 ? 1 : axes[1].values.size();
   constexpr int kWidth = 8;
@@ -96,7 +98,8 @@ nlohmann::json summary_json(const EvaluateOptions& options,
                             const std::vector<Contender>& contenders,
                             const std::vector<GridAxis>& axes,
                             const std::vector<std::vector<std::size_t>>& cells,
-                            const std::vector<std::vector<CellResult>>& results) {
+                            const std::vector<std::vector<CellResult>>& results,
+                            const std::vector<std::string>& start_words) {
   nlohmann::json summary = {{"env", options.env_id},
                             {"episodes_per_cell", options.plan.episodes},
                             {"seed", options.plan.seed},
@@ -106,7 +109,7 @@ nlohmann::json summary_json(const EvaluateOptions& options,
     summary["axes"].push_back({{"name", axis.name}, {"values", axis.values}});
   summary["controllers"] = nlohmann::json::array();
   for (std::size_t c = 0; c < contenders.size(); ++c) {
-    nlohmann::json entry = {{"label", contenders[c].label}};
+    nlohmann::json entry = {{"label", contenders[c].label}, {"start", start_words[c]}};
     if (contenders[c].model.empty()) {
       entry["controller"] = contenders[c].spec;
     } else {
@@ -161,8 +164,8 @@ void write_outputs(const std::filesystem::path& directory, const std::string& ta
     // x: the last axis; y: the first of two.
     const GridAxis* x_axis = axes.empty() ? nullptr : &axes.back();
     const GridAxis* y_axis = axes.size() == 2 ? &axes.front() : nullptr;
-    figure.x_label = x_axis ? x_axis->name : "";
-    figure.y_label = y_axis ? y_axis->name : "";
+    figure.x_label = x_axis ? axis_label(x_axis->name, env_id) : "";
+    figure.y_label = y_axis ? axis_label(y_axis->name, env_id) : "";
     if (x_axis) {
       for (double value : x_axis->values) figure.x_values.push_back(format_value(value));
     } else {
@@ -230,6 +233,8 @@ void run_evaluate(const EvaluateOptions& options) {
   const std::vector<std::vector<std::size_t>> cells = grid_cells(axes);
   // Every cell's options are checked, by making its factory, before any episode runs.
   std::vector<std::vector<EnvFactory>> factories(contenders.size());
+  // Which start each contender's episodes had: random when any cell's were.
+  std::vector<std::string> start_words(contenders.size());
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     factories[c].reserve(cells.size());
     for (const auto& cell : cells) {
@@ -238,16 +243,19 @@ void run_evaluate(const EvaluateOptions& options) {
       all.insert(all.end(), cell_env_options.begin(), cell_env_options.end());
       if (!options.exact_start) all = with_evaluation_start(options.env_id, all);
       factories[c].push_back(make_env_factory(options.env_id, all));
+      const std::string words = evaluation_start_words(options.env_id, all, options.exact_start);
+      if (start_words[c].empty() || words == "from random starts") start_words[c] = words;
     }
   }
   const auto results = evaluate_all(options.plan, contenders, factories);
   std::ostringstream table;
   for (std::size_t c = 0; c < contenders.size(); ++c) {
-    print_table(table, contenders[c], axes, results[c], options.plan.episodes);
+    print_table(table, contenders[c], axes, results[c], options.plan.episodes, start_words[c]);
   }
   std::cout << table.str();
   warn_identical_cells(options.plan, results);
-  const nlohmann::json summary = summary_json(options, contenders, axes, cells, results);
+  const nlohmann::json summary =
+      summary_json(options, contenders, axes, cells, results, start_words);
   if (!options.output.empty()) {
     write_outputs(options.output, table.str(), summary, contenders, axes, results,
                   options.plan.episodes, options.env_id);

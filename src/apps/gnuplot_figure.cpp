@@ -39,7 +39,7 @@ std::string tic_label(const std::string& text) {
   return quoted(label);
 }
 
-bool has_cairo(const std::string& gnuplot) {
+bool probe_cairo(const std::string& gnuplot) {
   const std::string command = gnuplot + " -e 'set terminal' 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return false;
@@ -52,11 +52,28 @@ bool has_cairo(const std::string& gnuplot) {
   return output.find("pngcairo") != std::string::npos;
 }
 
-/// The PNG terminal of a figure of width x height pixels: pngcairo, or png without cairo.
-std::string terminal_line(const std::string& gnuplot, int width, int height) {
+/// Whether `gnuplot` has the pngcairo terminal (asked once per process).
+bool has_cairo(const std::string& gnuplot) {
+  static const bool cairo = probe_cairo(gnuplot);
+  return cairo;
+}
+
+/// The terminal of a figure of width x height pixels written to `output`: SVG for a .svg
+/// file, else PNG by pngcairo, or png without cairo. Text is never "enhanced": titles are
+/// file and run names and legends, where gnuplot would read '_' as a subscript and '~' as
+/// an overprint (it drew "(lags ~25)" with the 5 over the 2).
+std::string terminal_line(const std::string& gnuplot, const std::filesystem::path& output,
+                          int width, int height) {
   const std::string size = " size " + std::to_string(width) + "," + std::to_string(height);
-  return has_cairo(gnuplot) ? "set terminal pngcairo" + size + " font 'sans,11'\n"
-                            : "set terminal png truecolor" + size + "\n";
+  std::string terminal;
+  if (output.extension() == ".svg") {
+    terminal = "set terminal svg" + size + " font 'sans,11'";
+  } else if (has_cairo(gnuplot)) {
+    terminal = "set terminal pngcairo" + size + " font 'sans,11'";
+  } else {
+    terminal = "set terminal png truecolor" + size;
+  }
+  return terminal + "\nset termoption noenhanced\n";
 }
 
 /// The last line gnuplot printed that says what went wrong (its errors end with the
@@ -181,10 +198,10 @@ void draw_trend_figures(const std::vector<TrendFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
   FiguresAside aside;
   std::ostringstream script;
-  script << terminal_line(gnuplot, 900, 540);
   script << "set grid\nset datafile missing 'NaN'\nset format x '%.1s%c'\n" << kLineAxes;
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const TrendFigure& figure = figures[f];
+    script << terminal_line(gnuplot, figure.output, 900, 540);
     const std::string block = "$data" + std::to_string(f);
     script << block << " << EOD\n";
     for (std::size_t i = 0; i < figure.x.size(); ++i) {
@@ -219,8 +236,8 @@ void draw_curves_figure(const CurvesFigure& figure) {
   std::vector<std::vector<double>> all_y;
   for (const CurvesFigure::Curve& curve : figure.curves) all_y.push_back(curve.y);
   std::ostringstream script;
-  script << terminal_line(gnuplot, 1000, 600);
-  script << "set grid\nset termoption noenhanced\nset format x '%.1s%c'\n" << kLineAxes;
+  script << terminal_line(gnuplot, figure.output, 1000, 600);
+  script << "set grid\nset format x '%.1s%c'\n" << kLineAxes;
   std::ostringstream plots;
   for (std::size_t c = 0; c < figure.curves.size(); ++c) {
     const CurvesFigure::Curve& curve = figure.curves[c];
@@ -259,9 +276,6 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
   const std::string gnuplot = find_gnuplot();
   FiguresAside aside;
   std::ostringstream script;
-  script << terminal_line(gnuplot, 900, 600);
-  // Labels are file and controller names: underscores are not subscripts.
-  script << "set termoption noenhanced\n";
   script << "set palette defined (0 '#d73027', 50 '#fee08b', 100 '#1a9850')\n"
             "set cbrange [0:100]\nset cblabel 'success rate [%]'\nunset key\n";
   for (std::size_t f = 0; f < figures.size(); ++f) {
@@ -271,6 +285,7 @@ void draw_heat_maps(const std::vector<HeatMapFigure>& figures) {
     if (figure.values.size() != rows * columns) {
       throw std::invalid_argument("heat map " + figure.title + ": values do not fill the grid");
     }
+    script << terminal_line(gnuplot, figure.output, 900, 600);
     const std::string block = "$map" + std::to_string(f);
     script << block << " << EOD\n";
     for (std::size_t r = 0; r < rows; ++r) {

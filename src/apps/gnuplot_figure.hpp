@@ -1,7 +1,8 @@
 #pragma once
 /// @file
-/// Line figures drawn by gnuplot (pngcairo, or png when cairo is missing), fed through a
-/// pipe: a raw series drawn semi-transparent and its rolling mean on top.
+/// Line figures drawn by gnuplot (pngcairo, or png when cairo is missing; SVG for an output
+/// named *.svg), fed through a pipe: a raw series drawn semi-transparent and its rolling
+/// mean on top. Text is drawn as given (gnuplot's "enhanced" markup is off).
 
 #include <filesystem>
 #include <string>
@@ -11,7 +12,7 @@ namespace upkie_rl::apps {
 
 /// One figure: y against x, raw and smoothed.
 struct TrendFigure {
-  std::filesystem::path output;  ///< PNG file to write.
+  std::filesystem::path output;  ///< PNG file to write (SVG when named *.svg).
   std::string title;
   std::string x_label;
   std::string y_label;
@@ -24,7 +25,7 @@ struct TrendFigure {
 /// A heat map of values in [0, 100] (percentages) over a grid of at most two axes, each
 /// cell labelled with its value.
 struct HeatMapFigure {
-  std::filesystem::path output;  ///< PNG file to write.
+  std::filesystem::path output;  ///< PNG file to write (SVG when named *.svg).
   std::string title;
   std::string x_label;
   std::vector<std::string> x_values;  ///< Column labels.
@@ -42,7 +43,7 @@ struct CurvesFigure {
     std::vector<double> y;  ///< NaN values are left out.
     bool faint = false;     ///< Thin and semi-transparent, never in the key (raw values).
   };
-  std::filesystem::path output;  ///< PNG file to write.
+  std::filesystem::path output;  ///< PNG file to write (SVG when named *.svg).
   std::string title;
   std::string x_label;
   std::string y_label;

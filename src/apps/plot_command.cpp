@@ -16,6 +16,7 @@
 #include "apps/commands.hpp"
 #include "apps/gnuplot_figure.hpp"
 #include "apps/option_checks.hpp"
+#include "apps/smoothing_window.hpp"
 #include "rl/rolling_mean.hpp"
 #include "rl/scalar_csv_writer.hpp"
 
@@ -26,6 +27,7 @@ namespace {
 struct PlotOptions {
   std::vector<std::string> run_dirs;
   int window = 50;
+  bool window_given = false;  ///< --window given: say so when the run cannot take it
   std::string output_dir;
 };
 
@@ -78,12 +80,6 @@ RunLog read_run(const std::string& run_dir) {
   if (run.name.empty()) run.name = std::filesystem::path(run_dir).parent_path().filename().string();
   if (run.table.rows.empty()) throw CommandError(csv.string() + ": no update logged yet");
   return run;
-}
-
-/// The legend's name of the trailing mean: it lags the data by about half a window.
-std::string smoothing_label(std::size_t window) {
-  return "mean of the last " + std::to_string(window) + " updates (lags ~" +
-         std::to_string(window / 2) + ")";
 }
 
 bool has_a_value(const std::vector<double>& values) {
@@ -153,7 +149,15 @@ void run_plot(const PlotOptions& options) {
   const std::filesystem::path output(options.output_dir.empty() ? options.run_dirs.front()
                                                                 : options.output_dir);
   std::filesystem::create_directories(output);
-  const auto window = static_cast<std::size_t>(options.window);
+  // The window fits the shortest run (the figures name it), said when --window asked another.
+  std::size_t updates = runs.front().table.rows.size();
+  for (const RunLog& run : runs) updates = std::min(updates, run.table.rows.size());
+  const auto asked = static_cast<std::size_t>(options.window);
+  const std::size_t window = fitted_window(asked, updates);
+  if (options.window_given && window != asked) {
+    std::cout << "smoothing window: " << window << " updates (--window " << asked
+              << " is more than a tenth of the " << updates << " updates logged)" << std::endl;
+  }
   if (runs.size() == 1) {
     plot_one_run(runs.front(), window, output);
   } else {
@@ -171,15 +175,21 @@ void add_plot_command(CLI::App& app) {
       "several runs are overlaid, one colour each");
   command->add_option("run_dirs", options->run_dirs, "Run directories of `upkie-rl train`")
       ->required();
-  command->add_option("--window", options->window, "Trailing-mean window, in updates")
-      ->check(finite_range(1, 1'000'000))
-      ->capture_default_str();
+  CLI::Option* window =
+      command
+          ->add_option("--window", options->window,
+                       "Trailing-mean window, in updates (at most a tenth of the run's updates)")
+          ->check(finite_range(1, 1'000'000))
+          ->capture_default_str();
   command
       ->add_option("--output", options->output_dir,
                    "Directory for the figures (default: the run directory; required for "
                    "several runs)")
       ->check(kNonEmptyPath);
-  command->callback([options] { run_plot(*options); });
+  command->callback([options, window] {
+    options->window_given = window->count() > 0;
+    run_plot(*options);
+  });
 }
 
 }  // namespace upkie_rl::apps

@@ -2,9 +2,11 @@
 
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "envs/registry.hpp"
 #include "model/number_text.hpp"
 #include "model/split_fields.hpp"
 
@@ -75,6 +77,26 @@ std::vector<GridAxis> parse_grid(const std::string& text) {
                                 " axes; at most two (a heat map per controller)");
   }
   return axes;
+}
+
+std::string axis_label(const std::string& name, const std::string& env_id) {
+  static const std::map<std::string, std::string> kUnits = {{"push", "push [N]"},
+                                                            {"mass", "mass [x nominal]"},
+                                                            {"friction", "friction [x nominal]"},
+                                                            {"lag", "action lag [s]"},
+                                                            {"delay", "action delay [steps]"},
+                                                            {"pitch", "initial pitch bound [rad]"}};
+  const auto known = kUnits.find(name);
+  if (known != kUnits.end()) return known->second;
+  for (const OptionInfo& option : env_option_info(env_id)) {
+    if (option.name != name) continue;
+    const std::size_t open = option.help.rfind('[');
+    const std::size_t close = option.help.rfind(']');
+    if (open != std::string::npos && close != std::string::npos && open < close) {
+      return name + " " + option.help.substr(open, close - open + 1);
+    }
+  }
+  return name + " [dimensionless]";
 }
 
 EnvOptions axis_options(const std::string& name, double value) {

@@ -25,6 +25,11 @@ struct GridAxis {
 ///         values, more than two axes, a repeated name).
 std::vector<GridAxis> parse_grid(const std::string& text);
 
+/// An axis's name with its unit, for figures: "push [N]", "mass [x nominal]", ...; another
+/// environment option gets the unit its help states ("[...]"), else "[dimensionless]".
+/// @throws std::invalid_argument on an unknown `env_id`.
+std::string axis_label(const std::string& name, const std::string& env_id);
+
 /// The environment options an axis value sets.
 EnvOptions axis_options(const std::string& name, double value);
 

@@ -132,6 +132,7 @@ struct Rollout {
   std::optional<LiveView> view;
   std::optional<EpisodeRecorder> recorder;
   std::optional<VideoRecorder> video;
+  std::string start_words;  ///< Which start the episodes had ("from random starts", ...).
 };
 
 /// The environment (from a random evaluation start unless --exact-start), its controller
@@ -145,6 +146,8 @@ void make_env_and_controller(const RolloutOptions& options, Rollout& rollout) {
     rollout.env_options.insert(rollout.env_options.end(), start.begin(), start.end());
   }
   rollout.env = make_env(options.env_id, rollout.env_options);
+  rollout.start_words =
+      evaluation_start_words(options.env_id, rollout.env_options, options.exact_start);
   // Printed once the options are known good: a refused option is the only line.
   if (!start.empty()) {
     std::cout << "random initial state: " << format_env_options(start)
@@ -267,7 +270,8 @@ EpisodeOutcome roll_out_episode(const RolloutOptions& options, Rollout& rollout,
 }
 
 /// The summary of the episodes: mean return and length, tracking errors, --json.
-void report_episodes(const RolloutOptions& options, const std::vector<EpisodeOutcome>& outcomes) {
+void report_episodes(const RolloutOptions& options, const std::vector<EpisodeOutcome>& outcomes,
+                     const std::string& start_words) {
   std::vector<double> returns;
   std::vector<int> lengths;
   for (const EpisodeOutcome& outcome : outcomes) {
@@ -281,13 +285,14 @@ void report_episodes(const RolloutOptions& options, const std::vector<EpisodeOut
   const std::string identical = identical_episodes_warning(returns, lengths);
   if (!identical.empty()) std::cerr << "upkie-rl: warning: " << identical << std::endl;
   std::cout << "mean return " << mean << " +- " << std_return << " over " << returns.size()
-            << " episodes, mean length " << mean_length << std::endl;
+            << " episodes " << start_words << ", mean length " << mean_length << std::endl;
   const std::string tracking = tracking_text(summary);
   if (!tracking.empty()) std::cout << tracking << std::endl;
   if (options.json) {
     nlohmann::json json = {{"episodes", returns.size()}, {"mean_return", mean},
                            {"std_return", std_return},   {"mean_length", mean_length},
-                           {"returns", returns},         {"lengths", lengths}};
+                           {"returns", returns},         {"lengths", lengths},
+                           {"start", start_words}};
     add_tracking_json(json, summary);
     std::cout << json.dump() << std::endl;
   }
@@ -318,7 +323,7 @@ void run_rollout(const RolloutOptions& options) {
                        options.env_id + ", episode 0: " +
                            (options.model.empty() ? options.controller : options.model));
   }
-  report_episodes(options, outcomes);
+  report_episodes(options, outcomes, rollout.start_words);
 }
 
 }  // namespace

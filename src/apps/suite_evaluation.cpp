@@ -58,8 +58,10 @@ void run_env(const std::string& env_id, const SuiteRequest& request, const Episo
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     for (const std::size_t w : worlds) {
       const SuiteWorld& world = run.suite.worlds[w];
-      factories[c].push_back(
-          make_env_factory(env_id, world_options(contenders[c], world, request.exact_start)));
+      const EnvOptions options = world_options(contenders[c], world, request.exact_start);
+      factories[c].push_back(make_env_factory(env_id, options));
+      const std::string words = evaluation_start_words(env_id, options, request.exact_start);
+      if (run.start_words.empty() || words == "from random starts") run.start_words = words;
     }
   }
   const auto results = evaluate_all(plan, contenders, factories);
@@ -170,8 +172,8 @@ std::string suite_table(const SuiteResults& run) {
   out << "suite " << suite.name << (suite.description.empty() ? "" : ": " + suite.description)
       << "\n"
       << suite.episodes << " episodes per world and controller, at most " << suite.max_steps
-      << " steps, seeds " << suite.seed << "..; falls (early: within " << suite.early_fall_time
-      << " s), forward and yaw tracking RMS [m/s, rad/s], mean return\n";
+      << " steps, seeds " << suite.seed << ".. " << run.start_words << "; falls (early: within "
+      << suite.early_fall_time << " s), forward and yaw tracking RMS [m/s, rad/s], mean return\n";
   out << std::left << std::setw(34) << "world" << std::setw(8) << "engine";
   for (const std::string& label : run.labels) out << " | " << std::setw(36) << label;
   out << '\n';
@@ -208,6 +210,7 @@ nlohmann::json suite_json(const SuiteResults& run) {
                          {"seed", suite.seed},
                          {"max_steps", suite.max_steps},
                          {"early_fall_time", suite.early_fall_time},
+                         {"start", run.start_words},
                          {"contenders", nlohmann::json::array()},
                          {"worlds", nlohmann::json::array()}};
   const std::vector<ContenderTotals> all_totals = totals_of(run);

@@ -35,6 +35,7 @@ struct SuiteResults {
   std::vector<std::string> labels;        ///< Contender labels, the same on every env.
   std::vector<std::string> descriptions;  ///< Model path or resolved controller, by label.
   std::vector<std::vector<CellResult>> results;
+  std::string start_words;  ///< Which start the episodes had: random when any world's were.
 };
 
 /// The checks a suite's worlds get when it is read: each world's environment is made.

@@ -146,8 +146,8 @@ CurvesFigure return_curves(const Sweep& sweep, const std::vector<RunRow>& rows) 
   CurvesFigure figure;
   figure.output = sweep.directory / "returns.png";
   figure.title = "Training return of each run (mean of the last 100 episodes)";
-  figure.x_label = "timesteps";
-  figure.y_label = "return";
+  figure.x_label = "environment steps";
+  figure.y_label = "return (dimensionless)";
   for (const RunRow& row : rows) {
     const std::filesystem::path csv = sweep.run_dir(*row.run) / "progress.csv";
     if (!std::filesystem::exists(csv)) continue;

@@ -32,6 +32,30 @@ EnvOptions with_evaluation_start(const std::string& env_id, const EnvOptions& gi
   return options;
 }
 
+namespace {
+
+/// The value of `option` in `options` (the last one given wins), else its default for
+/// `env_id`, else 0 (an id without that option).
+double start_bound(const std::string& env_id, const EnvOptions& options, const char* option) {
+  for (auto it = options.rbegin(); it != options.rend(); ++it) {
+    if (it->first == option) return std::stod(it->second);
+  }
+  const std::vector<OptionInfo> accepted = env_option_info(env_id);
+  const auto info = std::find_if(accepted.begin(), accepted.end(),
+                                 [&](const OptionInfo& o) { return o.name == option; });
+  return info == accepted.end() ? 0.0 : std::stod(info->default_value);
+}
+
+}  // namespace
+
+std::string evaluation_start_words(const std::string& env_id, const EnvOptions& options,
+                                   bool exact_start) {
+  for (const EvaluationStartBound& bound : kEvaluationStart) {
+    if (start_bound(env_id, options, bound.option) != 0.0) return "from random starts";
+  }
+  return exact_start ? "from the exact start (--exact-start)" : "from the environment's own start";
+}
+
 std::string identical_episodes_warning(std::span<const double> returns,
                                        std::span<const int> lengths) {
   if (returns.size() < 2 || lengths.size() != returns.size()) return {};

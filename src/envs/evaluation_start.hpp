@@ -42,6 +42,15 @@ EnvOptions evaluation_start_options(const std::string& env_id, const EnvOptions&
 /// `given` followed by evaluation_start_options(env_id, given).
 EnvOptions with_evaluation_start(const std::string& env_id, const EnvOptions& given);
 
+/// Which start an evaluation's episodes had, for the lines that report it: "from random
+/// starts" when one of kEvaluationStart's options is nonzero in `options` (the episodes'
+/// options, the evaluations' start included) or by `env_id`'s default, else "from the exact
+/// start (--exact-start)" when `exact_start`, else "from the environment's own start" (an
+/// id without initial-state randomisation).
+/// @throws std::invalid_argument on an unknown id.
+std::string evaluation_start_words(const std::string& env_id, const EnvOptions& options,
+                                   bool exact_start);
+
 /// A warning when two or more episodes all had the same return and length (the episodes
 /// of an environment without initial-state randomisation); empty otherwise.
 std::string identical_episodes_warning(std::span<const double> returns,

@@ -31,7 +31,9 @@ TEST(EvaluateCommand, TinyGridGivesTheTableJsonAndHeatMaps) {
       output.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   // The PD law survives no push and falls to a 60 N one; the zero controller always falls.
-  EXPECT_NE(result.output.find("pd (success rate over 2 episodes per cell)"), std::string::npos)
+  // The table says which start the episodes had: the evaluations' random one by default.
+  EXPECT_NE(result.output.find("pd (success rate over 2 episodes per cell from random starts)"),
+            std::string::npos)
       << result.output;
   EXPECT_NE(result.output.find("0                 100%"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("60                  0%"), std::string::npos) << result.output;
@@ -39,6 +41,7 @@ TEST(EvaluateCommand, TinyGridGivesTheTableJsonAndHeatMaps) {
   EXPECT_NE(result.output.find("overall 0% (0/4 episodes)"), std::string::npos) << result.output;
   const nlohmann::json summary = nlohmann::json::parse(last_line(result.output));
   ASSERT_EQ(summary["controllers"].size(), 2u);
+  EXPECT_EQ(summary["controllers"][0]["start"], "from random starts");
   EXPECT_EQ(summary["controllers"][0]["cells"][0]["successes"], 2);
   EXPECT_EQ(summary["controllers"][0]["cells"][1]["successes"], 0);
   EXPECT_EQ(summary["axes"][0]["values"], nlohmann::json({0.0, 60.0}));

@@ -58,7 +58,11 @@ TEST(EvaluateSuite, TinySuiteWritesTheTableJsonCsvAndHeatMap) {
               " --controller lqr --threads 2 --json --output " + output.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("suite tiny: two worlds"), std::string::npos) << result.output;
+  // The episodes' start, said in the table and the summary.
+  EXPECT_NE(result.output.find("seeds 3.. from random starts; falls"), std::string::npos)
+      << result.output;
   const nlohmann::json summary = nlohmann::json::parse(last_line(result.output));
+  EXPECT_EQ(summary["start"], "from random starts");
   ASSERT_EQ(summary["worlds"].size(), 2u);
   for (const char* label : {"policy", "lqr"}) {
     const auto& nominal = summary["worlds"][0]["results"][label];

@@ -6,6 +6,8 @@
 
 #include "apps/gnuplot_figure.hpp"
 #include "apps/progress_bar.hpp"
+#include "apps/robustness_grid.hpp"
+#include "apps/smoothing_window.hpp"
 
 namespace upkie_rl::apps {
 namespace {
@@ -19,6 +21,31 @@ TEST(FlatSeriesRange, FlatDataGetsTenPercentAroundItsValue) {
   // Varying data, and no data, are left to gnuplot.
   EXPECT_EQ(flat_series_range({{1.0, 2.0}}), "");
   EXPECT_EQ(flat_series_range({{NAN}}), "");
+}
+
+TEST(SmoothingWindow, FitsATenthOfTheRun) {
+  // The 148-update run whose 50-update mean ended 60 below the raw return: 14 updates.
+  EXPECT_EQ(fitted_window(50, 148), 14u);
+  EXPECT_EQ(fitted_window(50, 10'000), 50u);  // a long run keeps the window asked
+  EXPECT_EQ(fitted_window(5, 148), 5u);
+  EXPECT_EQ(fitted_window(50, 3), 1u);  // a few updates: drawn as they are
+  for (std::size_t updates = 1; updates < 2000; ++updates) {
+    EXPECT_LE(fitted_window(50, updates), std::max<std::size_t>(1, updates / 10)) << updates;
+  }
+  EXPECT_EQ(smoothing_label(14), "mean of the last 14 updates (lags about 7)");
+}
+
+TEST(HeatMapAxes, EveryAxisHasAUnit) {
+  EXPECT_EQ(axis_label("push", "Upkie-MuJoCo-Pendulum"), "push [N]");
+  EXPECT_EQ(axis_label("mass", "Upkie-MuJoCo-Pendulum"), "mass [x nominal]");
+  EXPECT_EQ(axis_label("pitch", "Upkie-MuJoCo-Pendulum"), "initial pitch bound [rad]");
+  // Another option: the unit its help states, or none.
+  EXPECT_EQ(axis_label("frequency", "Upkie-MuJoCo-Pendulum"), "frequency [Hz]");
+  EXPECT_EQ(axis_label("push_force", "Upkie-MuJoCo-Pendulum"), "push_force [N]");
+  EXPECT_EQ(axis_label("mass_scale", "Upkie-MuJoCo-Pendulum"), "mass_scale [dimensionless]");
+  for (const char* name : {"push", "mass", "friction", "lag", "delay", "pitch"}) {
+    EXPECT_NE(axis_label(name, "Upkie-MuJoCo-Pendulum").find('['), std::string::npos) << name;
+  }
 }
 
 TEST(ProgressLine, FitsTheWidthAndDropsFieldsInOrder) {

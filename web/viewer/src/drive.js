@@ -31,6 +31,36 @@ const MAX_SAMPLES = 256;
 const FORWARD_KEYS = { ArrowUp: 1, KeyW: 1, ArrowDown: -1, KeyS: -1 };
 const YAW_KEYS = { ArrowLeft: 1, KeyA: 1, ArrowRight: -1, KeyD: -1 };
 const HEIGHT_KEYS = { KeyQ: 1, KeyZ: -1 };
+// The other keys, by the message they send (once per press).
+const COMMAND_KEYS = { KeyR: 'reset', KeyP: 'pause', KeyB: 'push' };
+
+/** How a key code reads on a keyboard: "↑", "W". */
+function keyName(code) {
+  return { ArrowUp: '↑', ArrowDown: '↓', ArrowLeft: '←', ArrowRight: '→' }[code] ?? code.replace(/^Key/, '');
+}
+
+/** The keys of `map` (FORWARD_KEYS, YAW_KEYS or HEIGHT_KEYS) that move with `sign`, as they read. */
+function keysOf(map, sign) {
+  return Object.keys(map).filter((code) => map[code] === sign).map(keyName).join(' / ');
+}
+
+const commandKey = (name) => keyName(Object.keys(COMMAND_KEYS).find((code) => COMMAND_KEYS[code] === name));
+
+/** The page's key legend, [keys, what they do], from the tables the handlers read. */
+export const KEY_LEGEND = [
+  [keysOf(FORWARD_KEYS, 1), 'forward'],
+  [keysOf(FORWARD_KEYS, -1), 'backward'],
+  [keysOf(YAW_KEYS, 1), 'turn left'],
+  [keysOf(YAW_KEYS, -1), 'turn right'],
+  [keysOf(HEIGHT_KEYS, 1), 'raise the base (with a height command)'],
+  [keysOf(HEIGHT_KEYS, -1), 'lower the base'],
+  ['Shift', `full range (${KEY_FRACTION * 100} % without)`],
+  [commandKey('reset'), 'reset'],
+  [commandKey('pause'), 'pause'],
+  [`${commandKey('push')} / Shift+${commandKey('push')}`, 'push forward / backward'],
+  ['click the robot', 'push it away'],
+  ['gamepad', 'left stick forward, right stick turn, D-pad up/down height, A push, Start pause, Back reset'],
+];
 
 /** Appends `value` to `samples`, forgetting the oldest beyond MAX_SAMPLES. */
 function pushBounded(samples, value) {
@@ -166,11 +196,11 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
       sendCommand(currentFraction(gamepad()), event.timeStamp);
     } else if (event.repeat) {
       // held R, P or B: once
-    } else if (event.code === 'KeyR') {
+    } else if (COMMAND_KEYS[event.code] === 'reset') {
       message(K.reset);
-    } else if (event.code === 'KeyP') {
+    } else if (COMMAND_KEYS[event.code] === 'pause') {
       message(K.pause);
-    } else if (event.code === 'KeyB') {
+    } else if (COMMAND_KEYS[event.code] === 'push') {
       message(K.push, { [K.heading]: event.shiftKey ? Math.PI : 0 });
     }
   }));
@@ -237,6 +267,7 @@ export function createDrive(session, { send, hud, robotYaw, pushDirection, canva
     show();
   }
 
+  hud.setKeys(KEY_LEGEND);
   show();
   return { state, onMessage };
 }

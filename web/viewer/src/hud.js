@@ -44,9 +44,11 @@ export function createHud(root) {
   const status = element('div', 'hud-status', 'loading…');
   const drive = element('div', 'hud-drive');
   drive.hidden = true;
+  const keys = element('dl', 'hud-keys');
+  keys.hidden = true;
   const error = element('div', 'hud-error');
   error.hidden = true;
-  root.append(title, table, status, drive, error);
+  root.append(title, table, status, drive, keys, error);
 
   return {
     setTitle(text) {
@@ -65,6 +67,11 @@ export function createHud(root) {
       drive.hidden = false;
       drive.textContent = text;
       drive.dataset.kind = kind;
+    },
+    /** The key legend: [keys, what they do] rows. */
+    setKeys(legend) {
+      keys.replaceChildren(...legend.flatMap(([key, action]) => [element('dt', '', key), element('dd', '', action)]));
+      keys.hidden = false;
     },
     /** `kind` colours the status dot: 'ok', 'idle' or 'bad'. */
     setStatus(text, kind) {

@@ -5,6 +5,11 @@
 import { guard, reportError } from './errors.js';
 
 const RETRY_MS = 2000;
+// The frame rate is the frames that arrived in this window, over the window (or over the
+// time since the connection opened, when shorter): read when shown, it stays true when the
+// server sends frames in batches or the browser delays the page's timers.
+const RATE_WINDOW_MS = 2000;
+const STATUS_MS = 500;
 
 export function createLiveSource(session, layout, { onFrames, onStatusChange, onMessage = () => {} }) {
   const url = (window.location.protocol === 'https:' ? 'wss://' : 'ws://')
@@ -17,14 +22,25 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange, on
     latest: null,  // {data, offset} of the newest frame row
     send: () => false,  // replaced while connected
   };
-  let countAtLastTick = 0;
+  const arrivals = [];  // [time [ms], frame count] of the messages in the rate window
+  let connectedAt = 0;
+
+  /** Frames per second over the rate window, at `now` [ms]. */
+  function frameRate(now) {
+    while (arrivals.length > 0 && arrivals[0][0] <= now - RATE_WINDOW_MS) arrivals.shift();
+    const frames = arrivals.reduce((sum, [, count]) => sum + count, 0);
+    const span = Math.min(RATE_WINDOW_MS, now - connectedAt);
+    return span > 0 ? Math.round((1000 * frames) / span) : 0;
+  }
 
   function status() {
     if (state.endReason !== null) {
       return [`ended: ${state.endReason}${state.connected ? '' : ' (disconnected)'}`, 'idle'];
     }
     if (!state.connected) return ['disconnected', 'bad'];
-    return [`live: ${state.framesPerSecond} frames/s`, 'ok'];
+    state.framesPerSecond = frameRate(performance.now());
+    if (state.framesReceived === 0) return ['live: waiting for frames', 'idle'];
+    return [`live: ${state.framesPerSecond} frames/s (${state.framesReceived} received)`, 'ok'];
   }
 
   function onBinary(buffer) {
@@ -35,6 +51,7 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange, on
     const data = new Float64Array(buffer);
     const count = data.length / layout.size;
     state.framesReceived += count;
+    arrivals.push([performance.now(), count]);
     state.latest = { data, offset: (count - 1) * layout.size };
     onFrames(data, count, state);
   }
@@ -54,6 +71,7 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange, on
     socket.binaryType = 'arraybuffer';
     socket.onopen = guard('websocket open', () => {
       state.connected = true;
+      connectedAt = performance.now();
       state.send = (text) => {
         if (socket.readyState !== WebSocket.OPEN) return false;
         socket.send(text);
@@ -76,10 +94,8 @@ export function createLiveSource(session, layout, { onFrames, onStatusChange, on
   }
 
   setInterval(guard('frame rate', () => {
-    state.framesPerSecond = state.framesReceived - countAtLastTick;
-    countAtLastTick = state.framesReceived;
     if (state.connected) onStatusChange(status(), state);
-  }), 1000);
+  }), STATUS_MS);
 
   try {
     connect();

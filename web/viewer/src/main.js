@@ -31,6 +31,7 @@ const viewer = {
   robotScreenBox: () => null,
   cameraHeight: () => null,
   drive: null,  // the driving state (upkie-rl drive): role, refusals, latencies, testGamepad
+  plots: () => [],  // each chart's title, tick labels last drawn and values' range
 };
 window.upkieViewer = viewer;
 
@@ -64,6 +65,7 @@ function start(session) {
   const plotPanel = document.getElementById('plots');
   plotPanel.hidden = !options.plots;
   const plots = createPlots(plotPanel, layout);
+  viewer.plots = () => plots.describe();
 
   // Each source yields the frame row to draw at this animation frame.
   let nextFrame;

@@ -1,8 +1,13 @@
 // Time plots (uPlot) of pitch, ground position and actions. Live: a sliding window over the
 // current episode. Replay: the whole episode with a marker at the time drawn.
 import uPlot from 'uplot';
+import { tickLabels } from './ticks.js';
 
 const LIVE_WINDOW = 10.0;  // seconds of the current episode kept in live plots
+// Least height of a chart's drawing area [CSS px]: the actions chart, whose legend of six
+// names took most of its share of the panel, drew its curves in 15 px, flat. The panel
+// scrolls when the charts do not fit.
+const MIN_PLOT_AREA = 60;
 const ACTION_COLORS = ['#e8590c', '#7048e8', '#d6336c', '#1098ad', '#5c940d', '#495057'];
 
 function chartSpecs(layout) {
@@ -34,8 +39,18 @@ function chartSpecs(layout) {
   return specs;
 }
 
-const axis = (label) => ({
+/** Height of a chart's drawing area between its axes [CSS px] (uPlot's bbox is in device px). */
+function plotArea(plot) {
+  return plot.bbox.height / (window.devicePixelRatio || 1);
+}
+
+/** An axis named `label` whose tick labels go through tickLabels and into `drawn`. */
+const axis = (label, drawn) => ({
   label,
+  values: (plot, splits, axisIndex, space, increment) => {
+    drawn[axisIndex] = tickLabels(splits, increment);
+    return drawn[axisIndex];
+  },
   labelSize: 18,
   labelFont: '11px system-ui, sans-serif',
   font: '11px system-ui, sans-serif',
@@ -48,6 +63,7 @@ export function createPlots(panel, layout) {
   const timeIndex = layout.index.time;
   const specs = chartSpecs(layout);
   const charts = specs.map((spec, chartIndex) => {
+    const drawn = [[], []];  // the tick labels last drawn: time axis, value axis
     const wrapper = document.createElement('div');
     wrapper.className = 'plot';
     panel.append(wrapper);
@@ -64,28 +80,38 @@ export function createPlots(panel, layout) {
         ...spec.series.map(({ label, stroke }) => ({ label, stroke, width: 1.5 })),
       ],
       // The charts share their time axis: the last one names it.
-      axes: [axis(chartIndex === specs.length - 1 ? 'time [s]' : null), { ...axis(null), size: 52 }],
+      axes: [axis(chartIndex === specs.length - 1 ? 'time [s]' : null, drawn),
+        // Ticks 20 px apart at least: three or more on the smallest chart.
+        { ...axis(null, drawn), size: 52, space: 20 }],
     }, [[], ...spec.series.map(() => [])], wrapper);
     const marker = document.createElement('div');
     marker.className = 'plot-marker';
     marker.hidden = true;
     plot.over.append(marker);
-    return { spec, wrapper, plot, marker, columns: [[], ...spec.series.map(() => [])] };
+    return { spec, wrapper, plot, marker, drawn, columns: [[], ...spec.series.map(() => [])] };
   });
 
-  // Fit each chart to its share of the panel: what uPlot draws outside its canvas (title,
-  // legend) does not depend on the canvas height.
+  // Fit each chart to its share of the panel, its drawing area at least MIN_PLOT_AREA: what
+  // uPlot draws outside its canvas (title, legend) and around the drawing area (axes) does
+  // not depend on the canvas height.
   function fit() {
     for (const { wrapper, plot } of charts) {
       const extra = plot.root.offsetHeight - plot.height;
+      const axes = plot.height - plotArea(plot);
+      const least = Math.ceil(MIN_PLOT_AREA + axes);
+      wrapper.style.minHeight = `${least + extra}px`;
       const width = wrapper.clientWidth;
-      const height = Math.max(60, wrapper.clientHeight - extra);
+      const height = Math.max(least, wrapper.clientHeight - extra);
       if (width > 0 && (width !== plot.width || height !== plot.height)) {
         plot.setSize({ width, height });
       }
     }
   }
   new ResizeObserver(fit).observe(panel);
+  // uPlot sizes its axes once it has data: the first fit cannot know them.
+  function fitIfSqueezed() {
+    if (charts.some(({ plot }) => plotArea(plot) < MIN_PLOT_AREA - 0.5)) fit();
+  }
 
   let dirty = false;
   let lastEpisode = null;
@@ -117,6 +143,7 @@ export function createPlots(panel, layout) {
       if (first > 0) columns.forEach((column) => column.splice(0, first));
       plot.setData(columns);
     }
+    fitIfSqueezed();
   }
 
   /** Replay: shows the `count` frame rows of `data` (a whole episode). */
@@ -130,6 +157,7 @@ export function createPlots(panel, layout) {
       }
       plot.setData(columns);
     }
+    fitIfSqueezed();
   }
 
   /** Replay: the vertical marker at time `t`. */
@@ -141,5 +169,23 @@ export function createPlots(panel, layout) {
     }
   }
 
-  return { append, flush, showEpisode, mark, fit };
+  /**
+   * Each chart's title, drawing-area height [CSS px], the tick labels it last drew and its
+   * series' ranges (tests).
+   */
+  function describe() {
+    return charts.map(({ spec, drawn, plot }) => ({
+      title: spec.title,
+      plotArea: plotArea(plot),
+      timeTicks: drawn[0],
+      valueTicks: drawn[1],
+      series: spec.series.map(({ label }, i) => {
+        const values = Array.from(plot.data[i + 1] ?? []).filter(Number.isFinite);
+        return { label, min: values.reduce((a, b) => Math.min(a, b), Infinity),
+          max: values.reduce((a, b) => Math.max(a, b), -Infinity) };
+      }),
+    }));
+  }
+
+  return { append, flush, showEpisode, mark, fit, describe };
 }

@@ -136,6 +136,45 @@ describe('drive', () => {
       `the base went down: ${start.base_z} m to ${settled.base_z} m`);
   });
 
+  test('the page lists its keys, counts its frames truly and draws legible, moving charts', async () => {
+    const drive = await startDrive();
+    const { page, errors } = await openViewer(browser, drive.url, { width: 640, height: 400 });
+    // The key legend, from the tables the key handlers read.
+    const legend = await page.evaluate(() => [...document.querySelectorAll('.hud-keys dt, .hud-keys dd')]
+      .map((node) => node.textContent));
+    for (const entry of ['↑ / W', 'forward', '← / A', 'turn left', 'R', 'reset', 'P', 'pause', 'B / Shift+B', 'Q', 'raise the base (with a height command)']) {
+      assert.ok(legend.includes(entry), `the legend lists "${entry}": ${legend}`);
+    }
+    assert.ok(await page.evaluate(() => !document.querySelector('.hud-keys').hidden), 'the legend shows');
+    // Drive, so that the baseline's actions move.
+    await hold(page, 'KeyW', 1500);
+    await hold(page, 'KeyA', 800);
+    await page.waitForTimeout(1500);
+    const status = await page.evaluate(() => document.querySelector('.hud-status').textContent);
+    const received = await page.evaluate(() => window.upkieViewer.framesReceived);
+    const rate = Number(status.match(/^live: (\d+) frames\/s/)?.[1]);
+    // The drive streams its 50 Hz steps in real time (the headless page may lag a little).
+    assert.ok(received > 100 && rate >= 20 && rate <= 80, `${status} with ${received} frames received`);
+    const charts = await page.evaluate(() => window.upkieViewer.plots());
+    for (const chart of charts) {
+      for (const ticks of [chart.timeTicks, chart.valueTicks]) {
+        const shown = ticks.filter((label) => label !== '');
+        assert.ok(shown.length >= 2, `${chart.title}: ticks ${ticks}`);
+        assert.equal(new Set(shown).size, shown.length, `${chart.title}: two equal ticks in ${ticks}`);
+      }
+    }
+    for (const chart of charts) {
+      assert.ok(chart.plotArea >= 59, `${chart.title}: its curves get ${chart.plotArea} px`);
+    }
+    const actions = charts.find((chart) => chart.title === 'Actions');
+    assert.ok(actions, `an actions chart: ${charts.map((chart) => chart.title)}`);
+    const moving = actions.series.filter(({ min, max }) => max - min > 0.01);
+    assert.ok(moving.length >= 2, `the wheels' actions move: ${JSON.stringify(actions.series)}`);
+    assert.deepEqual(errors, []);
+    await page.context().close();
+    await stopDrive(drive);
+  });
+
   test('a scripted gamepad drives, pauses, pushes and resets', async () => {
     const drive = await startDrive();
     const { page, errors } = await openViewer(browser, `${drive.url}?plots=0`, SMALL);
