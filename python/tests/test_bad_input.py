@@ -88,7 +88,8 @@ def test_id_that_is_not_a_string_is_a_one_line_type_error(make):
     lambda: upkie_rl.env_options("Upkie\nPendulum"),
     lambda: upkie_rl.make_vec("Upkie-Mock-Pendulum\r\x01", 1),
     lambda: upkie_rl.UpkieEnv("Upkie-Mock-Pendulum", **{"fall\npitch": 1.0}),
-], ids=["env_options", "make_vec", "option_name"])
+    lambda: upkie_rl.UpkieEnv("\n", render_mode=float("nan")),
+], ids=["env_options", "make_vec", "option_name", "render_mode"])
 def test_control_characters_in_an_error_are_escaped_onto_one_line(make):
     with pytest.raises(ValueError) as raised:
         make()

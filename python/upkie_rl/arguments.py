@@ -64,9 +64,12 @@ def render_size(width: Any, height: Any) -> Tuple[int, int]:
 
 def env_id_argument(env_id: Any) -> str:
     """``env_id`` if it is a string (an id is checked by the registry); TypeError otherwise,
-    before pybind11 answers with its four-line "incompatible function arguments"."""
+    before pybind11 answers with its four-line "incompatible function arguments", and
+    ValueError for one with a newline or another unprintable character."""
     if not isinstance(env_id, str):
         raise TypeError(
             f"env_id: {env_id!r} is not a string; expected an id such as 'Upkie-Bullet-Pendulum'"
         )
+    if not env_id.isprintable():  # no id has one; the messages that quote it stay one line
+        raise ValueError(f"env_id: {env_id!r} holds unprintable characters; no id does")
     return env_id

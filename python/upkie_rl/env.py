@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _core
 from .actions import as_action_array
-from .arguments import flag_argument, render_size, seed_argument
+from .arguments import env_id_argument, flag_argument, render_size, seed_argument
 from .options import to_env_options
 from .spaces import NestedLayout, box, is_nested
 
@@ -48,6 +48,7 @@ class UpkieEnv(gym.Env):
         render_overlay: bool = False,
         **options: Any,
     ) -> None:
+        env_id_argument(env_id)  # its messages below quote it
         if render_mode not in (None, "rgb_array"):
             raise ValueError(
                 f"{env_id}: render_mode {render_mode!r} is not supported; use 'rgb_array'"
