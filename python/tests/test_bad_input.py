@@ -11,6 +11,7 @@ import pytest
 
 import upkie_rl
 from upkie_rl.safe_pickle import UnsafePickleError, load_allowlisted
+from upkie_rl import sb3_convert
 from upkie_rl.sb3_convert import ConversionError, describe_sb3, import_sb3
 
 ENV_ID = "Upkie-Bullet-Pendulum"
@@ -53,6 +54,17 @@ def test_policy_kwargs_that_is_not_an_object_is_refused(tmp_path):
     path = sb3_zip(tmp_path / "kwargs.zip", ppo_data(policy_kwargs=[None]))
     with pytest.raises(ConversionError, match="policy_kwargs is a list, not an object"):
         import_sb3(path, ENV_ID, tmp_path / "m.ckpt")
+
+
+def test_class_names_with_newlines_are_quoted_onto_one_line(tmp_path):
+    path = sb3_zip(tmp_path / "names.zip", ppo_data(policy_kwargs={
+        "features_extractor_class": "\n"}))
+    with pytest.raises(ConversionError) as error:
+        import_sb3(path, ENV_ID, tmp_path / "m.ckpt")
+    assert len(str(error.value).splitlines()) == 1
+    assert "features extractor '\\n'; only FlattenExtractor" in str(error.value)
+    # The activation's name reaches its message the same way, cut to 60 characters.
+    assert sb3_convert._class_name("<class 'x'\n>" + "y" * 100) == repr("<class 'x'\n>" + "y" * 48)
 
 
 @pytest.mark.parametrize("shape", ["(", "[" * 5000, "(1.5,)", "('a',)"],

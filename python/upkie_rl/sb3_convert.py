@@ -125,9 +125,10 @@ def _object(data: dict, key: str, where: str) -> dict:
 
 
 def _class_name(entry) -> str:
-    """The class an SB3 data entry names ('<class 'torch.nn...ReLU'>' -> 'ReLU')."""
+    """The class an SB3 data entry names ('<class 'torch.nn...ReLU'>' -> 'ReLU'), or the
+    entry quoted and cut to 60 characters: it goes into one-line error messages."""
     match = re.search(r"([A-Za-z_][A-Za-z0-9_]*)'>$", str(entry))
-    return match.group(1) if match else str(entry)
+    return match.group(1) if match else repr(str(entry)[:60])
 
 
 def _policy_class_name(data: dict) -> str:

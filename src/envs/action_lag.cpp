@@ -27,6 +27,10 @@ std::string ActionLagSettings::problem() const {
     return "ActionLag: action_delay must be in [0, " + std::to_string(kMaxDelaySteps) + "], got " +
            std::to_string(delay_steps);
   }
+  if (delay_steps_max < 0 || delay_steps_max > kMaxDelaySteps) {
+    return "ActionLag: action_delay_max must be in [0, " + std::to_string(kMaxDelaySteps) +
+           "], got " + std::to_string(delay_steps_max);
+  }
   return "";
 }
 
@@ -39,6 +43,9 @@ void ActionLagSettings::declare_options(OptionTable& table) {
                  "largest action lag time constant [s], 0 for no lag");
   table.add_integer("action_delay", &delay_steps, 0, kMaxDelaySteps,
                     "steps between an action and its application");
+  table.add_integer("action_delay_max", &delay_steps_max, 0, kMaxDelaySteps,
+                    "largest delay drawn per episode in U{action_delay..max} [steps], 0 for "
+                    "a fixed delay");
   table.add_rule([this] { return problem(); });
 }
 
@@ -50,14 +57,18 @@ ActionLag::ActionLag(std::unique_ptr<Env> env, const ActionLagSettings& settings
   env_->neutral_action(neutral_);
   filtered_ = neutral_;
   delayed_ = neutral_;
-  queue_.reserve(size * static_cast<std::size_t>(settings.delay_steps));
+  queue_.reserve(size * static_cast<std::size_t>(settings.largest_delay()));
 }
 
 void ActionLag::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
   if (seed) generator_.seed(derive_seed(*seed, kActionLagStream));
   time_constant_ = scale_ * uniform_between(generator_, settings_.time_constant_min,
                                             settings_.time_constant_max);
-  delay_ = static_cast<int>(std::lround(scale_ * settings_.delay_steps));
+  const int drawn_delay =
+      settings_.largest_delay() > settings_.delay_steps
+          ? uniform_integer(generator_, settings_.delay_steps, settings_.largest_delay())
+          : settings_.delay_steps;
+  delay_ = static_cast<int>(std::lround(scale_ * drawn_delay));
   queue_.clear();
   for (int i = 0; i < delay_; ++i) queue_.insert(queue_.end(), neutral_.begin(), neutral_.end());
   head_ = 0;

@@ -99,6 +99,11 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   double lag_min = 0.0;
   double lag_max = 0.0;
   for (const auto& [name, value] : options) {
+    if (name == "action_delay_max") {
+      throw std::invalid_argument(
+          "identify: action_delay_max draws a delay per episode; a log is replayed with one "
+          "delay, set action_delay");
+    }
     if (!is_actuation_option(name)) {
       options_.emplace_back(name, value);
       continue;

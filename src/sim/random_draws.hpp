@@ -25,6 +25,13 @@ inline double uniform_between(std::mt19937_64& generator, double low, double hig
   return low + (high - low) * uniform_unit(generator);
 }
 
+/// A uniform integer draw in {low, ..., high} (low <= high), from one uniform_unit draw.
+inline int uniform_integer(std::mt19937_64& generator, int low, int high) {
+  const double span = static_cast<double>(high) - static_cast<double>(low) + 1.0;
+  const int offset = static_cast<int>(std::floor(span * uniform_unit(generator)));
+  return offset > high - low ? high : low + offset;  // the guard covers rounding at the top
+}
+
 /// A standard normal draw (Box-Muller; two uniform draws per call, the second normal of
 /// the pair discarded so that the count of draws never depends on history).
 inline double standard_normal(std::mt19937_64& generator) {

@@ -9,7 +9,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "agent/agent_spine.hpp"
 #include "agent/record_columns.hpp"
@@ -32,48 +35,65 @@ using testing::temp_path;
 
 constexpr double kFrequency = 50.0;  // [Hz] of the velocity task
 
+/// The checkpoint of one PPO iteration of velocity.yaml with `settings` (more --set pairs),
+/// trained in a fresh run directory named for `tag` (about 10 s on a loaded 2-core machine).
+std::string train_tiny_velocity_policy(const std::string& tag,
+                                       const std::vector<std::string>& settings) {
+  const auto run_dir = temp_path("agent_" + tag + "_run");
+  std::filesystem::remove_all(run_dir);
+  const std::string configs = std::string(UPKIE_RL_TEST_DATA_DIR) + "/../../configs/";
+  std::vector<std::string> args = {UPKIE_RL_CLI_PATH, "train", "--config",
+                                   configs + "velocity.yaml"};
+  for (const std::string& setting : {"ppo.total_timesteps=1024", "ppo.n_steps=1024",
+                                     "ppo.batch_size=512", "env.num_envs=2", "env.threads=1"}) {
+    args.insert(args.end(), {"--set", setting});
+  }
+  for (const std::string& setting : settings) args.insert(args.end(), {"--set", setting});
+  args.insert(args.end(), {"--run-dir", run_dir.string()});
+  BackgroundProcess train(args, "agent_" + tag + "_train");
+  EXPECT_EQ(train.wait(), 0) << train.output();
+  std::string model;
+  for (const auto& entry : std::filesystem::directory_iterator(run_dir)) {
+    if (entry.path().extension() == ".ckpt") model = entry.path().string();
+  }
+  EXPECT_FALSE(model.empty()) << train.output();
+  return model;
+}
+
+/// Runs the agent with `model` for `duration` s on a MuJoCo spine with `extra` options,
+/// through `sh -c` when `feed` (a shell command whose output becomes the agent's standard
+/// input) is given, checks that it ran the velocity task and detached, and returns its output.
+std::string run_velocity_agent(const std::string& model, const std::string& tag,
+                               const std::string& duration, std::vector<std::string> extra,
+                               const std::string& feed = "") {
+  Spine spine(tag, {}, "mujoco");
+  std::vector<std::string> args = {"--duration", duration, "--max-pitch", "1.2"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::unique_ptr<BackgroundProcess> agent;
+  if (feed.empty()) {
+    agent = start_agent(spine, model, tag, args);
+  } else {
+    std::string command = "(" + feed + ") | " + UPKIE_RL_AGENT_PATH + " --model " + model +
+                          " --shm-name " + spine.shm_name();
+    for (const std::string& arg : args) command += " " + arg;
+    agent = std::make_unique<BackgroundProcess>(std::vector<std::string>{"sh", "-c", command}, tag);
+  }
+  const int status = agent->wait();
+  const std::string output = agent->output();
+  EXPECT_TRUE(status == 0 || status == 2) << output;  // 2: the supervisor stopped a fall
+  EXPECT_NE(output.find("on Upkie-Spine-Velocity at 50 Hz"), std::string::npos) << output;
+  EXPECT_NE(output.find("stopping -> stopped: detached"), std::string::npos) << output;
+  return output;
+}
+
+/// A standing velocity policy (velocity.yaml's task).
 class VelocityRunner : public ::testing::Test {
  protected:
-  /// One iteration of PPO on the velocity task (about 10 s on a loaded 2-core machine).
-  static void SetUpTestSuite() {
-    const auto run_dir = temp_path("agent_velocity_run");
-    std::filesystem::remove_all(run_dir);
-    const std::string configs = std::string(UPKIE_RL_TEST_DATA_DIR) + "/../../configs/";
-    BackgroundProcess train(
-        {UPKIE_RL_CLI_PATH, "train", "--config", configs + "velocity.yaml", "--set",
-         "ppo.total_timesteps=1024", "--set", "ppo.n_steps=1024", "--set", "ppo.batch_size=512",
-         "--set", "env.num_envs=2", "--set", "env.threads=1", "--run-dir", run_dir.string()},
-        "agent_velocity_train");
-    ASSERT_EQ(train.wait(), 0) << train.output();
-    for (const auto& entry : std::filesystem::directory_iterator(run_dir)) {
-      if (entry.path().extension() == ".ckpt") model_ = entry.path().string();
-    }
-    ASSERT_FALSE(model_.empty()) << train.output();
-  }
+  static void SetUpTestSuite() { model_ = train_tiny_velocity_policy("velocity", {}); }
 
-  /// Runs the agent on a MuJoCo spine with `extra` options, through `sh -c` when `feed` (a
-  /// shell command whose output becomes the agent's standard input) is given.
   static std::string run_agent(const std::string& tag, std::vector<std::string> extra,
                                const std::string& feed = "") {
-    Spine spine("velocity_" + tag, {}, "mujoco");
-    std::vector<std::string> args = {"--duration", "3", "--max-pitch", "1.2"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    std::unique_ptr<BackgroundProcess> agent;
-    if (feed.empty()) {
-      agent = start_agent(spine, model_, "velocity_" + tag, args);
-    } else {
-      std::string command = "(" + feed + ") | " + UPKIE_RL_AGENT_PATH + " --model " + model_ +
-                            " --shm-name " + spine.shm_name();
-      for (const std::string& arg : args) command += " " + arg;
-      agent = std::make_unique<BackgroundProcess>(std::vector<std::string>{"sh", "-c", command},
-                                                  "velocity_" + tag);
-    }
-    const int status = agent->wait();
-    const std::string output = agent->output();
-    EXPECT_TRUE(status == 0 || status == 2) << output;  // 2: the supervisor stopped a fall
-    EXPECT_NE(output.find("on Upkie-Spine-Velocity at 50 Hz"), std::string::npos) << output;
-    EXPECT_NE(output.find("stopping -> stopped: detached"), std::string::npos) << output;
-    return output;
+    return run_velocity_agent(model_, "velocity_" + tag, "3", std::move(extra), feed);
   }
 
   static inline std::string model_;
@@ -204,51 +224,19 @@ TEST(VelocityRunnerOptions, CommandsNeedAVelocityPolicy) {
   EXPECT_NE(output.find("was trained on Upkie-Bullet-Pendulum"), std::string::npos) << output;
 }
 
-}  // namespace
-}  // namespace upkie_rl
-
-namespace upkie_rl {
-namespace {
-
 /// A velocity policy with the body-height command (a short training made here, as above).
 class HeightRunner : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const auto run_dir = temp_path("agent_height_run");
-    std::filesystem::remove_all(run_dir);
-    const std::string configs = std::string(UPKIE_RL_TEST_DATA_DIR) + "/../../configs/";
-    BackgroundProcess train({UPKIE_RL_CLI_PATH, "train",
-                             "--config",        configs + "velocity.yaml",
-                             "--set",           "env.options.height_command=true",
-                             "--set",           "env.options.leg_action_scale=1",
-                             "--set",           "ppo.total_timesteps=1024",
-                             "--set",           "ppo.n_steps=1024",
-                             "--set",           "ppo.batch_size=512",
-                             "--set",           "env.num_envs=2",
-                             "--set",           "env.threads=1",
-                             "--run-dir",       run_dir.string()},
-                            "agent_height_train");
-    ASSERT_EQ(train.wait(), 0) << train.output();
-    for (const auto& entry : std::filesystem::directory_iterator(run_dir)) {
-      if (entry.path().extension() == ".ckpt") model_ = entry.path().string();
-    }
-    ASSERT_FALSE(model_.empty()) << train.output();
+    model_ = train_tiny_velocity_policy(
+        "height", {"env.options.height_command=true", "env.options.leg_action_scale=1"});
   }
 
+  /// The agent reads its standard input, which stays open 3 s without a `feed`.
   static std::string run_agent(const std::string& tag, std::vector<std::string> extra,
                                const std::string& feed = "") {
-    Spine spine("height_" + tag, {}, "mujoco");
-    std::vector<std::string> args = {"--duration", "2", "--max-pitch", "1.2"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    std::string command = "(" + (feed.empty() ? std::string("sleep 3") : feed) + ") | " +
-                          UPKIE_RL_AGENT_PATH + " --model " + model_ + " --shm-name " +
-                          spine.shm_name();
-    for (const std::string& arg : args) command += " " + arg;
-    BackgroundProcess agent({"sh", "-c", command}, "height_" + tag);
-    const int status = agent.wait();
-    const std::string output = agent.output();
-    EXPECT_TRUE(status == 0 || status == 2) << output;
-    return output;
+    return run_velocity_agent(model_, "height_" + tag, "2", std::move(extra),
+                              feed.empty() ? "sleep 3" : feed);
   }
 
   static inline std::string model_;

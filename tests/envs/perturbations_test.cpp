@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -410,6 +411,39 @@ TEST(ActionLag, RejectsNonFiniteActionsAtOnceNamingThem) {
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("ground_velocity"), std::string::npos);
   }
+}
+
+TEST(ActionLag, DrawsTheDelayPerEpisodeAndActsAsThatFixedDelay) {
+  ActionLagSettings settings;
+  settings.delay_steps = 1;
+  settings.delay_steps_max = 3;
+  ActionLag drawn(make_env("Upkie-Mock-Pendulum"), settings);
+  std::vector<float> observation(4);
+  std::vector<float> fixed_observation(4);
+  std::set<int> delays;
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    drawn.reset(seed, observation);
+    ASSERT_GE(drawn.delay(), 1);
+    ASSERT_LE(drawn.delay(), 3);
+    delays.insert(drawn.delay());
+    ActionLagSettings fixed_settings;
+    fixed_settings.delay_steps = drawn.delay();
+    ActionLag fixed(make_env("Upkie-Mock-Pendulum"), fixed_settings);
+    fixed.reset(seed, fixed_observation);
+    for (int step = 0; step < 8; ++step) {
+      const std::vector<float> action = {0.1f * static_cast<float>(step)};
+      drawn.step(action, observation);
+      fixed.step(action, fixed_observation);
+      ASSERT_EQ(observation, fixed_observation) << "seed " << seed << ", step " << step;
+    }
+  }
+  EXPECT_EQ(delays, (std::set<int>{1, 2, 3}));
+}
+
+TEST(ActionLag, RefusesADelayMaximumOutOfRangeNamingIt) {
+  ActionLagSettings settings;
+  settings.delay_steps_max = -1;
+  EXPECT_NE(settings.problem().find("action_delay_max"), std::string::npos);
 }
 
 }  // namespace

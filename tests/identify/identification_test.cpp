@@ -124,6 +124,20 @@ TEST(Identification, LogWithoutServoCommandsIsRefused) {
   }
 }
 
+TEST(Identification, DelayDrawnPerEpisodeIsRefusedNamingTheOption) {
+  const RobotLog log = simulated_log("delay_max.mpack", {});
+  IdentificationSettings settings;
+  settings.env_id = "Upkie-Bullet-Servos";
+  settings.parameters = parse_parameter_requests({"mass_scale"});
+  settings.options = {{"action_delay_max", "2"}};
+  try {
+    identify(log, settings);
+    FAIL() << "a log is replayed with one delay";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("action_delay_max"), std::string::npos);
+  }
+}
+
 TEST(Identification, WrongFrequencyIsRefused) {
   const auto path = testing::temp_path("frequency.mpack");
   ExcitationSettings excitation;
