@@ -10,6 +10,7 @@
 #include "apps/gnuplot_figure.hpp"
 #include "apps/tracking_report.hpp"
 #include "envs/evaluation_start.hpp"
+#include "model/csv_field.hpp"
 
 namespace upkie_rl::apps {
 namespace {
@@ -20,13 +21,6 @@ std::string engine_of(const std::string& env_id) {
   const std::size_t second = env_id.find('-', first + 1);
   if (first == std::string::npos || second == std::string::npos) return env_id;
   return env_id.substr(first + 1, second - first - 1);
-}
-
-/// World names and labels are the user's text: quoted, quotes doubled (RFC 4180).
-std::string csv_quoted(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + '"';
 }
 
 int falls(const CellResult& cell) { return cell.summary.episodes - cell.successes; }
@@ -253,8 +247,8 @@ std::string suite_csv(const SuiteResults& run) {
     const SuiteWorld& world = run.suite.worlds[w];
     for (std::size_t c = 0; c < run.labels.size(); ++c) {
       const CellResult& cell = run.results[w][c];
-      out << csv_quoted(world.name) << ',' << world.env_id << ',' << csv_quoted(run.labels[c])
-          << ',' << cell.summary.episodes << ',' << falls(cell) << ',' << cell.early_falls << ','
+      out << csv_field(world.name) << ',' << world.env_id << ',' << csv_field(run.labels[c]) << ','
+          << cell.summary.episodes << ',' << falls(cell) << ',' << cell.early_falls << ','
           << cell.summary.tracking.rms_forward() << ',' << cell.summary.tracking.rms_yaw() << ','
           << cell.mean_return << '\n';
     }

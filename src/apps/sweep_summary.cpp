@@ -15,19 +15,12 @@
 #include "apps/gnuplot_figure.hpp"
 #include "apps/progress_bar.hpp"
 #include "apps/sweep_outcome.hpp"
+#include "model/csv_field.hpp"
 #include "rl/scalar_csv_writer.hpp"
 
 namespace upkie_rl::apps {
 
 namespace {
-
-/// A CSV field: quoted when it holds a comma or a quote.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
 
 struct RunRow {
   const SweepRun* run = nullptr;

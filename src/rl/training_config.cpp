@@ -196,6 +196,17 @@ void TrainingConfig::declare_run_options(OptionTable& table) {
   table.add_integer<std::int64_t>("env.num_envs", &num_envs, 1,
                                   static_cast<std::int64_t>(kMaxVectorEnvs),
                                   "environments stepped together");
+  table.add_text("env.mix_id", &mix_env_id,
+                 "the same task on another engine, stepped by env.mix_envs of the environments "
+                 "(none: no other)");
+  table.add_integer<std::int64_t>(
+      "env.mix_envs", &mix_envs, 0, static_cast<std::int64_t>(kMaxVectorEnvs) - 1,
+      "environments of env.mix_id, spread among the others", [this] {
+        if (mix_envs == 0) return std::string();
+        if (mix_env_id == "none") return std::string("needs env.mix_id to name an environment");
+        if (mix_envs < num_envs) return std::string();
+        return "must be below env.num_envs (" + std::to_string(num_envs) + ")";
+      });
   table.add_integer<std::int64_t>("env.threads", &env_threads, 0,
                                   static_cast<std::int64_t>(kMaxEnvThreads),
                                   "worker threads of the vector environment, 0 for none");

@@ -80,6 +80,11 @@ struct TrainingConfig {
   /// Environment options as key=value strings, passed to the environment registry.
   std::vector<std::pair<std::string, std::string>> env_options;
   std::int64_t num_envs = 10;
+  /// A second id of the same task on another engine (Upkie-Bullet-Velocity beside
+  /// Upkie-MuJoCo-Velocity), stepped by mix_envs of the num_envs environments; "none"
+  /// (with mix_envs 0) for none.
+  std::string mix_env_id = "none";
+  std::int64_t mix_envs = 0;
   /// Worker threads of the vector environment (0: synchronous stepping).
   std::int64_t env_threads = 2;
   /// Curriculum: every randomisation bound of the environments (initial state,
@@ -107,7 +112,8 @@ struct TrainingConfig {
   /// list that parse_training_config, apply_overrides, validate and to_yaml read.
   /// env.options.* are the environment's (envs/registry.hpp), not declared here.
   void declare_options(OptionTable& table);
-  /// Declares env.id, env.num_envs, env.threads and env.curriculum_steps.
+  /// Declares env.id, env.num_envs, env.mix_id, env.mix_envs, env.threads and
+  /// env.curriculum_steps.
   void declare_run_options(OptionTable& table);
 
   /// Throws std::invalid_argument naming the key of the first inconsistent or out-of-range

@@ -253,9 +253,10 @@ TrainingRun::TrainingRun(ResumeTag, TrainingConfig config, std::filesystem::path
 }
 
 void TrainingRun::make_learner() {
-  auto inner = make_vector_env(config_.env_id, config_.env_options,
-                               static_cast<std::size_t>(config_.num_envs),
-                               static_cast<std::size_t>(config_.env_threads));
+  auto inner = make_mixed_vector_env(
+      config_.env_id, config_.mix_env_id, static_cast<std::size_t>(config_.mix_envs),
+      config_.env_options, static_cast<std::size_t>(config_.num_envs),
+      static_cast<std::size_t>(config_.env_threads));
   auto normalize = std::make_unique<VecNormalize>(std::move(inner), config_.normalize);
   normalize_ = normalize.get();
   env_ = std::move(normalize);

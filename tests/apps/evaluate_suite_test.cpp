@@ -87,7 +87,7 @@ TEST(EvaluateSuite, TinySuiteWritesTheTableJsonCsvAndHeatMap) {
   bool quoted = false;
   while (std::getline(csv, row)) {
     ++rows;
-    quoted |= row.rfind(R"("no torque, ""really""",Upkie-MuJoCo-Velocity,"policy",2,2,2,)", 0) == 0;
+    quoted |= row.rfind(R"("no torque, ""really""",Upkie-MuJoCo-Velocity,policy,2,2,2,)", 0) == 0;
   }
   EXPECT_EQ(rows, 4);
   EXPECT_TRUE(quoted);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "model/csv_field.hpp"
 #include "model/number_text.hpp"
 #include "model/split_fields.hpp"
 
@@ -21,6 +22,16 @@ TEST(SplitFields, KeepsEveryEmptyField) {
   EXPECT_EQ(split_fields("a,"), (Fields{"a", ""}));
   EXPECT_EQ(split_fields(",a"), (Fields{"", "a"}));
   EXPECT_EQ(split_fields(""), (Fields{""}));
+}
+
+TEST(CsvField, QuotesOnlyWhatNeedsItAndDoublesQuotes) {
+  EXPECT_EQ(csv_field("nominal"), "nominal");
+  EXPECT_EQ(csv_field(""), "");
+  EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
+  EXPECT_EQ(csv_field("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(csv_field("two\nlines"), "\"two\nlines\"");
+  // What split_fields reads back of a field without separators.
+  EXPECT_EQ(split_fields(csv_field("plain") + "," + csv_field("x")), (Fields{"plain", "x"}));
 }
 
 TEST(SplitFields, TakesAnySeparator) {

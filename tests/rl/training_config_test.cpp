@@ -192,6 +192,14 @@ TEST(TrainingConfig, ValidateNamesTheInconsistentKey) {
   config = TrainingConfig{};
   config.num_envs = 0;
   expect_error_mentions([&] { config.validate(); }, "env.num_envs");
+  config = TrainingConfig{};
+  config.mix_envs = 2;  // and no env.mix_id
+  expect_error_mentions([&] { config.validate(); }, "env.mix_id");
+  config.mix_env_id = "Upkie-MuJoCo-Pendulum";
+  config.mix_envs = config.num_envs;  // none left of env.id
+  expect_error_mentions([&] { config.validate(); }, "env.mix_envs");
+  config.mix_envs = config.num_envs - 1;
+  EXPECT_NO_THROW(config.validate());
 }
 
 }  // namespace
