@@ -1,6 +1,7 @@
 """Each failure kind the fuzzing (fuzz_inputs.py) found, as a one-line error: the readers of
 SB3 zips and VecNormalize files, and the public functions given an id that is not a string."""
 
+import gc
 import json
 import os
 import subprocess
@@ -82,6 +83,16 @@ def test_pickle_error_spanning_lines_becomes_one_line(tmp_path):
     with pytest.raises(UnsafePickleError) as raised:
         load_allowlisted(path)
     assert "\n" not in str(raised.value) and "persistent id" in str(raised.value)
+
+
+def test_bytearray_longer_than_the_file_is_refused_and_nothing_is_printed(tmp_path, capfd):
+    path = tmp_path / "bytearray.pkl"
+    path.write_bytes(b"\x96 \x108v\xb2\x10\xfc ")  # BYTEARRAY8 of 277 TB, found by fuzzing
+    with pytest.raises(UnsafePickleError) as raised:
+        load_allowlisted(path)
+    assert "\n" not in str(raised.value) and "bytearray8" in str(raised.value)
+    gc.collect()  # CPython printed its SystemError when the collector freed the bytearray
+    assert capfd.readouterr().err == ""
 
 
 @pytest.mark.parametrize("make", [

@@ -10,7 +10,9 @@ resolves only an allowlist of names, and none of them to SB3 or Gymnasium classe
   ``scalar``), which build arrays from bytes, and its random-generator constructors, which
   also become inert records.
 
-Any other name raises ``UnsafePickleError`` naming it; so does a file over ``MAX_BYTES``.
+Any other name raises ``UnsafePickleError`` naming it; so does a file over ``MAX_BYTES``, and
+a file whose opcodes ``pickletools`` cannot walk (a length past the end of the data, which
+would otherwise be allocated first and found missing after).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from __future__ import annotations
 import importlib
 import io
 import pickle
+import pickletools
 from pathlib import Path
 from typing import Union
 
@@ -63,6 +66,22 @@ _ALLOWED = {
 }
 
 
+class _Reader:
+    """A byte stream with ``read`` and ``readline`` only. Why: given a stream with
+    ``readinto`` (io.BytesIO), CPython's unpickler leaves a buffer exported from a
+    bytearray it failed to fill, and the garbage collector later prints "SystemError:
+    deallocated bytearray object has exported buffers" (found by fuzz_inputs.py)."""
+
+    def __init__(self, data: bytes):
+        self._stream = io.BytesIO(data)
+
+    def read(self, size: int = -1) -> bytes:
+        return self._stream.read(size)
+
+    def readline(self, size: int = -1) -> bytes:
+        return self._stream.readline(size)
+
+
 class _AllowlistUnpickler(pickle.Unpickler):
     def find_class(self, module, name):
         try:
@@ -83,7 +102,9 @@ def load_allowlisted(path: Union[str, Path]) -> object:
         raise UnsafePickleError(f"{path}: {size} bytes, more than the {MAX_BYTES} allowed")
     data = path.read_bytes()
     try:
-        return _AllowlistUnpickler(io.BytesIO(data)).load()
+        for _ in pickletools.genops(data):  # every length checked before anything is built
+            pass
+        return _AllowlistUnpickler(_Reader(data)).load()
     except UnsafePickleError as error:
         raise UnsafePickleError(f"{path}: {error}") from None
     except Exception as error:  # Any malformed pickle: truncated, bad opcode, bad args.
