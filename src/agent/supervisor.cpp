@@ -24,27 +24,6 @@ double rate_limited(double target, double last, double max_change) {
 
 }  // namespace
 
-void SupervisorLimits::validate() const {
-  const auto in_range = [](double value, LimitRange range, const char* name) {
-    if (!(std::isfinite(value) && value >= range.min && value <= range.max)) {
-      throw AgentError(fmt::format("{} must be a finite number in [{}, {}], got {}", name,
-                                   range.min, range.max, value));
-    }
-  };
-  in_range(max_pitch, kMaxPitchRange, "max pitch");
-  in_range(max_roll, kMaxRollRange, "max roll");
-  in_range(joint_position_margin, kJointPositionMarginRange, "joint position margin");
-  in_range(joint_velocity_factor, kJointVelocityFactorRange, "joint velocity factor");
-  in_range(max_velocity_command_rate, kVelocityCommandRateRange, "velocity command rate limit");
-  in_range(max_position_command_rate, kPositionCommandRateRange, "position command rate limit");
-  in_range(max_torque, kMaxTorqueRange, "max torque");
-  in_range(spine_timeout, kSpineTimeoutRange, "spine timeout");
-  in_range(max_consecutive_deadline_misses, kMaxDeadlineMissesRange,
-           "max consecutive deadline misses");
-  in_range(max_cycle_periods, kMaxCyclePeriodsRange, "max cycle periods");
-  in_range(nb_stop_cycles, kStopCyclesRange, "stop cycles");
-}
-
 Supervisor::Supervisor(const SupervisorLimits& limits, std::shared_ptr<const RobotModel> model,
                        double timestep)
     : limits_(limits), model_(std::move(model)), timestep_(timestep) {

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -13,57 +14,33 @@
 #include "apps/cli_failure.hpp"
 #include "apps/interrupt_handlers.hpp"
 #include "apps/option_checks.hpp"
+#include "model/option_table.hpp"
 #include "spine/shared_memory.hpp"
 #include "spine/spine_error.hpp"
 
 namespace {
 
-using upkie_rl::LimitRange;
 using upkie_rl::SupervisorLimits;
 using upkie_rl::apps::finite_range;
 using upkie_rl::apps::kNonEmptyPath;
 
-/// A number option checked against its declared range (finite, within it).
-template <typename Number>
-void add_ranged_option(CLI::App& app, const std::string& flag, Number& value, LimitRange range,
-                       const std::string& help) {
-  app.add_option(flag, value, help)
-      ->capture_default_str()
-      ->check(finite_range(range.min, range.max));
-}
-
-void add_limit_options(CLI::App& app, SupervisorLimits& limits) {
-  add_ranged_option(app, "--max-pitch", limits.max_pitch, SupervisorLimits::kMaxPitchRange,
-                    "Attitude limit: |pitch| [rad]");
-  add_ranged_option(app, "--max-roll", limits.max_roll, SupervisorLimits::kMaxRollRange,
-                    "Attitude limit: |roll| [rad]");
-  add_ranged_option(app, "--joint-position-margin", limits.joint_position_margin,
-                    SupervisorLimits::kJointPositionMarginRange,
-                    "Measured joint angle allowed beyond the joint's limits [rad]");
-  add_ranged_option(app, "--joint-velocity-factor", limits.joint_velocity_factor,
-                    SupervisorLimits::kJointVelocityFactorRange,
-                    "Measured joint velocity allowed, as a fraction of the joint's limit");
-  add_ranged_option(app, "--velocity-command-rate", limits.max_velocity_command_rate,
-                    SupervisorLimits::kVelocityCommandRateRange,
-                    "Rate limit of velocity commands [rad/s^2]");
-  add_ranged_option(app, "--position-command-rate", limits.max_position_command_rate,
-                    SupervisorLimits::kPositionCommandRateRange,
-                    "Rate limit of position commands [rad/s]");
-  add_ranged_option(app, "--max-torque", limits.max_torque, SupervisorLimits::kMaxTorqueRange,
-                    "Cap of every command's maximum torque [N.m], never above the joint's "
-                    "effort (0: the effort)");
-  add_ranged_option(app, "--spine-timeout", limits.spine_timeout,
-                    SupervisorLimits::kSpineTimeoutRange,
-                    "The spine is silent after this long without an answer [s]");
-  add_ranged_option(app, "--max-deadline-misses", limits.max_consecutive_deadline_misses,
-                    SupervisorLimits::kMaxDeadlineMissesRange,
-                    "Stop after this many missed deadlines in a row");
-  add_ranged_option(app, "--max-cycle-periods", limits.max_cycle_periods,
-                    SupervisorLimits::kMaxCyclePeriodsRange,
-                    "Stop after one cycle longer than this many periods");
-  add_ranged_option(app, "--stop-cycles", limits.nb_stop_cycles, SupervisorLimits::kStopCyclesRange,
-                    "Cycles of stop commands sent before the Stop request (200: 1 s at "
-                    "200 Hz); a second Ctrl-C or SIGTERM while stopping cuts them short");
+/// One flag per supervisor limit, from the limits' own declarations: --max-pitch for
+/// max_pitch, checked against the declared range when parsed; `table` must outlive parsing.
+void add_limit_options(CLI::App& app, SupervisorLimits& limits, upkie_rl::OptionTable& table) {
+  limits.declare_options(table);
+  for (const upkie_rl::OptionInfo& info : table.info()) {
+    std::string flag = "--" + info.name;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    app.add_option_function<std::string>(
+           flag,
+           [&table, name = info.name, flag](const std::string& text) {
+             table.read(name, text, flag);
+           },
+           info.help)
+        ->type_name(info.type == upkie_rl::OptionInfo::Type::kInteger ? "INT" : "FLOAT")
+        ->default_str(info.default_value)
+        ->check(finite_range(info.min, info.max));
+  }
 }
 
 /// A shared-memory name the spine layer accepts ('/' and up to 250 other characters).
@@ -116,7 +93,8 @@ int run(int argc, char** argv) {
                "Velocity tasks: steer with the keys of the terminal (w/s forward, a/d turn, "
                "space stop)")
       ->excludes(commands);
-  add_limit_options(app, options.limits);
+  upkie_rl::OptionTable limit_options;
+  add_limit_options(app, options.limits, limit_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

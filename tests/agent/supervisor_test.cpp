@@ -142,9 +142,32 @@ TEST(Supervisor, LimitsOutsideTheirRangesAreRefused) {
   limits = {};
   limits.max_torque = 1e300;
   EXPECT_THROW(limits.validate(), AgentError);
-  limits.max_torque = SupervisorLimits::kMaxTorqueRange.max;
-  limits.nb_stop_cycles = static_cast<int>(SupervisorLimits::kStopCyclesRange.max);
+  limits.max_torque = 100.0;  // the top of each declared range is a limit still
+  limits.nb_stop_cycles = 200;
   EXPECT_NO_THROW(limits.validate());
+  limits.nb_stop_cycles = 201;
+  try {
+    limits.validate();
+    FAIL() << "201 stop cycles";
+  } catch (const AgentError& error) {
+    EXPECT_NE(std::string(error.what()).find("stop_cycles"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Supervisor, EveryLimitIsDeclaredOnceWithTheDefaultInItsRange) {
+  SupervisorLimits limits;
+  OptionTable table;
+  limits.declare_options(table);
+  EXPECT_EQ(table.size(), 11u);
+  for (const OptionInfo& info : table.info()) {
+    EXPECT_LT(info.min, info.max) << info.name;
+    EXPECT_FALSE(info.help.empty()) << info.name;
+  }
+  // The table writes the struct's fields: a value read by name reaches the supervisor.
+  table.read("max_pitch", "0.7", "--max-pitch");
+  EXPECT_EQ(limits.max_pitch, 0.7);
+  table.read("stop_cycles", "12", "--stop-cycles");
+  EXPECT_EQ(limits.nb_stop_cycles, 12);
 }
 
 }  // namespace
