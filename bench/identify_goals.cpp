@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "envs/robot_log.hpp"
+#include "base/number_text.hpp"
+#include "envs/records/robot_log.hpp"
 #include "identify/excitation_log.hpp"
 #include "identify/identification.hpp"
-#include "model/number_text.hpp"
 
 namespace upkie_rl {
 namespace {

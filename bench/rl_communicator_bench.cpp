@@ -11,7 +11,7 @@
 
 #include "common/background_process.hpp"
 #include "common/loopback_launch.hpp"
-#include "rl/communicator.hpp"
+#include "rl/distributed/communicator.hpp"
 
 namespace {
 

@@ -12,10 +12,10 @@
 #include <ctime>
 #include <memory>
 
-#include "rl/actor_critic.hpp"
-#include "rl/autograd_ppo_gradient.hpp"
-#include "rl/ppo_gradient.hpp"
-#include "rl/ppo_loss.hpp"
+#include "rl/ppo/actor_critic.hpp"
+#include "rl/ppo/autograd_ppo_gradient.hpp"
+#include "rl/ppo/ppo_gradient.hpp"
+#include "rl/ppo/ppo_loss.hpp"
 
 namespace {
 

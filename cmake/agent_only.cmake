@@ -1,5 +1,5 @@
 # UPKIE_RL_AGENT_ONLY: only the robot runner, upkie-rl-agent, from the runner's sources
-# (the engine-free cores of model, sim, spine, envs, vec and policy, then agent), for the
+# (base, the engine-free cores of model, sim, spine, envs, vec and policy, then agent), for the
 # robot's aarch64 computer (`make pi`, with cmake/aarch64-linux-gnu.cmake).
 #
 # The header-only dependencies (Eigen, nlohmann-json, msgpack-cxx, CLI11, spdlog and fmt,
@@ -40,7 +40,7 @@ target_compile_definitions(upkie_rl_pi_headers INTERFACE SPDLOG_HEADER_ONLY FMT_
   MSGPACK_NO_BOOST MSGPACK_DEFAULT_API_VERSION=3)
 
 set(agent_sources "")
-foreach(layer model sim spine envs vec policy agent)
+foreach(layer base model sim spine envs vec policy agent)
   file(GLOB_RECURSE layer_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${layer}/*.cpp)
   list(APPEND agent_sources ${layer_sources})
 endforeach()
@@ -59,7 +59,7 @@ target_link_libraries(upkie_rl_agent_pi PUBLIC upkie_rl_pi_headers yaml-cpp urdf
   console_bridge Threads::Threads rt)
 
 add_executable(upkie-rl-agent ${PROJECT_SOURCE_DIR}/src/apps/agent_main.cpp
-  ${PROJECT_SOURCE_DIR}/src/apps/interrupt_handlers.cpp)
+  ${PROJECT_SOURCE_DIR}/src/cli/interrupt_handlers.cpp)
 target_link_libraries(upkie-rl-agent PRIVATE upkie_rl_agent_pi)
 # The bundle's lib/ holds the four arm64 libraries and the C++ runtime they share with it.
 set_target_properties(upkie-rl-agent PROPERTIES BUILD_RPATH "$ORIGIN/lib" INSTALL_RPATH "$ORIGIN/lib")

@@ -22,8 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "envs/env_settings.hpp"
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/registry/env_settings.hpp"
+#include "envs/registry/registry.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 /// @file
 /// libFuzzer target: the record files of `upkie-rl rollout --record`, as `upkie-rl render`
-/// and `upkie-rl view` read them (envs/record_file.hpp). Each input is a whole file, read
+/// and `upkie-rl view` read them (envs/records/record_file.hpp). Each input is a whole file, read
 /// from memory. Refusing it with RecordFileError is the expected outcome; a crash, a hang,
 /// a sanitizer report or another exception is a bug. Whatever is accepted must hold what
 /// the renderer and the viewer rely on: at least one row, finite times and base poses, a
@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "envs/record_file.hpp"
+#include "envs/records/record_file.hpp"
 
 namespace {
 

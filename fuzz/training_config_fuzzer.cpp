@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "rl/training_config.hpp"
+#include "rl/runs/training_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "bindings.hpp"
-#include "envs/evaluation_start.hpp"
+#include "envs/evaluation/evaluation_start.hpp"
 #include "render/robot_renderer.hpp"
 #include "vec/make_vector_env.hpp"
 

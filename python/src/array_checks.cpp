@@ -1,6 +1,6 @@
 #include "array_checks.hpp"
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace py = pybind11;
 

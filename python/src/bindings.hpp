@@ -4,7 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
-#include "envs/box_space.hpp"
+#include "envs/spaces/box_space.hpp"
 
 namespace upkie_rl::python {
 

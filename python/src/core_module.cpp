@@ -6,7 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "envs/registry.hpp"
+#include "envs/registry/registry.hpp"
 #include "sim/observation_dict.hpp"
 
 namespace py = pybind11;

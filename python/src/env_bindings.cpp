@@ -12,7 +12,7 @@
 
 #include "array_checks.hpp"
 #include "bindings.hpp"
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "frame_renderer.hpp"
 #include "observation_to_python.hpp"
 

@@ -1,4 +1,4 @@
-// The C++ error hierarchy (model/error.hpp) as Python classes, declared in this one place.
+// The C++ error hierarchy (base/error.hpp) as Python classes, declared in this one place.
 
 #include <Python.h>
 #include <pybind11/pybind11.h>
@@ -9,8 +9,8 @@
 #include <string>
 #include <type_traits>
 
+#include "base/error.hpp"
 #include "bindings.hpp"
-#include "model/error.hpp"
 #include "model/robot_model.hpp"
 #include "onnx/onnx_error.hpp"
 #include "policy/checkpoint_file.hpp"

@@ -1,11 +1,11 @@
-// Python binding of the evaluations' shared rules (envs/evaluation_start.hpp): the random
-// initial state episodes start from, and the warning for identical episodes.
+// Python binding of the evaluations' shared rules (envs/evaluation/evaluation_start.hpp): the
+// random initial state episodes start from, and the warning for identical episodes.
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "envs/evaluation_start.hpp"
+#include "envs/evaluation/evaluation_start.hpp"
 
 namespace py = pybind11;
 

@@ -27,7 +27,7 @@ from .spaces import box
 from .vector import canonical_id
 
 # The TorchScript metadata names its entries after the checkpoint header's and the
-# provenance's keys (rl/torchscript_export.cpp), read from their one declaration.
+# provenance's keys (rl/runs/torchscript_export.cpp), read from their one declaration.
 _HEADER_KEY = _core.checkpoint_header_keys()
 _PROVENANCE_KEY = _core.provenance_keys()
 

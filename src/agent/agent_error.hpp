@@ -2,7 +2,7 @@
 /// @file
 /// The errors of the robot runner (`upkie-rl-agent`).
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

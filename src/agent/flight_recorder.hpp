@@ -7,7 +7,7 @@
 #include <span>
 
 #include "agent/supervisor_state.hpp"
-#include "envs/episode_recorder.hpp"
+#include "envs/records/episode_recorder.hpp"
 
 namespace upkie_rl {
 

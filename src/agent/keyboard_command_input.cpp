@@ -13,7 +13,7 @@
 #include <string>
 
 #include "agent/agent_error.hpp"
-#include "envs/velocity_command_sampler.hpp"
+#include "envs/tasks/velocity_command_sampler.hpp"
 
 namespace upkie_rl {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "envs/number_row.hpp"
+#include "envs/records/number_row.hpp"
 
 namespace upkie_rl {
 

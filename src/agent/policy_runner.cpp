@@ -13,9 +13,9 @@
 #include "agent/supervised_spine.hpp"
 #include "agent/supervisor.hpp"
 #include "agent/velocity_commander.hpp"
-#include "envs/env_settings.hpp"
-#include "envs/registry.hpp"
-#include "envs/velocity_env.hpp"
+#include "envs/kinds/velocity_env.hpp"
+#include "envs/registry/env_settings.hpp"
+#include "envs/registry/registry.hpp"
 #include "policy/deployed_policy.hpp"
 
 namespace upkie_rl {
@@ -24,7 +24,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 /// The environment a policy runs in: its task on the spine backend, with the training
-/// options that define the task (envs/registry.hpp task_options), no time limit.
+/// options that define the task (envs/registry/registry.hpp task_options), no time limit.
 struct RobotEnv {
   std::unique_ptr<Supervisor> supervisor;  // Outlives env, whose link refers to it.
   std::unique_ptr<Env> env;

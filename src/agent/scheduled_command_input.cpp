@@ -1,6 +1,6 @@
 #include "agent/scheduled_command_input.hpp"
 
-#include "envs/shared_options.hpp"
+#include "envs/core/shared_options.hpp"
 
 namespace upkie_rl {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "agent/velocity_command_input.hpp"
-#include "envs/velocity_command_schedule.hpp"
+#include "envs/tasks/velocity_command_schedule.hpp"
 
 namespace upkie_rl {
 

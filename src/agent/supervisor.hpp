@@ -10,7 +10,7 @@
 
 #include "agent/supervisor_limits.hpp"
 #include "agent/supervisor_state.hpp"
-#include "envs/box_space.hpp"
+#include "envs/spaces/box_space.hpp"
 #include "model/robot_model.hpp"
 #include "sim/observation.hpp"
 #include "sim/servo_command.hpp"

@@ -4,7 +4,7 @@
 /// (name, range, help) in declare_options(): upkie-rl-agent's flags, their checks and
 /// validate() all read that one declaration.
 
-#include "model/option_table.hpp"
+#include "base/option_table.hpp"
 
 namespace upkie_rl {
 

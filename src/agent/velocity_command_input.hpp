@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "envs/velocity_command.hpp"
+#include "envs/tasks/velocity_command.hpp"
 
 namespace upkie_rl {
 

@@ -6,8 +6,8 @@
 
 #include "agent/runner_options.hpp"
 #include "agent/velocity_command_input.hpp"
-#include "envs/velocity_command_sampler.hpp"
-#include "envs/velocity_env.hpp"
+#include "envs/kinds/velocity_env.hpp"
+#include "envs/tasks/velocity_command_sampler.hpp"
 
 namespace upkie_rl {
 

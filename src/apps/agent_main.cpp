@@ -11,10 +11,10 @@
 #include <string>
 
 #include "agent/policy_runner.hpp"
-#include "apps/cli_failure.hpp"
-#include "apps/interrupt_handlers.hpp"
-#include "apps/option_checks.hpp"
-#include "model/option_table.hpp"
+#include "base/option_table.hpp"
+#include "cli/cli_failure.hpp"
+#include "cli/interrupt_handlers.hpp"
+#include "cli/option_checks.hpp"
 #include "spine/shared_memory.hpp"
 #include "spine/spine_error.hpp"
 

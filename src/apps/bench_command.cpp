@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/common_flags.hpp"
-#include "apps/controller_option.hpp"
-#include "apps/option_checks.hpp"
-#include "apps/policy_controller.hpp"
-#include "envs/builtin_controllers.hpp"
-#include "envs/registry.hpp"
-#include "envs/servos_env.hpp"
+#include "cli/common_flags.hpp"
+#include "cli/controller_option.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/policy_controller.hpp"
+#include "envs/controllers/builtin_controllers.hpp"
+#include "envs/kinds/servos_env.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "vec/make_vector_env.hpp"
 

@@ -10,14 +10,14 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/common_flags.hpp"
-#include "apps/controller_choice.hpp"
-#include "apps/drive_loop.hpp"
-#include "apps/interrupt_handlers.hpp"
-#include "apps/live_view.hpp"
-#include "apps/option_checks.hpp"
-#include "apps/velocity_view.hpp"
-#include "envs/registry.hpp"
+#include "cli/common_flags.hpp"
+#include "cli/controller_choice.hpp"
+#include "cli/drive_loop.hpp"
+#include "cli/interrupt_handlers.hpp"
+#include "cli/live_view.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/velocity_view.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl::apps {
 

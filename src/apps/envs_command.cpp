@@ -6,9 +6,10 @@
 #include <string>
 
 #include "apps/commands.hpp"
-#include "envs/registry.hpp"
-#include "envs/servos_env.hpp"
-#include "envs/time_limit.hpp"
+#include "envs/kinds/servos_env.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/registry/registry.hpp"
+#include "envs/wrappers/time_limit.hpp"
 
 namespace upkie_rl::apps {
 

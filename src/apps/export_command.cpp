@@ -7,7 +7,7 @@
 #include <string>
 
 #include "apps/commands.hpp"
-#include "apps/option_checks.hpp"
+#include "cli/option_checks.hpp"
 #include "onnx/onnx_export.hpp"
 
 namespace upkie_rl::apps {

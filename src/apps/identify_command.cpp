@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/option_checks.hpp"
-#include "envs/env_options.hpp"
-#include "envs/robot_log.hpp"
+#include "base/atomic_file.hpp"
+#include "base/number_text.hpp"
+#include "cli/option_checks.hpp"
+#include "envs/core/env_options.hpp"
+#include "envs/records/robot_log.hpp"
 #include "identify/identification.hpp"
-#include "model/atomic_file.hpp"
-#include "model/number_text.hpp"
 
 namespace upkie_rl::apps {
 namespace {

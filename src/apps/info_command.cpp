@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
+#include "cli/command_error.hpp"
 #include "onnx/onnx_metadata.hpp"
 #include "onnx/onnx_model_info.hpp"
 #include "policy/checkpoint_gate.hpp"
@@ -103,7 +103,7 @@ void print_torchscript(const std::filesystem::path& path) {
   }
   std::cout << "format: TorchScript\n";
   // The metadata's entries are named as those of the checkpoint header they copy, and its
-  // env id as the provenance's (rl/torchscript_export.cpp).
+  // env id as the provenance's (rl/runs/torchscript_export.cpp).
   for (const char* key : {checkpoint_header::kObservationSpace, checkpoint_header::kActionSpace}) {
     if (metadata.contains(key)) std::cout << key << ": " << describe_space(metadata[key]) << "\n";
   }

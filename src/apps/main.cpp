@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "apps/cli_failure.hpp"
 #include "apps/commands.hpp"
-#include "model/closest_name.hpp"
+#include "base/closest_name.hpp"
+#include "cli/cli_failure.hpp"
 
 namespace {
 

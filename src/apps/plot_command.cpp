@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
-#include "apps/gnuplot_figure.hpp"
-#include "apps/option_checks.hpp"
-#include "apps/smoothing_window.hpp"
-#include "rl/rolling_mean.hpp"
-#include "rl/scalar_csv_writer.hpp"
+#include "cli/command_error.hpp"
+#include "cli/gnuplot_figure.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/smoothing_window.hpp"
+#include "rl/logging/rolling_mean.hpp"
+#include "rl/logging/scalar_csv_writer.hpp"
 
 namespace upkie_rl::apps {
 

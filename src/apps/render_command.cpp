@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/frame_clock.hpp"
-#include "apps/video_recorder.hpp"
-#include "envs/record_file.hpp"
+#include "cli/frame_clock.hpp"
+#include "cli/video_recorder.hpp"
+#include "envs/records/record_file.hpp"
 #include "sim/base_observer.hpp"
 
 namespace upkie_rl::apps {

@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
-#include "apps/interrupt_handlers.hpp"
-#include "apps/live_view.hpp"
-#include "apps/option_checks.hpp"
+#include "cli/command_error.hpp"
+#include "cli/interrupt_handlers.hpp"
+#include "cli/live_view.hpp"
+#include "cli/option_checks.hpp"
 #include "model/robot_model.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "sim/mujoco_simulation.hpp"

@@ -17,21 +17,21 @@
 #include <thread>
 #include <vector>
 
-#include "apps/child_process.hpp"
-#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
-#include "apps/common_flags.hpp"
-#include "apps/interrupt_handlers.hpp"
-#include "apps/option_checks.hpp"
-#include "apps/policy_controller.hpp"
-#include "apps/progress_bar.hpp"
-#include "apps/sweep_outcome.hpp"
-#include "apps/sweep_summary.hpp"
-#include "envs/episode_runner.hpp"
-#include "envs/registry.hpp"
-#include "rl/scalar_csv_writer.hpp"
-#include "rl/sweep_plan.hpp"
-#include "rl/training_run.hpp"
+#include "cli/child_process.hpp"
+#include "cli/command_error.hpp"
+#include "cli/common_flags.hpp"
+#include "cli/interrupt_handlers.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/policy_controller.hpp"
+#include "cli/progress_bar.hpp"
+#include "cli/sweep_outcome.hpp"
+#include "cli/sweep_summary.hpp"
+#include "envs/evaluation/episode_runner.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "rl/logging/scalar_csv_writer.hpp"
+#include "rl/runs/sweep_plan.hpp"
+#include "rl/runs/training_run.hpp"
 
 namespace upkie_rl::apps {
 

@@ -10,17 +10,17 @@
 #include <vector>
 
 #include "apps/commands.hpp"
-#include "apps/live_view.hpp"
-#include "apps/option_checks.hpp"
-#include "apps/progress_bar.hpp"
-#include "apps/rendezvous_watchdog.hpp"
-#include "apps/stuck_process_exit.hpp"
-#include "envs/registry.hpp"
+#include "cli/live_view.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/progress_bar.hpp"
+#include "cli/rendezvous_watchdog.hpp"
+#include "cli/stuck_process_exit.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "policy/crc32c.hpp"
-#include "rl/communicator.hpp"
-#include "rl/distributed_launch.hpp"
-#include "rl/training_config.hpp"
-#include "rl/training_run.hpp"
+#include "rl/distributed/communicator.hpp"
+#include "rl/distributed/distributed_launch.hpp"
+#include "rl/runs/training_config.hpp"
+#include "rl/runs/training_run.hpp"
 #include "vec/make_vector_env.hpp"
 
 namespace upkie_rl::apps {

@@ -12,14 +12,14 @@
 #include <thread>
 #include <vector>
 
-#include "apps/command_error.hpp"
 #include "apps/commands.hpp"
-#include "apps/interrupt_handlers.hpp"
-#include "apps/live_view.hpp"
-#include "apps/option_checks.hpp"
-#include "apps/velocity_view.hpp"
-#include "envs/record_file.hpp"
-#include "envs/registry.hpp"
+#include "cli/command_error.hpp"
+#include "cli/interrupt_handlers.hpp"
+#include "cli/live_view.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/velocity_view.hpp"
+#include "envs/records/record_file.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "model/robot_model.hpp"
 #include "view/view_frame.hpp"
 #include "view/view_server.hpp"

@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "envs/ground_velocity_commander.hpp"
-#include "envs/registry.hpp"
+#include "envs/kinds/ground_velocity_commander.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "sim/servo_command_fields.hpp"
 #include "spine/spine_log_writer.hpp"
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "envs/env_options.hpp"
+#include "envs/core/env_options.hpp"
 
 namespace upkie_rl {
 

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <utility>
 
+#include "base/number_text.hpp"
 #include "identify/identification_error.hpp"
-#include "model/number_text.hpp"
 
 namespace upkie_rl {
 

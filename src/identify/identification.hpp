@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "envs/env_options.hpp"
-#include "envs/robot_log.hpp"
+#include "envs/core/env_options.hpp"
+#include "envs/records/robot_log.hpp"
 #include "identify/identified_parameter.hpp"
 #include "identify/log_replay.hpp"
 

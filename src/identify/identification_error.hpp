@@ -2,7 +2,7 @@
 /// @file
 /// The error of an identification that cannot be carried out.
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "model/number_text.hpp"
+#include "base/number_text.hpp"
 
 namespace upkie_rl {
 

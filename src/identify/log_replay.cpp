@@ -7,11 +7,11 @@
 #include <stdexcept>
 #include <thread>
 
-#include "envs/env_wrapper.hpp"
-#include "envs/registry.hpp"
-#include "envs/servos_env.hpp"
+#include "base/number_text.hpp"
+#include "envs/kinds/servos_env.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/wrappers/env_wrapper.hpp"
 #include "identify/measured_reset_state.hpp"
-#include "model/number_text.hpp"
 #include "sim/servo_command_fields.hpp"
 #include "sim/simulation.hpp"
 

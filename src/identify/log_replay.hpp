@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "envs/env_options.hpp"
-#include "envs/robot_log.hpp"
+#include "envs/core/env_options.hpp"
+#include "envs/records/robot_log.hpp"
 #include "identify/identified_parameter.hpp"
 #include "sim/reset_state.hpp"
 

@@ -12,7 +12,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "model/input_file.hpp"
+#include "base/input_file.hpp"
 #include "model/robot_description_limit.hpp"
 
 namespace upkie_rl {

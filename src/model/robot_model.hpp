@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 #include "model/joint_order.hpp"
 
 namespace upkie_rl {

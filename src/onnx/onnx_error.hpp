@@ -2,7 +2,7 @@
 /// @file
 /// The error of ONNX export and reading.
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

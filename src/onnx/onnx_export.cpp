@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "envs/registry.hpp"
+#include "envs/registry/registry.hpp"
 #include "onnx/onnx_error.hpp"
 #include "onnx/onnx_metadata.hpp"
 #include "policy/build_info.hpp"

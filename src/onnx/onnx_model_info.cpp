@@ -6,7 +6,7 @@
 #include <iterator>
 #include <system_error>
 
-#include "model/input_file.hpp"
+#include "base/input_file.hpp"
 #include "onnx/onnx_error.hpp"
 
 namespace upkie_rl {

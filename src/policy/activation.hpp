@@ -2,8 +2,8 @@
 /// @file
 /// Activation of the hidden layers of the policy and value networks: the one list of
 /// activations, with their names, scalar definitions and TorchScript spellings, shared by
-/// training (rl/tensor_activation.hpp applies them to tensors), deployment
-/// (policy/deployed_policy.hpp), and export (rl/torchscript_export.hpp, onnx/).
+/// training (rl/ppo/tensor_activation.hpp applies them to tensors), deployment
+/// (policy/deployed_policy.hpp), and export (rl/runs/torchscript_export.hpp, onnx/).
 
 #include <string>
 #include <utility>
@@ -13,7 +13,7 @@ namespace upkie_rl {
 
 /// PyTorch's definitions with its default parameters (Stable-Baselines3 policies use them).
 /// The trainer trains every one: with the hand-written gradient for those it covers
-/// (rl/ppo_gradient.hpp, ReLU and Tanh), with autograd for the others (`ppo.gradient`).
+/// (rl/ppo/ppo_gradient.hpp, ReLU and Tanh), with autograd for the others (`ppo.gradient`).
 enum class Activation {
   kReLU,
   kTanh,

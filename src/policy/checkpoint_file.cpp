@@ -5,9 +5,9 @@
 #include <iterator>
 #include <limits>
 
-#include "model/atomic_file.hpp"
-#include "model/bounded_json.hpp"
-#include "model/input_file.hpp"
+#include "base/atomic_file.hpp"
+#include "base/bounded_json.hpp"
+#include "base/input_file.hpp"
 #include "policy/crc32c.hpp"
 #include "policy/model_format.hpp"
 

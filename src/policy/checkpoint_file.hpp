@@ -4,7 +4,7 @@
 /// (configuration, counters, random state, normalisation statistics, spaces) and named
 /// float32 tensors (policy weights, optimiser moments), closed by a CRC32C of everything
 /// before it. Written atomically: a temporary file in the same directory, flushed, then
-/// renamed. rl/checkpoint.hpp converts the tensors to and from torch.
+/// renamed. rl/runs/checkpoint.hpp converts the tensors to and from torch.
 ///
 /// Layout: "UPKIERL1" | uint64 header size | header JSON | tensor bytes | uint32 CRC32C,
 /// little-endian; the header's "tensors" array lists each tensor's name and shape in
@@ -20,7 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "model/number_text.hpp"
-#include "model/setting_bounds.hpp"
+#include "base/number_text.hpp"
+#include "base/setting_bounds.hpp"
 #include "policy/checkpoint_header.hpp"
 #include "policy/model_header.hpp"
 #include "policy/network_limits.hpp"

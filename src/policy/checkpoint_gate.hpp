@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The one gate every checkpoint passes before anything uses it: `train --resume`
-/// (rl/checkpoint.hpp's load_checkpoint), and `rollout`, `evaluate`, `sweep` and the
+/// (rl/runs/checkpoint.hpp's load_checkpoint), and `rollout`, `evaluate`, `sweep` and the
 /// Python `load_policy` through DeployedPolicy, so a checkpoint either loads everywhere or
 /// is refused everywhere with the same message. A robot runner should load policies
 /// with DeployedPolicy::load (or read_checked_checkpoint) too.
@@ -33,7 +33,7 @@ inline constexpr std::int64_t kMaxCheckpointCounter = 1'000'000'000'000'000;
 /// Largest m² / v accepted for the optimiser's moments m (optimizer.exp_avg) and v
 /// (optimizer.exp_avg_sq ≥ 0), beyond an absolute slack of kAdamMomentSlack on |m|. Adam's
 /// recurrences from zero bound m² by (1 − β1)² / ((1 − β2)(1 − β1² / β2)) · v for any
-/// gradients: 52.9 for PPO's β = (0.9, 0.999) (rl/flat_adam.hpp checks its own betas against
+/// gradients: 52.9 for PPO's β = (0.9, 0.999) (rl/ppo/flat_adam.hpp checks its own betas against
 /// this limit). A crafted checkpoint outside it (a negative v, or a large m over a tiny v)
 /// would make the first update after resume NaN or arbitrarily large.
 inline constexpr double kMaxAdamMomentRatio = 64.0;

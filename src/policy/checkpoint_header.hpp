@@ -1,13 +1,13 @@
 #pragma once
 /// @file
 /// The keys of a checkpoint's JSON header (policy/checkpoint_file.hpp), declared once for
-/// its writers (rl/ppo_checkpoint.cpp, rl/training_run.cpp, the SB3 import) and readers
+/// its writers (rl/runs/ppo_checkpoint.cpp, rl/runs/training_run.cpp, the SB3 import) and readers
 /// (policy/checkpoint_gate.cpp, policy/deployed_policy.cpp, policy/provenance.cpp, the
 /// trainer's resume), for the exports that copy entries of it (TorchScript, ONNX), and for
 /// Python (_core.checkpoint_header_keys(), which upkie_rl/sb3_convert.py reads).
 /// The wire text is the one of every checkpoint written so far: these are its names.
 
-#include "model/named_key.hpp"
+#include "base/named_key.hpp"
 
 namespace upkie_rl::checkpoint_header {
 

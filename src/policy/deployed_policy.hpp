@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "envs/box_space.hpp"
+#include "envs/spaces/box_space.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/mlp.hpp"
 #include "policy/model_header.hpp"

@@ -2,8 +2,8 @@
 /// @file
 /// The diagonal Gaussian policy distribution N(μ, diag(σ²)) with a state-independent
 /// log σ: the formulas of its log-probability and entropy, written once for the rollout
-/// (rl/ppo.cpp), the hand-written gradient (rl/ppo_gradient.cpp) and autograd
-/// (rl/actor_critic.cpp, which applies the same formulas to tensors).
+/// (rl/ppo/ppo.cpp), the hand-written gradient (rl/ppo/ppo_gradient.cpp) and autograd
+/// (rl/ppo/actor_critic.cpp, which applies the same formulas to tensors).
 ///
 ///   log π(a|s) = −½ Σⱼ zⱼ² − log_normaliser,  zⱼ = (aⱼ − μⱼ) / σⱼ
 ///   log_normaliser = Σⱼ log σⱼ + ½·A·log 2π   (A: action components)

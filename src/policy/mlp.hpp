@@ -7,8 +7,8 @@
 /// Everything that runs or writes a network reads this description: DeployedPolicy runs
 /// forward() (deployment, `rollout --model`, the robot runner, Python); the ONNX and
 /// TorchScript exporters walk layers() and activated(); the trainer's torch forward passes
-/// (rl/actor_critic.hpp: autograd, and the rollout's batched inference) and its hand-written
-/// gradient (rl/ppo_gradient.hpp) build their layers from it and ask activated() where the
+/// (rl/ppo/actor_critic.hpp: autograd, and the rollout's batched inference) and its hand-written
+/// gradient (rl/ppo/ppo_gradient.hpp) build their layers from it and ask activated() where the
 /// activation goes.
 
 #include <cstdint>

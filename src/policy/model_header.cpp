@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <type_traits>
 
-#include "envs/registry.hpp"
+#include "envs/registry/registry.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/checkpoint_header.hpp"
 #include "policy/network_limits.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The entries of a checkpoint header that the trainer writes (rl/ppo_checkpoint.hpp) and a
+/// The entries of a checkpoint header that the trainer writes (rl/runs/ppo_checkpoint.hpp) and a
 /// deployed policy reads back: the format tag, the resolved configuration, and the shape of
 /// the actor-critic ("policy").
 
@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "envs/env_options.hpp"
+#include "envs/core/env_options.hpp"
 
 #include "policy/activation.hpp"
 
@@ -50,8 +50,8 @@ std::string checkpoint_env_id(const nlohmann::json& header);
 
 /// The environment options (env.options) of the training configuration, in order, preceded
 /// by the former defaults of the options it does not name that changed since
-/// (envs/registry.hpp with_recorded_defaults: a velocity policy of before the height command
-/// reads height_command=false leg_action_scale=0.5); empty when it has none.
+/// (envs/registry/registry.hpp with_recorded_defaults: a velocity policy of before the height
+/// command reads height_command=false leg_action_scale=0.5); empty when it has none.
 /// @throws CheckpointError when the configuration is missing or env.options is malformed.
 EnvOptions checkpoint_env_options(const nlohmann::json& header);
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "model/setting_bounds.hpp"
+#include "base/setting_bounds.hpp"
 #include "policy/parameter_layout.hpp"
 
 namespace upkie_rl {
@@ -26,9 +26,8 @@ std::int64_t check_network_size(std::int64_t observation_size, std::int64_t acti
   const std::int64_t count =
       actor_critic_layout(observation_size, action_size, actor_hidden, critic_hidden).size;
   if (count > kMaxParameters) {
-    throw std::invalid_argument(actor_name + " and " + critic_name + ": " +
-                                std::to_string(count) + " parameters exceed the limit " +
-                                std::to_string(kMaxParameters));
+    throw std::invalid_argument(actor_name + " and " + critic_name + ": " + std::to_string(count) +
+                                " parameters exceed the limit " + std::to_string(kMaxParameters));
   }
   return count;
 }

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The largest actor-critic the toolkit builds or loads, checked before anything is
-/// allocated: by the training configuration (rl/training_config.hpp) and by the checkpoint
+/// allocated: by the training configuration (rl/runs/training_config.hpp) and by the checkpoint
 /// gate (policy/checkpoint_gate.hpp), so that a setting or a header cannot ask libtorch or
 /// the deployed policy for gigabytes.
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "envs/box_space.hpp"
+#include "envs/spaces/box_space.hpp"
 #include "policy/observation_normalizer.hpp"
 #include "policy/parameter_layout.hpp"
 

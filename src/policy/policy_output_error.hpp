@@ -2,7 +2,7 @@
 /// @file
 /// The error of a loaded policy that cannot give a finite action.
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

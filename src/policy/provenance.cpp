@@ -35,7 +35,7 @@ void complete_from_header(const nlohmann::json& header, nlohmann::json& provenan
     nlohmann::json options = nlohmann::json::object();
     for (const auto& [name, value] : checkpoint_env_options(header)) options[name] = value;
     provenance[key::kEnvOptions] = options;
-    // The training configuration's seed key (rl/training_config.cpp), which policy_core
+    // The training configuration's seed key (rl/runs/training_config.cpp), which policy_core
     // cannot include: the provenance's key has the same name.
     const YAML::Node seed = YAML::Load(config)[key::kSeed];
     if (seed && seed.IsScalar()) provenance[key::kSeed] = seed.as<std::string>();

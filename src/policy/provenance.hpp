@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/named_key.hpp"
+#include "base/named_key.hpp"
 
 namespace upkie_rl {
 

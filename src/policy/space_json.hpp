@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "envs/box_space.hpp"
+#include "envs/spaces/box_space.hpp"
 
 namespace upkie_rl {
 

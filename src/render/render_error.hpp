@@ -2,7 +2,7 @@
 /// @file
 /// The error of the render layer.
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "model/number_text.hpp"
-#include "model/setting_bounds.hpp"
+#include "base/number_text.hpp"
+#include "base/setting_bounds.hpp"
 
 namespace upkie_rl {
 

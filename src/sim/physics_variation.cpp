@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "model/number_text.hpp"
+#include "base/number_text.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 #include "model/joint_order.hpp"
 
 namespace upkie_rl {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 #include "sim/observation.hpp"
 #include "sim/reset_state.hpp"
 #include "sim/servo_command.hpp"

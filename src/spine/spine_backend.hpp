@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "model/option_table.hpp"
+#include "base/option_table.hpp"
 #include "sim/simulation.hpp"
 #include "spine/payload_unpacker.hpp"
 #include "spine/reset_config.hpp"

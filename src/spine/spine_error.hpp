@@ -2,7 +2,7 @@
 /// @file
 /// Errors of the spine link.
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

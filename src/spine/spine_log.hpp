@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 #include "sim/observation.hpp"
 #include "sim/servo_command.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <msgpack.hpp>
 
-#include "model/input_file.hpp"
+#include "base/input_file.hpp"
 #include "model/joint_order.hpp"
 #include "sim/servo_command_fields.hpp"
 #include "spine/dictionary.hpp"

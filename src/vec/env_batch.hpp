@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "envs/env.hpp"
+#include "envs/core/env.hpp"
 #include "vec/vector_env.hpp"
 
 namespace upkie_rl {

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "model/setting_bounds.hpp"
+#include "base/setting_bounds.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "vec/sync_vector_env.hpp"
 #include "vec/thread_pool_vector_env.hpp"
 

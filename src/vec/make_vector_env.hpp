@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "vec/vector_env.hpp"
 
 namespace upkie_rl {

@@ -8,7 +8,7 @@
 /// upkie_rl/sb3_convert.py converts Stable-Baselines3's VecNormalize files both ways).
 /// The wire text is the one of every checkpoint written so far.
 
-#include "model/named_key.hpp"
+#include "base/named_key.hpp"
 
 namespace upkie_rl::normalization_state {
 

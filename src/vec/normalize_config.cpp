@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "model/number_text.hpp"
-#include "model/option_table.hpp"
+#include "base/number_text.hpp"
+#include "base/option_table.hpp"
 #include "vec/normalization_state.hpp"
 
 namespace upkie_rl {
@@ -40,7 +40,7 @@ nlohmann::json normalize_config_to_json(const NormalizeConfig& config) {
   copy.declare_options(table, "");
   nlohmann::json json = nlohmann::json::object();
   for (const OptionInfo& option : table.info()) {
-    // The table writes the shortest text that reads back exactly (model/number_text.hpp).
+    // The table writes the shortest text that reads back exactly (base/number_text.hpp).
     const std::string text = table.value_text(option.name);
     if (option.type == OptionInfo::Type::kBoolean) {
       json[option.name] = text == "true";

@@ -2,7 +2,7 @@
 /// @file
 /// NormalizeConfig: the settings of VecNormalize (SB3's VecNormalize), declared once, in
 /// NormalizeConfig::declare_options, for everything that reads, writes or checks them: the
-/// training configuration's normalize.* keys (rl/training_config.hpp: YAML, overrides,
+/// training configuration's normalize.* keys (rl/runs/training_config.hpp: YAML, overrides,
 /// `--help` listings) and the "config" entry of the normalisation state
 /// (VecNormalize::state(), a checkpoint header's "normalization"), whose keys are the same
 /// (vec/normalization_state.hpp).

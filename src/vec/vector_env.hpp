@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "envs/box_space.hpp"
+#include "envs/spaces/box_space.hpp"
 #include "sim/observation.hpp"
 
 namespace upkie_rl {

@@ -2,7 +2,7 @@
 /// @file
 /// The error of the view layer.
 
-#include "model/error.hpp"
+#include "base/error.hpp"
 
 namespace upkie_rl {
 

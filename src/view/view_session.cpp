@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "model/input_file.hpp"
+#include "base/input_file.hpp"
 #include "model/robot_description_limit.hpp"
 #include "view/view_error.hpp"
 #include "view/view_frame.hpp"

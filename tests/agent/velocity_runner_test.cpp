@@ -18,8 +18,8 @@
 #include "agent/record_columns.hpp"
 #include "apps/cli_runner.hpp"
 #include "common/temp_files.hpp"
-#include "envs/velocity_command_limiter.hpp"
-#include "envs/velocity_command_schedule.hpp"
+#include "envs/tasks/velocity_command_limiter.hpp"
+#include "envs/tasks/velocity_command_schedule.hpp"
 #include "policy/deployed_policy.hpp"
 
 namespace upkie_rl {

@@ -1,4 +1,4 @@
-// Every domain error derives from the one root, upkie_rl::Error (model/error.hpp).
+// Every domain error derives from the one root, upkie_rl::Error (base/error.hpp).
 
 #include <gtest/gtest.h>
 
@@ -11,18 +11,18 @@
 #include <vector>
 
 #include "agent/agent_error.hpp"
-#include "apps/command_error.hpp"
-#include "envs/record_file_error.hpp"
+#include "base/error.hpp"
+#include "cli/command_error.hpp"
+#include "envs/records/record_file_error.hpp"
 #include "identify/identification_error.hpp"
-#include "model/error.hpp"
 #include "model/robot_model.hpp"
 #include "onnx/onnx_error.hpp"
 #include "policy/checkpoint_file.hpp"
 #include "policy/deployed_policy.hpp"
 #include "policy/policy_output_error.hpp"
 #include "render/render_error.hpp"
-#include "rl/communicator.hpp"
-#include "rl/run_file_error.hpp"
+#include "rl/distributed/communicator.hpp"
+#include "rl/runs/run_file_error.hpp"
 #include "sim/servo_command.hpp"
 #include "sim/simulation.hpp"
 #include "spine/spine_error.hpp"

@@ -14,16 +14,16 @@
 #include <utility>
 #include <vector>
 
-#include "apps/sweep_outcome.hpp"
+#include "cli/sweep_outcome.hpp"
 #include "common/child_call.hpp"
 #include "common/temp_files.hpp"
-#include "envs/record_file.hpp"
+#include "envs/records/record_file.hpp"
 #include "onnx/onnx_model_info.hpp"
 #include "policy/checkpoint_file.hpp"
-#include "rl/scalar_csv_writer.hpp"
-#include "rl/sweep_plan.hpp"
-#include "rl/tensorboard_writer.hpp"
-#include "rl/training_config.hpp"
+#include "rl/logging/scalar_csv_writer.hpp"
+#include "rl/logging/tensorboard_writer.hpp"
+#include "rl/runs/sweep_plan.hpp"
+#include "rl/runs/training_config.hpp"
 #include "view/view_session.hpp"
 
 namespace upkie_rl {

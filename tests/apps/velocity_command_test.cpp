@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "apps/cli_runner.hpp"
-#include "rl/scalar_csv_writer.hpp"
+#include "rl/logging/scalar_csv_writer.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -3,7 +3,7 @@
 /// The launch of one rank of a world on 127.0.0.1, for tests and benchmarks that run every
 /// rank in one process.
 
-#include "rl/distributed_launch.hpp"
+#include "rl/distributed/distributed_launch.hpp"
 
 namespace upkie_rl::testing {
 

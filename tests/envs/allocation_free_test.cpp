@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {

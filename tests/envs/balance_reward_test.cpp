@@ -1,4 +1,4 @@
-#include "envs/balance_reward.hpp"
+#include "envs/tasks/balance_reward.hpp"
 
 #include <gtest/gtest.h>
 

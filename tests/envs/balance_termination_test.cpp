@@ -1,4 +1,4 @@
-#include "envs/balance_termination.hpp"
+#include "envs/tasks/balance_termination.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "envs/pendulum_env.hpp"
-#include "envs/registry.hpp"
-#include "envs/time_limit.hpp"
+#include "envs/kinds/pendulum_env.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/wrappers/time_limit.hpp"
 
 namespace upkie_rl {
 namespace {

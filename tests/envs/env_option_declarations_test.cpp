@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "envs/env_settings.hpp"
-#include "envs/registry.hpp"
+#include "envs/registry/env_settings.hpp"
+#include "envs/registry/registry.hpp"
 
 namespace upkie_rl {
 namespace {

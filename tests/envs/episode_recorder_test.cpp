@@ -1,4 +1,4 @@
-#include "envs/episode_recorder.hpp"
+#include "envs/records/episode_recorder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,12 +9,12 @@
 
 #include "common/csv_fields.hpp"
 #include "common/temp_files.hpp"
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {
 
-// The columns after the step's outcome are the declared ones (envs/record_columns.hpp), in
+// The columns after the step's outcome are the declared ones (envs/records/record_columns.hpp), in
 // their order, and each holds the field the declaration names.
 TEST(EpisodeRecorder, WritesTheDeclaredColumnsWithTheirFields) {
   auto env = make_env("Upkie-Bullet-Pendulum");

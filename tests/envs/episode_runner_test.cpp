@@ -1,13 +1,13 @@
 /// Whole episodes with a controller, and their summary.
 
-#include "envs/episode_runner.hpp"
+#include "envs/evaluation/episode_runner.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "envs/builtin_controllers.hpp"
-#include "envs/registry.hpp"
+#include "envs/controllers/builtin_controllers.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {

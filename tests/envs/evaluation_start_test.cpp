@@ -1,4 +1,4 @@
-#include "envs/evaluation_start.hpp"
+#include "envs/evaluation/evaluation_start.hpp"
 
 #include <gtest/gtest.h>
 

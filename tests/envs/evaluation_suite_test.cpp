@@ -1,7 +1,7 @@
 // EvaluationSuite files: worlds expanded over the envs with the suite's options first, and
 // every mistake an error that names the file, the world and the key.
 
-#include "envs/evaluation_suite.hpp"
+#include "envs/evaluation/evaluation_suite.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "envs/builtin_controllers.hpp"
-#include "envs/registry.hpp"
-#include "envs/velocity_env.hpp"
-#include "envs/velocity_task.hpp"
+#include "envs/controllers/builtin_controllers.hpp"
+#include "envs/kinds/velocity_env.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/tasks/velocity_task.hpp"
 #include "sim/tire_centres.hpp"
 
 namespace upkie_rl {

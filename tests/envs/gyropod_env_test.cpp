@@ -1,4 +1,4 @@
-#include "envs/gyropod_env.hpp"
+#include "envs/kinds/gyropod_env.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,6 @@
 
 namespace upkie_rl {
 namespace {
-
 
 TEST(GyropodEnv, Spaces) {
   auto [simulation, env] = testing::make_scripted_env<GyropodEnv>();

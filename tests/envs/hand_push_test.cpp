@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "envs/registry.hpp"
-#include "envs/velocity_env.hpp"
+#include "envs/kinds/velocity_env.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {

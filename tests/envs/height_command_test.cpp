@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "common/temp_files.hpp"
-#include "envs/builtin_controllers.hpp"
-#include "envs/leg_kinematics.hpp"
-#include "envs/registry.hpp"
-#include "envs/velocity_command_schedule.hpp"
-#include "envs/velocity_env.hpp"
-#include "envs/velocity_tracking.hpp"
+#include "envs/controllers/builtin_controllers.hpp"
+#include "envs/kinds/velocity_env.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/tasks/leg_kinematics.hpp"
+#include "envs/tasks/velocity_command_schedule.hpp"
+#include "envs/tasks/velocity_tracking.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -1,7 +1,7 @@
 /// LQR design: the Riccati solver against hand-checked cases, the identification on our
 /// simulation, and the designed law balancing 10 s on both engines.
 
-#include "envs/lqr_design.hpp"
+#include "envs/controllers/lqr_design.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 
 #include <cmath>
 
-#include "envs/builtin_controllers.hpp"
-#include "envs/registry.hpp"
+#include "envs/controllers/builtin_controllers.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -5,7 +5,7 @@
 #include <array>
 #include <vector>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {

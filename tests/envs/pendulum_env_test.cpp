@@ -1,4 +1,4 @@
-#include "envs/pendulum_env.hpp"
+#include "envs/kinds/pendulum_env.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "envs/scripted_simulation.hpp"
-#include "envs/time_limit.hpp"
+#include "envs/wrappers/time_limit.hpp"
 #include "sim/mock_simulation.hpp"
 
 namespace upkie_rl {

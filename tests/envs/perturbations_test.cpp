@@ -10,9 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "envs/action_lag.hpp"
-#include "envs/perturbation_settings.hpp"
-#include "envs/registry.hpp"
+#include "envs/randomization/action_lag.hpp"
+#include "envs/randomization/perturbation_settings.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/registry/registry.hpp"
 
 namespace upkie_rl {
 namespace {

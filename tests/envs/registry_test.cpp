@@ -1,11 +1,12 @@
-#include "envs/registry.hpp"
+#include "envs/registry/registry.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 
-#include "envs/servos_env.hpp"
+#include "envs/kinds/servos_env.hpp"
+#include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "envs/servos_env.hpp"
+#include "envs/kinds/servos_env.hpp"
 #include "model/robot_model.hpp"
 #include "sim/simulation.hpp"
 

@@ -1,4 +1,4 @@
-#include "envs/servos_env.hpp"
+#include "envs/kinds/servos_env.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "sim/mock_simulation.hpp"
 
 namespace upkie_rl {

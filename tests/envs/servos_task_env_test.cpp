@@ -1,11 +1,11 @@
-#include "envs/servos_task_env.hpp"
+#include "envs/kinds/servos_task_env.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "envs/scripted_simulation.hpp"
 
 namespace upkie_rl {

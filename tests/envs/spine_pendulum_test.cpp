@@ -8,7 +8,7 @@
 #include <atomic>
 #include <thread>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "spine/spine_server.hpp"
 

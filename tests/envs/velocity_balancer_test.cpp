@@ -1,19 +1,19 @@
 /// The velocity task's classical baseline: its law on hand-made observations, its design
 /// on MuJoCo, and the residual mode of VelocityEnv that adds a policy to it.
 
-#include "envs/velocity_balancer.hpp"
+#include "envs/controllers/velocity_balancer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 
-#include "envs/builtin_controllers.hpp"
-#include "envs/registry.hpp"
-#include "envs/velocity_balancer_design.hpp"
-#include "envs/velocity_env.hpp"
-#include "envs/velocity_task.hpp"
-#include "envs/velocity_tracking.hpp"
+#include "envs/controllers/builtin_controllers.hpp"
+#include "envs/controllers/velocity_balancer_design.hpp"
+#include "envs/kinds/velocity_env.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/tasks/velocity_task.hpp"
+#include "envs/tasks/velocity_tracking.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -1,4 +1,4 @@
-#include "envs/velocity_command_limiter.hpp"
+#include "envs/tasks/velocity_command_limiter.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include "envs/registry.hpp"
-#include "envs/velocity_env.hpp"
-#include "envs/velocity_task.hpp"
+#include "envs/kinds/velocity_env.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/tasks/velocity_task.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -1,4 +1,4 @@
-#include "envs/velocity_env.hpp"
+#include "envs/kinds/velocity_env.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,11 +9,12 @@
 
 #include <Eigen/Geometry>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
+#include "envs/registry/registry.hpp"
 #include "envs/scripted_simulation.hpp"
-#include "envs/velocity_command_sampler.hpp"
-#include "envs/velocity_reward.hpp"
-#include "envs/velocity_task.hpp"
+#include "envs/tasks/velocity_command_sampler.hpp"
+#include "envs/tasks/velocity_reward.hpp"
+#include "envs/tasks/velocity_task.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -1,4 +1,4 @@
-#include "envs/velocity_tracking.hpp"
+#include "envs/tasks/velocity_tracking.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 
 #include "common/child_call.hpp"
 #include "common/temp_files.hpp"
-#include "envs/episode_runner.hpp"
-#include "envs/velocity_command_sampler.hpp"
-#include "envs/velocity_command_schedule.hpp"
+#include "envs/evaluation/episode_runner.hpp"
+#include "envs/tasks/velocity_command_sampler.hpp"
+#include "envs/tasks/velocity_command_schedule.hpp"
 
 namespace upkie_rl {
 namespace {

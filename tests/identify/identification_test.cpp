@@ -7,7 +7,7 @@
 #include <string>
 
 #include "common/temp_files.hpp"
-#include "envs/robot_log.hpp"
+#include "envs/records/robot_log.hpp"
 #include "identify/excitation_log.hpp"
 #include "identify/identification.hpp"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "envs/velocity_command_schedule.hpp"
+#include "envs/tasks/velocity_command_schedule.hpp"
 
 namespace upkie_rl {
 namespace {

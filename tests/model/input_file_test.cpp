@@ -1,4 +1,4 @@
-#include "model/input_file.hpp"
+#include "base/input_file.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "rl/actor_critic.hpp"
+#include "rl/ppo/actor_critic.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "rl/checkpoint.hpp"
+#include "rl/runs/checkpoint.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include "common/temp_files.hpp"
 #include "policy/deployed_policy.hpp"
 #include "rl/point_mass_vector_env.hpp"
-#include "rl/ppo_checkpoint.hpp"
+#include "rl/runs/ppo_checkpoint.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -8,7 +8,7 @@
 #include "common/normalization_state.hpp"
 #include "common/temp_files.hpp"
 #include "policy/deployed_policy.hpp"
-#include "rl/ppo_checkpoint.hpp"
+#include "rl/runs/ppo_checkpoint.hpp"
 
 namespace upkie_rl {
 namespace {

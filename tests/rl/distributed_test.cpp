@@ -7,8 +7,8 @@
 
 #include "common/background_process.hpp"
 #include "common/loopback_launch.hpp"
-#include "rl/communicator.hpp"
-#include "rl/distributed_launch.hpp"
+#include "rl/distributed/communicator.hpp"
+#include "rl/distributed/distributed_launch.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -1,4 +1,4 @@
-#include "rl/flat_adam.hpp"
+#include "rl/ppo/flat_adam.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "rl/linear_schedule.hpp"
+#include "rl/ppo/linear_schedule.hpp"
 
 #include <gtest/gtest.h>
 

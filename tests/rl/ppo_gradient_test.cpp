@@ -1,4 +1,4 @@
-#include "rl/ppo_gradient.hpp"
+#include "rl/ppo/ppo_gradient.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "rl/autograd_ppo_gradient.hpp"
-#include "rl/flat_adam.hpp"
 #include "rl/point_mass_vector_env.hpp"
-#include "rl/ppo.hpp"
-#include "rl/ppo_loss.hpp"
+#include "rl/ppo/autograd_ppo_gradient.hpp"
+#include "rl/ppo/flat_adam.hpp"
+#include "rl/ppo/ppo.hpp"
+#include "rl/ppo/ppo_loss.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -1,4 +1,4 @@
-#include "rl/ppo_loss.hpp"
+#include "rl/ppo/ppo_loss.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "rl/ppo.hpp"
+#include "rl/ppo/ppo.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Fault injection (issue 26, item 6): ranks started with different settings stop at the
 // rendezvous, every one of them, with one line naming the first differing setting.
 
-#include "rl/rank_agreement.hpp"
+#include "rl/distributed/rank_agreement.hpp"
 
 #include <gtest/gtest.h>
 

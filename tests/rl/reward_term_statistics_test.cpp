@@ -1,4 +1,4 @@
-#include "rl/reward_term_statistics.hpp"
+#include "rl/logging/reward_term_statistics.hpp"
 
 #include <gtest/gtest.h>
 

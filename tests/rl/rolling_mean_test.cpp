@@ -1,4 +1,4 @@
-#include "rl/rolling_mean.hpp"
+#include "rl/logging/rolling_mean.hpp"
 
 #include <gtest/gtest.h>
 

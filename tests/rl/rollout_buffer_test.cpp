@@ -1,4 +1,4 @@
-#include "rl/rollout_buffer.hpp"
+#include "rl/ppo/rollout_buffer.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,9 +9,9 @@
 #include <fstream>
 
 #include "common/temp_files.hpp"
-#include "rl/run_directory_lock.hpp"
-#include "rl/scalar_csv_writer.hpp"
-#include "rl/training_run.hpp"
+#include "rl/logging/scalar_csv_writer.hpp"
+#include "rl/runs/run_directory_lock.hpp"
+#include "rl/runs/training_run.hpp"
 
 namespace upkie_rl {
 namespace {

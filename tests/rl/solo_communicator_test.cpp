@@ -3,7 +3,7 @@
 #include <array>
 #include <vector>
 
-#include "rl/communicator.hpp"
+#include "rl/distributed/communicator.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -1,6 +1,6 @@
 /// The plan of a sweep: seed lists, axes, the grid, run names, and the sweep file read back.
 
-#include "rl/sweep_plan.hpp"
+#include "rl/runs/sweep_plan.hpp"
 
 #include <gtest/gtest.h>
 

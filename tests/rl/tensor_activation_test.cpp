@@ -1,7 +1,7 @@
 // The trainer's tensor activations are policy/activation.cpp's (the deployed and exported
 // policies' definitions), in and out of place.
 
-#include "rl/tensor_activation.hpp"
+#include "rl/ppo/tensor_activation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "rl/tensorboard_writer.hpp"
+#include "rl/logging/tensorboard_writer.hpp"
 
 #include <gtest/gtest.h>
 

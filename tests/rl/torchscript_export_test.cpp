@@ -1,4 +1,4 @@
-#include "rl/torchscript_export.hpp"
+#include "rl/runs/torchscript_export.hpp"
 
 #include <gtest/gtest.h>
 #include <torch/script.h>

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rl/training_config.hpp"
+#include "rl/runs/training_config.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "rl/training_config.hpp"
+#include "rl/runs/training_config.hpp"
 
 namespace upkie_rl {
 namespace {

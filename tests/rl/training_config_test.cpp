@@ -1,4 +1,4 @@
-#include "rl/training_config.hpp"
+#include "rl/runs/training_config.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-#include "rl/training_run.hpp"
+#include "rl/runs/training_run.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "rl/checkpoint.hpp"
-#include "rl/scalar_csv_writer.hpp"
-#include "rl/tensorboard_writer.hpp"
+#include "rl/logging/scalar_csv_writer.hpp"
+#include "rl/logging/tensorboard_writer.hpp"
+#include "rl/runs/checkpoint.hpp"
 
 namespace upkie_rl {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <optional>
 
-#include "envs/env.hpp"
+#include "envs/core/env.hpp"
 
 namespace upkie_rl::testing {
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "envs/registry/env_factory.hpp"
 #include "vec/make_vector_env.hpp"
 
 namespace upkie_rl {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "model/option_table.hpp"
+#include "base/option_table.hpp"
 #include "vec/normalization_state.hpp"
 
 namespace upkie_rl {

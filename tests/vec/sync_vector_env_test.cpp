@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 
+#include "envs/registry/env_factory.hpp"
 #include "vec/counting_env.hpp"
 #include "vec/make_vector_env.hpp"
 

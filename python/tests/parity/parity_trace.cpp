@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "envs/registry.hpp"
+#include "envs/registry/env_factory.hpp"
 #include "policy/deployed_policy.hpp"
 #include "render/robot_renderer.hpp"
 

@@ -1,0 +1,285 @@
+#include "cli/suite_evaluation.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "base/csv_field.hpp"
+#include "cli/fixed_text.hpp"
+#include "cli/gnuplot_figure.hpp"
+#include "cli/tracking_report.hpp"
+#include "envs/evaluation/evaluation_start.hpp"
+#include "envs/registry/env_factory.hpp"
+
+namespace upkie_rl::apps {
+namespace {
+
+/// "MuJoCo" of "Upkie-MuJoCo-Velocity": the engine, which tells a world's two rows apart.
+std::string engine_of(const std::string& env_id) {
+  const std::size_t first = env_id.find('-');
+  const std::size_t second = env_id.find('-', first + 1);
+  if (first == std::string::npos || second == std::string::npos) return env_id;
+  return env_id.substr(first + 1, second - first - 1);
+}
+
+int falls(const CellResult& cell) { return cell.summary.episodes - cell.successes; }
+
+/// The options of one world for one contender: its own, the world's, then the evaluation
+/// start (a random initial state) unless exact_start.
+EnvOptions world_options(const Contender& contender, const SuiteWorld& world, bool exact_start) {
+  EnvOptions all = contender.options;
+  all.insert(all.end(), world.options.begin(), world.options.end());
+  return exact_start ? all : with_evaluation_start(world.env_id, all);
+}
+
+/// Runs the contenders of one env over the suite's worlds on it, into run.results.
+void run_env(const std::string& env_id, const SuiteRequest& request, const EpisodePlan& plan,
+             SuiteResults& run) {
+  const std::vector<Contender> contenders =
+      make_contenders(env_id, request.models, request.controllers, request.base);
+  if (run.labels.empty()) {
+    for (const Contender& contender : contenders) {
+      run.labels.push_back(contender.label);
+      run.descriptions.push_back(contender.model.empty() ? contender.spec : contender.model);
+    }
+  }
+  std::vector<std::size_t> worlds;
+  for (std::size_t w = 0; w < run.suite.worlds.size(); ++w) {
+    if (run.suite.worlds[w].env_id == env_id) worlds.push_back(w);
+  }
+  std::vector<std::vector<EnvFactory>> factories(contenders.size());
+  for (std::size_t c = 0; c < contenders.size(); ++c) {
+    for (const std::size_t w : worlds) {
+      const SuiteWorld& world = run.suite.worlds[w];
+      const EnvOptions options = world_options(contenders[c], world, request.exact_start);
+      factories[c].push_back(make_env_factory(env_id, options));
+      const std::string words = evaluation_start_words(env_id, options, request.exact_start);
+      if (run.start_words.empty() || words == "from random starts") run.start_words = words;
+    }
+  }
+  const auto results = evaluate_all(plan, contenders, factories);
+  warn_identical_cells(plan, results);
+  for (std::size_t c = 0; c < contenders.size(); ++c) {
+    for (std::size_t k = 0; k < worlds.size(); ++k) run.results[worlds[k]][c] = results[c][k];
+  }
+}
+
+/// "3/20 (2 early)" or "0/20".
+std::string falls_text(const CellResult& cell) {
+  std::string text = std::to_string(falls(cell)) + "/" + std::to_string(cell.summary.episodes);
+  if (cell.early_falls > 0) text += " (" + std::to_string(cell.early_falls) + " early)";
+  return text;
+}
+
+/// Totals of one contender over the worlds: falls, worlds with a fall, summed RMS.
+struct ContenderTotals {
+  int falls = 0;
+  int early_falls = 0;
+  int worlds_with_falls = 0;
+  double rms_vx_sum = 0.0;  ///< Over the worlds where the contender had steps up.
+};
+
+ContenderTotals totals_of_contender(const SuiteResults& run, std::size_t c) {
+  ContenderTotals totals;
+  for (const auto& world : run.results) {
+    totals.falls += falls(world[c]);
+    totals.early_falls += world[c].early_falls;
+    totals.worlds_with_falls += falls(world[c]) > 0 ? 1 : 0;
+    const double rms = world[c].summary.tracking.rms_forward();
+    if (std::isfinite(rms)) totals.rms_vx_sum += rms;
+  }
+  return totals;
+}
+
+/// Every contender's totals, in label order.
+std::vector<ContenderTotals> totals_of(const SuiteResults& run) {
+  std::vector<ContenderTotals> totals;
+  for (std::size_t c = 0; c < run.labels.size(); ++c) totals.push_back(totals_of_contender(run, c));
+  return totals;
+}
+
+/// The worlds where `a` fell and `b` did not, as "name (engine), ...".
+std::string worlds_where_only_first_falls(const SuiteResults& run, std::size_t a, std::size_t b,
+                                          int& count) {
+  std::string names;
+  count = 0;
+  for (std::size_t w = 0; w < run.results.size(); ++w) {
+    if (falls(run.results[w][a]) == 0 || falls(run.results[w][b]) > 0) continue;
+    ++count;
+    const SuiteWorld& world = run.suite.worlds[w];
+    names += (names.empty() ? "" : ", ") + world.name + " (" + engine_of(world.env_id) + ")";
+  }
+  return names;
+}
+
+void print_comparisons(std::ostream& out, const SuiteResults& run,
+                       const std::vector<ContenderTotals>& totals) {
+  for (std::size_t a = 0; a < run.labels.size(); ++a) {
+    for (std::size_t b = 0; b < run.labels.size(); ++b) {
+      if (a == b) continue;
+      int count = 0;
+      const std::string names = worlds_where_only_first_falls(run, a, b, count);
+      out << run.labels[a] << " falls where " << run.labels[b] << " stands: " << count
+          << " world(s)" << (names.empty() ? "" : ": " + names) << '\n';
+    }
+  }
+  for (std::size_t a = 0; a < run.labels.size(); ++a) {
+    for (std::size_t b = a + 1; b < run.labels.size(); ++b) {
+      const double rms_a = totals[a].rms_vx_sum;
+      const double rms_b = totals[b].rms_vx_sum;
+      out << "forward tracking summed over the worlds: " << run.labels[a] << ' '
+          << fixed_text(rms_a, 3) << " m/s, " << run.labels[b] << ' ' << fixed_text(rms_b, 3)
+          << " m/s (" << run.labels[a] << " " << fixed_text(100.0 * (1.0 - rms_a / rms_b), 1)
+          << " % lower)\n";
+    }
+  }
+}
+
+}  // namespace
+
+SuiteWorldCheck world_check() {
+  return [](const SuiteWorld& world) { make_env_factory(world.env_id, world.options); };
+}
+
+SuiteResults run_suite(const EvaluationSuite& suite, const SuiteRequest& request) {
+  SuiteResults run;
+  run.suite = suite;
+  if (request.episodes > 0) run.suite.episodes = request.episodes;
+  if (request.max_steps > 0) run.suite.max_steps = request.max_steps;
+  if (request.seed) run.suite.seed = *request.seed;
+  EpisodePlan plan;
+  plan.episodes = run.suite.episodes;
+  plan.seed = run.suite.seed;
+  plan.max_steps = run.suite.max_steps;
+  plan.threads = request.threads;
+  plan.early_fall_time = run.suite.early_fall_time;
+  run.results.assign(suite.worlds.size(),
+                     std::vector<CellResult>(request.models.size() + request.controllers.size()));
+  for (const std::string& env_id : suite.env_ids) run_env(env_id, request, plan, run);
+  return run;
+}
+
+std::string suite_table(const SuiteResults& run) {
+  std::ostringstream out;
+  const EvaluationSuite& suite = run.suite;
+  out << "suite " << suite.name << (suite.description.empty() ? "" : ": " + suite.description)
+      << "\n"
+      << suite.episodes << " episodes per world and controller, at most " << suite.max_steps
+      << " steps, seeds " << suite.seed << ".. " << run.start_words << "; falls (early: within "
+      << suite.early_fall_time << " s), forward and yaw tracking RMS [m/s, rad/s], mean return\n";
+  out << std::left << std::setw(34) << "world" << std::setw(8) << "engine";
+  for (const std::string& label : run.labels) out << " | " << std::setw(36) << label;
+  out << '\n';
+  for (std::size_t w = 0; w < run.results.size(); ++w) {
+    const SuiteWorld& world = suite.worlds[w];
+    out << std::setw(34) << world.name << std::setw(8) << engine_of(world.env_id);
+    for (const CellResult& cell : run.results[w]) {
+      std::ostringstream entry;
+      entry << std::setw(14) << falls_text(cell) << ' ' << std::setw(6)
+            << fixed_text(cell.summary.tracking.rms_forward(), 3) << ' ' << std::setw(6)
+            << fixed_text(cell.summary.tracking.rms_yaw(), 3) << ' '
+            << fixed_text(cell.mean_return, 1);
+      out << " | " << std::setw(36) << entry.str();
+    }
+    out << '\n';
+  }
+  out << std::right << '\n';
+  const std::vector<ContenderTotals> totals = totals_of(run);
+  for (std::size_t c = 0; c < run.labels.size(); ++c) {
+    out << run.labels[c] << ": " << totals[c].falls << " falls (" << totals[c].early_falls
+        << " early) in " << totals[c].worlds_with_falls << " of " << run.results.size()
+        << " worlds; forward tracking RMS summed over the worlds "
+        << fixed_text(totals[c].rms_vx_sum, 3) << " m/s\n";
+  }
+  print_comparisons(out, run, totals);
+  return out.str();
+}
+
+nlohmann::json suite_json(const SuiteResults& run) {
+  const EvaluationSuite& suite = run.suite;
+  nlohmann::json json = {{"suite", suite.name},
+                         {"description", suite.description},
+                         {"episodes", suite.episodes},
+                         {"seed", suite.seed},
+                         {"max_steps", suite.max_steps},
+                         {"early_fall_time", suite.early_fall_time},
+                         {"start", run.start_words},
+                         {"contenders", nlohmann::json::array()},
+                         {"worlds", nlohmann::json::array()}};
+  const std::vector<ContenderTotals> all_totals = totals_of(run);
+  for (std::size_t c = 0; c < run.labels.size(); ++c) {
+    const ContenderTotals& totals = all_totals[c];
+    json["contenders"].push_back({{"label", run.labels[c]},
+                                  {"source", run.descriptions[c]},
+                                  {"falls", totals.falls},
+                                  {"early_falls", totals.early_falls},
+                                  {"worlds_with_falls", totals.worlds_with_falls},
+                                  {"tracking_rms_vx_sum", totals.rms_vx_sum}});
+  }
+  for (std::size_t w = 0; w < run.results.size(); ++w) {
+    const SuiteWorld& world = suite.worlds[w];
+    nlohmann::json options = nlohmann::json::object();
+    for (const auto& [name, value] : world.options) options[name] = value;
+    nlohmann::json results = nlohmann::json::object();
+    for (std::size_t c = 0; c < run.labels.size(); ++c) {
+      const CellResult& cell = run.results[w][c];
+      nlohmann::json entry = {{"episodes", cell.summary.episodes},
+                              {"falls", falls(cell)},
+                              {"early_falls", cell.early_falls},
+                              {"mean_return", cell.mean_return},
+                              {"mean_length", cell.mean_length}};
+      add_tracking_json(entry, cell.summary);
+      results[run.labels[c]] = entry;
+    }
+    json["worlds"].push_back(
+        {{"name", world.name}, {"env", world.env_id}, {"options", options}, {"results", results}});
+  }
+  return json;
+}
+
+std::string suite_csv(const SuiteResults& run) {
+  std::ostringstream out;
+  out << "world,env,contender,episodes,falls,early_falls,tracking_rms_vx,tracking_rms_wz,"
+         "mean_return\n";
+  out << std::setprecision(9);
+  for (std::size_t w = 0; w < run.results.size(); ++w) {
+    const SuiteWorld& world = run.suite.worlds[w];
+    for (std::size_t c = 0; c < run.labels.size(); ++c) {
+      const CellResult& cell = run.results[w][c];
+      out << csv_field(world.name) << ',' << world.env_id << ',' << csv_field(run.labels[c]) << ','
+          << cell.summary.episodes << ',' << falls(cell) << ',' << cell.early_falls << ','
+          << cell.summary.tracking.rms_forward() << ',' << cell.summary.tracking.rms_yaw() << ','
+          << cell.mean_return << '\n';
+    }
+  }
+  return out.str();
+}
+
+void write_suite_outputs(const std::filesystem::path& directory, const SuiteResults& run) {
+  std::filesystem::create_directories(directory);
+  std::ofstream(directory / "table.txt") << suite_table(run);
+  std::ofstream(directory / "summary.json") << suite_json(run).dump(2) << '\n';
+  std::ofstream(directory / "results.csv") << suite_csv(run);
+  HeatMapFigure figure;
+  figure.output = directory / "falls.png";
+  // Episodes without a fall, on the success-rate scale of every heat map (green: none fell).
+  figure.title = "suite " + run.suite.name + ": episodes without a fall [% of " +
+                 std::to_string(run.suite.episodes) + "]";
+  figure.x_label = "controller";
+  figure.x_values = run.labels;
+  figure.y_label = "world";
+  for (std::size_t w = 0; w < run.results.size(); ++w) {
+    const SuiteWorld& world = run.suite.worlds[w];
+    figure.y_values.push_back(world.name + " (" + engine_of(world.env_id) + ")");
+    for (const CellResult& cell : run.results[w]) {
+      figure.values.push_back(100.0 * cell.successes / std::max(1, cell.summary.episodes));
+    }
+  }
+  draw_heat_maps({figure});
+  std::cout << "wrote table.txt, summary.json, results.csv and falls.png in " << directory.string()
+            << std::endl;
+}
+
+}  // namespace upkie_rl::apps

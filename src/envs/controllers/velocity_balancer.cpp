@@ -1,0 +1,132 @@
+#include "envs/controllers/velocity_balancer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "envs/kinds/velocity_env.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+// Components of the velocity task's observation (VelocityTask).
+constexpr std::size_t kLeftWheelVelocity = 4;
+constexpr std::size_t kRightWheelVelocity = 5;
+constexpr std::size_t kGravityX = 6;
+constexpr std::size_t kGravityZ = 8;
+constexpr std::size_t kGyroY = 10;
+constexpr std::size_t kGyroZ = 11;
+constexpr double kMaxPositionError = 5.0;    // [m]
+constexpr double kMaxAcceleration = 2.0;     // of the velocity reference [m/s²]
+constexpr double kMaxYawRateIntegral = 1.0;  // [rad]
+
+const VelocityEnv& velocity_env(const Env& env) {
+  const VelocityEnv* velocity = find_velocity_env(env);
+  if (velocity == nullptr) {
+    throw std::invalid_argument(
+        "velocity balancer: the environment is not a velocity task (Upkie-*-Velocity)");
+  }
+  return *velocity;
+}
+
+}  // namespace
+
+double velocity_task_pitch(std::span<const float> observation) {
+  return std::atan2(observation[kGravityX], -observation[kGravityZ]);
+}
+
+double velocity_task_pitch_rate(std::span<const float> observation) { return observation[kGyroY]; }
+
+VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& gains)
+    : gains_(gains), legs_(velocity_env(env).servos().model()) {
+  const VelocityEnv& velocity = velocity_env(env);
+  const RobotModel& model = velocity.servos().model();
+  wheel_radius_ = model.wheel_radius();
+  yaw_factor_ = 0.5 * model.track() / wheel_radius_;
+  wheel_velocity_scale_ = velocity.task().config().wheel_velocity_scale;
+  leg_action_scale_ = velocity.task().config().leg_action_scale;
+  timestep_ = env.timestep();
+  touchdown_steps_ = static_cast<int>(std::lround(kTouchdownTime / timestep_));
+}
+
+void VelocityBalancer::reset() {
+  steps_since_reset_ = 0;
+  position_error_ = 0.0;
+  reference_velocity_ = 0.0;
+  reference_acceleration_ = 0.0;
+  filtered_velocity_ = 0.0;
+  ground_velocity_ = 0.0;
+  yaw_rate_error_integral_ = 0.0;
+}
+
+void VelocityBalancer::act(std::span<const float> observation, std::span<float> action) {
+  if (steps_since_reset_ < touchdown_steps_) {
+    ++steps_since_reset_;
+    std::fill(action.begin(), action.end(), 0.0f);
+    return;
+  }
+  // The reference ramps toward the command: a step of the wheel speed would kick the body
+  // over (it tilts backward when the wheels leap forward).
+  const double commanded = observation[VelocityTask::kCommandIndex];
+  const double max_change = kMaxAcceleration * timestep_;
+  const double change = std::clamp(commanded - reference_velocity_, -max_change, max_change);
+  reference_velocity_ += change;
+  reference_acceleration_ +=
+      kAccelerationFilterGain * (change / timestep_ - reference_acceleration_);
+  const double odometry =
+      0.5 * wheel_radius_ * (observation[kLeftWheelVelocity] - observation[kRightWheelVelocity]);
+  filtered_velocity_ += kVelocityFilterGain * (odometry - filtered_velocity_);
+  const double velocity_error = filtered_velocity_ - reference_velocity_;
+  // Bounded, so that a command the robot cannot follow does not wind the integral up.
+  position_error_ = std::clamp(position_error_ + velocity_error * timestep_, -kMaxPositionError,
+                               kMaxPositionError);
+  const double steady_pitch = gains_.pitch_offset +
+                              gains_.pitch_per_velocity * reference_velocity_ +
+                              gains_.pitch_per_acceleration * reference_acceleration_;
+  const double steady_command = gains_.command_offset +
+                                gains_.command_per_velocity * reference_velocity_ +
+                                gains_.command_per_acceleration * reference_acceleration_;
+  const std::array<double, 4>& k = gains_.feedback;
+  ground_velocity_ = steady_command + k[0] * (velocity_task_pitch(observation) - steady_pitch) +
+                     k[1] * velocity_task_pitch_rate(observation) + k[2] * velocity_error +
+                     k[3] * position_error_ + excitation_;
+
+  // Yaw: the differential wheel speed of the command, corrected by a PI loop on the
+  // gyroscope (the tires slip a little when turning).
+  const double yaw_command = observation[VelocityTask::kCommandIndex + 1];
+  const double yaw_error = yaw_command - observation[kGyroZ];
+  yaw_rate_error_integral_ = std::clamp(yaw_rate_error_integral_ + yaw_error * timestep_,
+                                        -kMaxYawRateIntegral, kMaxYawRateIntegral);
+  const double yaw_rate =
+      yaw_command + kYawRateGain * yaw_error + kYawRateIntegralGain * yaw_rate_error_integral_;
+  // Joint convention: the left wheel forward and the right one backward turn clockwise.
+  const double turn = -yaw_factor_ * yaw_rate;
+  std::fill(action.begin(), action.end(), 0.0f);
+  const auto normalized = [this](double wheel_velocity) {
+    return static_cast<float>(std::clamp(wheel_velocity / wheel_velocity_scale_, -1.0, 1.0));
+  };
+  action[kLeftWheel] = normalized(ground_velocity_ / wheel_radius_ + turn);
+  action[kRightWheel] = normalized(-ground_velocity_ / wheel_radius_ + turn);
+  if (observation.size() > VelocityTask::kHeightCommandIndex) crouch(observation, action);
+}
+
+void VelocityBalancer::crouch(std::span<const float> observation, std::span<float> action) const {
+  // Leaning forward tilts the crouched shins further from the vertical: the crouch is
+  // limited so that the ankles' boxes clear the floor (kCrouchShinTilt).
+  const double lean = std::max(0.0, velocity_task_pitch(observation));
+  const double lowest =
+      legs_.height_at_shin_tilt(std::max(0.0, kCrouchShinTilt - kCrouchLeanGain * lean));
+  const double height =
+      std::max(static_cast<double>(observation[VelocityTask::kHeightCommandIndex]), lowest);
+  const CrouchPose pose = legs_.crouch_pose(height);
+  const auto normalized = [this](double angle) {
+    return static_cast<float>(std::clamp(angle / leg_action_scale_, -1.0, 1.0));
+  };
+  action[kLeftHip] = normalized(pose.hip);
+  action[kLeftKnee] = normalized(pose.knee);
+  action[kRightHip] = normalized(-pose.hip);  // the right leg mirrors the left
+  action[kRightKnee] = normalized(-pose.knee);
+}
+
+}  // namespace upkie_rl

@@ -1,0 +1,67 @@
+#include "envs/tasks/velocity_reward.hpp"
+
+#include <cmath>
+#include "envs/core/shared_options.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+/// Squared tilt (|g_xy|²) at which the upright kernel is 1/e.
+constexpr double kUprightWidth = 0.1;
+/// Σ Δq² [rad²] at which the pose kernel is 1/e.
+constexpr double kPoseWidth = 0.25;
+
+double kernel(double error, double sigma) { return std::exp(-(error * error) / (sigma * sigma)); }
+
+}  // namespace
+
+double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
+  const double forward_error = inputs.command.forward_velocity - inputs.velocity.forward_velocity;
+  const double yaw_error = inputs.command.yaw_rate - inputs.velocity.yaw_rate;
+  const Eigen::Vector3d& g = inputs.gravity_in_base;
+  double pose_error = 0.0;
+  for (const double deviation : inputs.leg_deviation) pose_error += deviation * deviation;
+  double action_change = 0.0;
+  for (std::size_t i = 0; i < inputs.action.size() && i < inputs.previous_action.size(); ++i) {
+    const double change = inputs.action[i] - inputs.previous_action[i];
+    action_change += change * change;
+  }
+  terms_[kTrackForwardVelocity] =
+      weights_.w_track_forward_velocity * kernel(forward_error, weights_.forward_velocity_sigma);
+  terms_[kTrackYawRate] = weights_.w_track_yaw_rate * kernel(yaw_error, weights_.yaw_rate_sigma);
+  terms_[kUpright] =
+      weights_.w_upright * std::exp(-(g.x() * g.x() + g.y() * g.y()) / kUprightWidth);
+  terms_[kPose] = weights_.w_pose * std::exp(-pose_error / kPoseWidth);
+  terms_[kActionRate] = -weights_.w_action_rate * action_change;
+  terms_[kTrackHeight] =
+      inputs.track_height
+          ? weights_.w_track_height *
+                kernel(inputs.command.height - inputs.velocity.height, weights_.height_sigma)
+          : 0.0;
+  double sum = 0.0;
+  for (const double term : terms_) sum += term;
+  return sum;
+}
+
+void VelocityRewardWeights::declare_options(OptionTable& table) {
+  table.add_real("w_track_forward_velocity", &w_track_forward_velocity, 0.0, kOptionHuge,
+                 "reward weight of forward velocity tracking");
+  table.add_real("w_track_yaw_rate", &w_track_yaw_rate, 0.0, kOptionHuge,
+                 "reward weight of yaw rate tracking");
+  table.add_real("w_upright", &w_upright, 0.0, kOptionHuge, "reward weight of uprightness");
+  table.add_real("w_pose", &w_pose, 0.0, kOptionHuge,
+                 "reward weight of the legs' closeness to the default pose");
+  table.add_real("w_action_rate", &w_action_rate, 0.0, kOptionHuge,
+                 "penalty weight of the squared action change");
+  table.add_real("forward_velocity_sigma", &forward_velocity_sigma, 1e-6, kOptionHuge,
+                 "width of the forward velocity tracking kernel [m/s]");
+  table.add_real("yaw_rate_sigma", &yaw_rate_sigma, 1e-6, kOptionHuge,
+                 "width of the yaw rate tracking kernel [rad/s]");
+  table.add_real("w_track_height", &w_track_height, 0.0, kOptionHuge,
+                 "reward weight of base height tracking (with height_command)");
+  table.add_real("height_sigma", &height_sigma, 1e-6, kOptionHuge,
+                 "width of the base height tracking kernel [m]");
+}
+
+}  // namespace upkie_rl

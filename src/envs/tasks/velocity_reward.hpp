@@ -1,0 +1,81 @@
+#pragma once
+/// @file
+/// VelocityReward: the reward of the velocity task as a sum of named terms, each logged on
+/// its own (anchor: mjlab_upkie's Mjlab-Velocity-Upkie).
+
+#include <array>
+#include <span>
+#include <string_view>
+
+#include <Eigen/Core>
+
+#include "base/option_table.hpp"
+#include "envs/tasks/velocity_command.hpp"
+
+namespace upkie_rl {
+
+/// Weights and kernel widths of the reward terms (environment options of the same names).
+struct VelocityRewardWeights {
+  double w_track_forward_velocity = 2.0;
+  double w_track_yaw_rate = 2.0;
+  double w_upright = 1.0;
+  double w_pose = 0.5;
+  double w_action_rate = 0.1;            ///< Subtracted: a penalty.
+  double forward_velocity_sigma = 0.25;  ///< Width of the forward tracking kernel [m/s].
+  double yaw_rate_sigma = 0.5;           ///< Width of the yaw tracking kernel [rad/s].
+  double w_track_height = 1.0;           ///< With a height command only.
+  /// Width of the height tracking kernel [m]: a 5 cm error keeps 1/e of the weight, a
+  /// third of the default crouch range.
+  double height_sigma = 0.05;
+
+  /// Declares the options of the fields, by their names.
+  void declare_options(OptionTable& table);
+};
+
+/// What a step gives the reward.
+struct VelocityRewardInputs {
+  VelocityCommand command;    ///< Held during the step.
+  BaseVelocity velocity;      ///< Measured at the end of the step.
+  bool track_height = false;  ///< Whether the command's height is tracked (a height command).
+  Eigen::Vector3d gravity_in_base = Eigen::Vector3d(0.0, 0.0, -1.0);  ///< Unit vector.
+  std::array<double, 4> leg_deviation{};   ///< Hip and knee angles minus the default pose [rad].
+  std::span<const float> action;           ///< Normalised action of the step.
+  std::span<const float> previous_action;  ///< Of the step before (zero at reset).
+};
+
+/// r = w_vx·exp(-(vx* - vx)²/σ_vx²) + w_wz·exp(-(ωz* - ωz)²/σ_wz²) [+ w_h·exp(-(h* - h)²/σ_h²)]
+///   + w_upright·exp(-(g_x² + g_y²)/0.1) + w_pose·exp(-Σ Δq²/0.25) - w_action_rate·Σ Δu²
+/// where g is the unit gravity vector in the base frame, Δq the leg joints' deviations from
+/// the pose reference (VelocityTask) and Δu the change of the normalised action. The height
+/// term (track_height) is 0 without a height command. Every term is bounded, so a
+/// fall costs the rewards of the steps it forfeits.
+class VelocityReward {
+ public:
+  enum Term : std::size_t {
+    kTrackForwardVelocity = 0,
+    kTrackYawRate,
+    kUpright,
+    kPose,
+    kActionRate,
+    kTrackHeight,
+    kNumTerms
+  };
+  /// Term names, as logged (`episode/reward_<name>`).
+  static constexpr std::array<std::string_view, kNumTerms> kTermNames = {
+      "track_forward_velocity", "track_yaw_rate", "upright", "pose", "action_rate", "track_height"};
+
+  explicit VelocityReward(const VelocityRewardWeights& weights = {}) : weights_(weights) {}
+
+  /// Computes every weighted term of a step into terms() and returns their sum.
+  double operator()(const VelocityRewardInputs& inputs);
+
+  /// The weighted terms of the last step, in Term order.
+  const std::array<double, kNumTerms>& terms() const { return terms_; }
+  const VelocityRewardWeights& weights() const { return weights_; }
+
+ private:
+  VelocityRewardWeights weights_;
+  std::array<double, kNumTerms> terms_{};
+};
+
+}  // namespace upkie_rl

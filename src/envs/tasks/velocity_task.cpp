@@ -1,0 +1,194 @@
+#include "envs/tasks/velocity_task.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include "envs/core/shared_options.hpp"
+
+namespace upkie_rl {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+}  // namespace
+
+VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& config,
+                           bool height_command)
+    : config_(config), height_command_(height_command), legs_(model), reward_(config.reward) {
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    const JointLimits& limits = model.servo_limits(i);
+    effort_[i] = limits.effort;
+    lower_limit_[i] = limits.lower;
+    upper_limit_[i] = limits.upper;
+  }
+}
+
+BoxSpace VelocityTask::make_observation_space(bool height_command) {
+  BoxSpace space;
+  for (const std::size_t joint : kLegJoints) {
+    space.add(std::string(kServoNames[joint]) + ".position", -kInf, kInf);
+  }
+  space.add("left_wheel.velocity", -kInf, kInf);
+  space.add("right_wheel.velocity", -kInf, kInf);
+  for (const char* axis : {"x", "y", "z"}) space.add(std::string("gravity.") + axis, -1.0f, 1.0f);
+  for (const char* axis : {"x", "y", "z"}) space.add(std::string("gyro.") + axis, -kInf, kInf);
+  for (const std::string_view joint : kServoNames) {
+    space.add("last_action." + std::string(joint), -1.0f, 1.0f);
+  }
+  for (const char* column : kCommandColumns) space.add(column, -kInf, kInf);
+  if (height_command) space.add(kHeightCommandColumn, -kInf, kInf);
+  return space;
+}
+
+BoxSpace VelocityTask::make_action_space() {
+  BoxSpace space;
+  for (const std::string_view joint : kServoNames) space.add(std::string(joint), -1.0f, 1.0f);
+  return space;
+}
+
+void VelocityTask::servo_action(std::span<const float> action, ServoAction& commands) const {
+  for (std::size_t i = 0; i < kNumServos; ++i) {
+    ServoCommand& command = commands[i];
+    command.feedforward_torque = 0.0;
+    command.maximum_torque = effort_[i];
+    if (is_wheel(i)) {
+      command.position = std::numeric_limits<double>::quiet_NaN();
+      command.velocity = config_.wheel_velocity_scale * action[i];
+      command.kp_scale = 0.0;
+      command.kd_scale = config_.wheel_kd_scale;
+    } else {
+      // Default pose: 0; within the joint limits (a wide leg_action_scale spans more).
+      command.position =
+          std::clamp(config_.leg_action_scale * action[i], lower_limit_[i], upper_limit_[i]);
+      command.velocity = 0.0;
+      command.kp_scale = config_.leg_kp_scale;
+      command.kd_scale = config_.leg_kd_scale;
+    }
+  }
+}
+
+Eigen::Vector3d VelocityTask::gravity_in_base(const Observation& full) {
+  return full.base_orientation.rotation_base_to_world.transpose() * Eigen::Vector3d(0, 0, -1);
+}
+
+double VelocityTask::tilt(const Observation& full) {
+  return std::acos(std::clamp(-gravity_in_base(full).z(), -1.0, 1.0));
+}
+
+BaseVelocity VelocityTask::measured_velocity(const Observation& full) {
+  const Eigen::Matrix3d& rotation = full.base_orientation.rotation_base_to_world;
+  BaseVelocity velocity;
+  velocity.yaw_rate = (rotation * full.base_orientation.angular_velocity).z();
+  if (!full.has_sim) {
+    velocity.forward_velocity = full.wheel_odometry.velocity;
+    return velocity;
+  }
+  Eigen::Vector3d heading(rotation(0, 0), rotation(1, 0), 0.0);
+  const double norm = heading.norm();
+  if (norm > 1e-9) heading /= norm;
+  velocity.forward_velocity = heading.dot(full.sim_base.linear_velocity);
+  return velocity;
+}
+
+BaseVelocity VelocityTask::measure(const Observation& full) const {
+  BaseVelocity measured = measured_velocity(full);
+  std::array<double, 4> leg_angles{};
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
+    leg_angles[k] = full.servo[kLegJoints[k]].position;
+  }
+  measured.height = legs_.base_height(leg_angles, full.base_orientation.rotation_base_to_world);
+  return measured;
+}
+
+std::array<double, 4> VelocityTask::leg_deviation(const Observation& full,
+                                                  const VelocityCommand& command) const {
+  std::array<double, 4> reference{};  // straight legs
+  if (height_command_) {
+    const CrouchPose crouch = legs_.crouch_pose(command.height);
+    reference = {crouch.hip, crouch.knee, -crouch.hip, -crouch.knee};  // the right mirrors
+  }
+  std::array<double, 4> deviation{};
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
+    deviation[k] = full.servo[kLegJoints[k]].position - reference[k];
+  }
+  return deviation;
+}
+
+void VelocityTask::write_observation(const Observation& full, std::span<const float> last_action,
+                                     const VelocityCommand& command,
+                                     std::span<float> observation) const {
+  if (observation.size() != observation_size() || last_action.size() != kActionSize) {
+    throw std::invalid_argument("VelocityTask: observation buffer has " +
+                                std::to_string(observation.size()) + " components, expected " +
+                                std::to_string(observation_size()));
+  }
+  std::size_t k = 0;
+  for (const std::size_t joint : kLegJoints) {
+    observation[k++] = static_cast<float>(full.servo[joint].position);
+  }
+  observation[k++] = static_cast<float>(full.servo[kLeftWheel].velocity);
+  observation[k++] = static_cast<float>(full.servo[kRightWheel].velocity);
+  const Eigen::Vector3d gravity = gravity_in_base(full);
+  for (int i = 0; i < 3; ++i) observation[k++] = static_cast<float>(gravity[i]);
+  for (int i = 0; i < 3; ++i) {
+    observation[k++] = static_cast<float>(full.base_orientation.angular_velocity[i]);
+  }
+  for (const float u : last_action) observation[k++] = u;
+  observation[k++] = static_cast<float>(command.forward_velocity);
+  observation[k++] = static_cast<float>(command.yaw_rate);
+  if (height_command_) observation[k++] = static_cast<float>(command.height);
+}
+
+StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand& command,
+                                  std::span<const float> action,
+                                  std::span<const float> previous_action) {
+  VelocityRewardInputs inputs;
+  inputs.command = command;
+  inputs.velocity = height_command_ ? measure(full) : measured_velocity(full);
+  inputs.track_height = height_command_;
+  inputs.gravity_in_base = gravity_in_base(full);
+  inputs.leg_deviation = leg_deviation(full, command);
+  inputs.action = action;
+  inputs.previous_action = previous_action;
+  StepResult result;
+  result.reward = reward_(inputs);
+  reason_ = VelocityTermination::kNone;
+  if (tilt(full) > config_.fall_tilt) {
+    reason_ = VelocityTermination::kTilt;
+  } else if (config_.terminate_on_contact && full.floor_contact.non_wheel) {
+    reason_ = VelocityTermination::kContact;
+  }
+  result.terminated = reason_ != VelocityTermination::kNone;
+  return result;
+}
+
+void VelocityTaskConfig::declare_options(OptionTable& table) {
+  table.add_real("wheel_velocity_scale", &wheel_velocity_scale, 1e-6, kOptionHuge,
+                 "wheel velocity target at action 1 [rad/s]");
+  table.add_real("leg_action_scale", &leg_action_scale, 1e-6, 10.0,
+                 "hip and knee target offset from the default pose at action 1 [rad] (1.0: the "
+                 "default crouch and room around it; 0.5 before the height command)");
+  table.set_recorded_default("leg_action_scale", "0.5");
+  table.add_real("leg_kp_scale", &leg_kp_scale, 0.0, ServosEnv::kMaxGainScale,
+                 "kp_scale of hips and knees");
+  table.add_real("leg_kd_scale", &leg_kd_scale, 0.0, ServosEnv::kMaxGainScale,
+                 "kd_scale of hips and knees");
+  table.add_real("wheel_kd_scale", &wheel_kd_scale, 0.0, ServosEnv::kMaxGainScale,
+                 "kd_scale of the wheels' velocity loop");
+  table.add_real("fall_tilt", &fall_tilt, 0.0, 3.2,
+                 "terminate when the base tilts more than it [rad]");
+  table.add_choice("terminate_on_contact", &terminate_on_contact,
+                   {{"true", true}, {"false", false}},
+                   "terminate when a part other than a wheel touches the floor");
+  table.add_text("base_controller", &base_controller,
+                 "residual mode: a controller spec (balancer:... from `rollout --controller "
+                 "lqr`) whose action is added to residual_scale times the agent's");
+  table.add_real("residual_scale", &residual_scale, 0.0, 1.0,
+                 "residual mode: weight of the agent's action");
+  reward.declare_options(table);
+}
+
+}  // namespace upkie_rl

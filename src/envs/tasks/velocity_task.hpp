@@ -1,0 +1,149 @@
+#pragma once
+/// @file
+/// VelocityTask: the logic of the velocity-tracking task (action mapping, observation,
+/// reward, terminations) on the typed Observation, independent of the backend: the same
+/// code runs on Bullet, MuJoCo and the spine of a real robot.
+
+#include <array>
+#include <span>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "envs/core/env.hpp"
+#include "envs/spaces/box_space.hpp"
+#include "envs/tasks/leg_kinematics.hpp"
+#include "envs/tasks/velocity_command.hpp"
+#include "envs/tasks/velocity_reward.hpp"
+#include "model/robot_model.hpp"
+#include "sim/observation.hpp"
+#include "sim/servo_command.hpp"
+
+namespace upkie_rl {
+
+/// Settings of the task (environment options of the same names).
+struct VelocityTaskConfig {
+  double wheel_velocity_scale = 60.0;  ///< Wheel velocity target at |u| = 1 [rad/s].
+  /// Hip or knee target offset at |u| = 1 [rad]. 1.0 (mjlab_upkie's scale): room for the
+  /// crouch of the default height range (knees at -0.80 rad) and corrections around it;
+  /// VelocityEnv refuses a height range whose crouch needs more. The policies trained
+  /// before the height command used 0.5 (a checkpoint that does not name the option is
+  /// read with 0.5).
+  double leg_action_scale = 1.0;
+  double wheel_kd_scale = 1.0;  ///< Wheels: velocity loop only (kp unused).
+  double leg_kp_scale = 2.0;
+  double leg_kd_scale = 1.7;
+  double fall_tilt = 1.22;           ///< Terminate when the base tilts more than this [rad] (70°).
+  bool terminate_on_contact = true;  ///< Terminate when a non-wheel part touches the floor.
+  /// Residual mode (VelocityEnv): a built-in controller spec ("balancer:..."), whose action
+  /// is added to residual_scale times the agent's; empty for none.
+  std::string base_controller;
+  double residual_scale = 1.0;
+  VelocityRewardWeights reward;
+
+  /// Declares the options of the fields, by their names, then the reward's.
+  void declare_options(OptionTable& table);
+};
+
+/// Why an episode of the velocity task ended.
+enum class VelocityTermination { kNone = 0, kTilt, kContact };
+
+/// "tilt", "contact" or "none".
+constexpr const char* to_string(VelocityTermination reason) {
+  switch (reason) {
+    case VelocityTermination::kTilt:
+      return "tilt";
+    case VelocityTermination::kContact:
+      return "contact";
+    default:
+      return "none";
+  }
+}
+
+/// Action u in [-1, 1]^6 in the joint order (left hip, knee, wheel, right hip, knee, wheel):
+/// hips and knees track position = default pose (0) + leg_action_scale·u, clamped to the
+/// joint limits; wheels track
+/// velocity = wheel_velocity_scale·u (joint convention: the right wheel turns backward
+/// when the robot drives forward).
+///
+/// Observation (20, what the robot measures): 4 hip and knee angles [rad] (deviation from
+/// the default pose), 2 wheel velocities [rad/s], the unit gravity vector in the base frame
+/// (3, from the IMU's attitude), the base angular velocity in the base frame (3, the
+/// gyroscope) [rad/s], the last action (6), the command (forward velocity [m/s], yaw rate
+/// [rad/s]), then, with a height command (option height_command), the commanded base
+/// height [m] (21 components). No base linear velocity: the robot does not measure it.
+///
+/// With a height command, the pose reward's reference is the crouch pose of the commanded
+/// height (LegKinematics::crouch_pose) rather than straight legs, and the height is
+/// tracked against LegKinematics::base_height of the measured leg angles and attitude.
+class VelocityTask {
+ public:
+  static constexpr std::size_t kActionSize = kNumServos;
+  /// Observation size without a height command.
+  static constexpr std::size_t kObservationSize = 20;
+  /// Observation size with a height command: the largest.
+  static constexpr std::size_t kMaxObservationSize = kObservationSize + 1;
+  /// Index of the command's forward velocity in the observation (yaw rate next).
+  static constexpr std::size_t kCommandIndex = 18;
+  /// Index of the commanded base height in an observation of kMaxObservationSize.
+  static constexpr std::size_t kHeightCommandIndex = 20;
+  /// Hip and knee joints, in the order of the observation.
+  static constexpr std::array<std::size_t, 4> kLegJoints = {kLeftHip, kLeftKnee, kRightHip,
+                                                            kRightKnee};
+
+  /// @param height_command Whether the command has a base height (observed, rewarded).
+  VelocityTask(const RobotModel& model, const VelocityTaskConfig& config, bool height_command);
+
+  /// The observation space, with the commanded height last when `height_command`.
+  static BoxSpace make_observation_space(bool height_command);
+  static BoxSpace make_action_space();
+
+  /// The servo commands of the normalised action `action` (already clamped to [-1, 1]).
+  void servo_action(std::span<const float> action, ServoAction& commands) const;
+
+  /// Writes the observation of `full` with the last action and the command to follow.
+  void write_observation(const Observation& full, std::span<const float> last_action,
+                         const VelocityCommand& command, std::span<float> observation) const;
+
+  /// Reward (terms in reward().terms()) and termination of a step that held `command`,
+  /// applied `action` after `previous_action` and led to `full`.
+  StepResult evaluate(const Observation& full, const VelocityCommand& command,
+                      std::span<const float> action, std::span<const float> previous_action);
+
+  /// Forward velocity and yaw rate of the base: ground truth in simulation (the base's
+  /// velocity along its heading, the world-vertical angular velocity), wheel odometry and
+  /// gyroscope on a real robot.
+  static BaseVelocity measured_velocity(const Observation& full);
+  /// measured_velocity with the base height of the legs' kinematics
+  /// (LegKinematics::base_height).
+  BaseVelocity measure(const Observation& full) const;
+  /// Unit gravity vector in the base frame.
+  static Eigen::Vector3d gravity_in_base(const Observation& full);
+  /// Angle between the base's vertical and the world's [rad].
+  static double tilt(const Observation& full);
+
+  VelocityTermination termination_reason() const { return reason_; }
+  const VelocityReward& reward() const { return reward_; }
+  const VelocityTaskConfig& config() const { return config_; }
+  bool height_command() const { return height_command_; }
+  std::size_t observation_size() const {
+    return height_command_ ? kMaxObservationSize : kObservationSize;
+  }
+  const LegKinematics& legs() const { return legs_; }
+
+ private:
+  /// The leg angles' deviations from the pose reward's reference for `command`.
+  std::array<double, 4> leg_deviation(const Observation& full,
+                                      const VelocityCommand& command) const;
+
+  VelocityTaskConfig config_;
+  bool height_command_;
+  LegKinematics legs_;
+  std::array<double, kNumServos> lower_limit_{};
+  std::array<double, kNumServos> upper_limit_{};
+  std::array<double, kNumServos> effort_{};
+  VelocityReward reward_;
+  VelocityTermination reason_ = VelocityTermination::kNone;
+};
+
+}  // namespace upkie_rl
