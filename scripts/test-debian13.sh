@@ -76,6 +76,13 @@ mount_into /dev --bind /dev
 mount_into /dev/pts --bind /dev/pts
 mount_into /dev/shm -t tmpfs -o mode=1777 tmpfs
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# The host's own certificate authorities (a TLS proxy's, say), so that pip and npm in the
+# chroot reach the registries as the host does.
+if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+  mkdir -p "$root/usr/local/share/ca-certificates"
+  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+  chroot "$root" update-ca-certificates >/dev/null
+fi
 
 # 3. A clean clone of HEAD (committed work only; no build/, venvs or node_modules of the
 # host). The previous run's clone and build go first.
@@ -89,6 +96,7 @@ in_chroot() {
   chroot "$root" /usr/bin/env -i HOME=/root TERM="${TERM:-dumb}" LANG=C.UTF-8 \
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
     CCACHE_DIR=/root/.ccache CCACHE_BASEDIR="$chroot_src" \
+    PIP_CERT=/etc/ssl/certs/ca-certificates.crt NODE_EXTRA_CA_CERTS=/etc/ssl/certs/ca-certificates.crt \
     UPKIE_RL_BUILD_DIR="$chroot_src/build" PYTHONPATH="$chroot_src/build/python" \
     bash -c "cd $chroot_src && $1"
 }
