@@ -109,7 +109,9 @@ in_chroot "bash scripts/install-deps.sh"
 stage_done install-deps
 
 stage "configure"
-in_chroot "cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3"
+# The benchmarks are no tests: not built.
+in_chroot "cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 \\
+  -DUPKIE_RL_BUILD_BENCH=OFF"
 stage_done configure
 
 stage "build (-j $jobs, nice 10)"
