@@ -43,6 +43,11 @@ stage_done() {
 marker="$root/.upkie-rl-debootstrap-complete"
 if [ ! -f "$marker" ]; then
   stage "debootstrap trixie into $root"
+  # Never remove a tree with the host's /dev or /proc still mounted in it (a killed run).
+  if grep -q " $root/" /proc/mounts; then
+    echo "test-debian13: file systems are still mounted under $root: unmount them first" >&2
+    exit 1
+  fi
   rm -rf "$root"
   debootstrap --variant=minbase --include=ca-certificates trixie "$root" "$mirror"
   touch "$marker"
