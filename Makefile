@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity train-scratch sanitize sanitize-thread fuzz fuzz-long fuzz-python format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python test-debian13 test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity train-scratch sanitize sanitize-thread fuzz fuzz-long fuzz-python format tidy clean pi
 
 all: build
 
@@ -48,6 +48,13 @@ test: build
 	$(MAKE) docs
 	$(MAKE) test-cpp
 	$(MAKE) test-python
+
+# The C++ and Python tests of a clean clone of HEAD inside a Debian 13 (trixie) chroot made
+# by debootstrap (scripts/test-debian13.sh; root, DEBIAN13_ROOT=/var/tmp/upkie-rl-trixie by
+# default, reused at the next run). Not part of `make test`: its first run installs Debian 13's
+# packages and builds everything from nothing.
+test-debian13:
+	JOBS=$(or $(DEBIAN13_JOBS),2) bash scripts/test-debian13.sh
 
 # Every console example of README.md and docs/, the slow ones (trainings, grids) too, run and
 # compared with the text (python/tests/doc_examples.py says how); `make test` runs the quick ones.

@@ -3,6 +3,30 @@
 # packages. Idempotent: installs only what is missing. Works as root or through sudo.
 set -euo pipefail
 
+# Debian 12 (bookworm) and Debian 13 (trixie), which name a few packages differently: the
+# per-release ones are set here and used in the lists below.
+# shellcheck source=/dev/null
+. /etc/os-release
+case "${VERSION_CODENAME:-}" in
+  bookworm)
+    LLVM_VERSION=14
+    # Debian 12's torch (1.13) is built against NumPy 1.x.
+    NUMPY_REQUIREMENT="numpy<2"
+    YAML_CPP_LIBRARY=libyaml-cpp0.7 URDFDOM_MODEL_LIBRARY=liburdfdom-model3.0
+    ;;
+  trixie)
+    LLVM_VERSION=19
+    # Debian 13's torch (2.6) is built against its NumPy 2.2 (python3-numpy).
+    NUMPY_REQUIREMENT="numpy>=2"
+    YAML_CPP_LIBRARY=libyaml-cpp0.8 URDFDOM_MODEL_LIBRARY=liburdfdom-model4.0
+    ;;
+  *)
+    echo "install-deps: Debian 12 (bookworm) or 13 (trixie) expected, not" \
+      "'${PRETTY_NAME:-unknown}'" >&2
+    exit 1
+    ;;
+esac
+
 DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config git ccache
   libbullet-dev liburdfdom-dev libtinyxml-dev libeigen3-dev libtorch-dev python3-torch
@@ -25,11 +49,11 @@ DEBIAN_PACKAGES=(
   g++-aarch64-linux-gnu qemu-user
   # libFuzzer's runtime (built against libstdc++): `make test` links the fuzz targets built
   # by GCC with it for bounded mutation fuzzing (FuzzBounded.*, fuzz/CMakeLists.txt)
-  libclang-rt-14-dev
+  "libclang-rt-$LLVM_VERSION-dev"
 )
 # The compiled libraries the aarch64 runner links, Debian's arm64 builds (multiarch): their
 # headers are the native -dev packages above.
-ARM64_PACKAGES=(libyaml-cpp0.7:arm64 liburdfdom-model3.0:arm64 libtinyxml2.6.2v5:arm64
+ARM64_PACKAGES=("$YAML_CPP_LIBRARY:arm64" "$URDFDOM_MODEL_LIBRARY:arm64" libtinyxml2.6.2v5:arm64
   libconsole-bridge1.0:arm64)
 # Node.js and npm bundle the viewer page (web/viewer). Debian's packages only when the
 # machine has no node: a NodeSource or nvm node brings its own npm, which Debian's would
@@ -39,8 +63,8 @@ if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
 fi
 # Python packages as "module:requirement". They go to Debian's interpreter, whose
 # python3-torch SB3 needs (PyPI's torch is a multi-GB CUDA build). SB3 2.4.x is the last
-# release that accepts torch 1.13; it pins gymnasium < 1.1 and numpy < 2 (Debian's torch is
-# built against numpy 1.x). upkie: the public agent side, for the spine interoperability
+# release that accepts torch 1.13 (Debian 12's); it pins gymnasium < 1.1. NumPy: the major
+# version Debian's torch is built against (NUMPY_REQUIREMENT, above). upkie: the public agent side, for the spine interoperability
 # tests. mujoco: its wheel ships libmujoco.so 3.3 and the C headers, which CMake links
 # (Debian has only MuJoCo 2.2, without the mjSpec API the model is built with). moviepy:
 # Gymnasium's RecordVideo writes with it. onnxruntime: the tests run exported ONNX policies
@@ -50,7 +74,7 @@ fi
 # type-checks the package and its stubs. hypothesis: the fuzzing of the package's readers
 # and public functions (python/tests/fuzz_inputs.py, `make fuzz-python`).
 PYTHON_PACKAGES=(
-  "pytest:pytest" "numpy:numpy<2" "gymnasium:gymnasium==1.0.0" "msgpack:msgpack"
+  "pytest:pytest" "numpy:$NUMPY_REQUIREMENT" "gymnasium:gymnasium==1.0.0" "msgpack:msgpack"
   "upkie:upkie" "tensorboard:tensorboard" "scikit_build_core:scikit-build-core"
   "pybind11:pybind11" "cloudpickle:cloudpickle" "pandas:pandas" "matplotlib:matplotlib"
   "mujoco:mujoco>=3.3,<3.4" "moviepy:moviepy" "mpacklog:mpacklog" "onnxruntime:onnxruntime" "mypy:mypy"
@@ -63,7 +87,7 @@ PYTHON_PACKAGES_NO_DEPS=("stable_baselines3:stable-baselines3==2.4.1")
 # Long fuzzing (`make fuzz` sets UPKIE_RL_FUZZ=1): clang, for libFuzzer's own coverage
 # instrumentation of every library (its runtime is in the list above).
 if [ "${UPKIE_RL_FUZZ:-0}" = "1" ]; then
-  DEBIAN_PACKAGES+=(clang-14)
+  DEBIAN_PACKAGES+=("clang-$LLVM_VERSION")
 fi
 
 if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
@@ -114,8 +138,9 @@ if "$PYTHON" -m pip install --help 2>/dev/null | grep -q -- --break-system-packa
 fi
 if [ "${#missing_python[@]}" -gt 0 ]; then
   echo "install-deps: installing Python packages: ${missing_python[*]}"
-  # numpy<2 always: pip must not upgrade the numpy Debian's torch was built against.
-  "$PYTHON" -m pip install "${pip_flags[@]}" "numpy<2" "${missing_python[@]}"
+  # NUMPY_REQUIREMENT always: pip must not change the NumPy major version Debian's torch
+  # was built against.
+  "$PYTHON" -m pip install "${pip_flags[@]}" "$NUMPY_REQUIREMENT" "${missing_python[@]}"
 else
   echo "install-deps: Python packages present"
 fi

@@ -13,9 +13,11 @@ rm -rf "$bundle"
 mkdir -p "$bundle/lib"
 cp "$agent" "$bundle/upkie-rl-agent"
 aarch64-linux-gnu-strip "$bundle/upkie-rl-agent"
-for library in libyaml-cpp.so.0.7 liburdfdom_model.so.3.0 libtinyxml.so.2.6.2 \
+# yaml-cpp 0.7 and urdfdom 3 on Debian 12, 0.8 and 4 on Debian 13 (the sonames
+# cmake/agent_only.cmake linked).
+for library in libyaml-cpp.so.0.[0-9] liburdfdom_model.so.[0-9].0 libtinyxml.so.2.6.2 \
                libconsole_bridge.so.1.0; do
-  cp -L "$arm64_libdir/$library" "$bundle/lib/"
+  cp -L "$arm64_libdir"/$library "$bundle/lib/"
 done
 cp -L "$cross_libdir/libstdc++.so.6" "$cross_libdir/libgcc_s.so.1" "$bundle/lib/"
 cp "$policy" "$bundle/policy.ckpt"

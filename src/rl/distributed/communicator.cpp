@@ -1,5 +1,6 @@
 #include "rl/distributed/communicator.hpp"
 
+#include <torch/version.h>
 #include <torch/csrc/distributed/c10d/PrefixStore.hpp>
 #include <torch/csrc/distributed/c10d/ProcessGroupGloo.hpp>
 #include <torch/csrc/distributed/c10d/TCPStore.hpp>
@@ -48,6 +49,15 @@ void Communicator::gather(std::span<const double> local,
 
 namespace {
 
+// libtorch 2.4 made libuv the TCPStore's default backend, but Debian 13's libtorch (2.6) is
+// built without it ("use_libuv was requested but PyTorch was build without libuv
+// support"): the classic backend, the only one of Debian 12's libtorch 1.13, on both.
+void use_classic_store_backend([[maybe_unused]] c10d::TCPStoreOptions& options) {
+#if TORCH_VERSION_MAJOR > 2 || (TORCH_VERSION_MAJOR == 2 && TORCH_VERSION_MINOR >= 4)
+  options.useLibUV = false;
+#endif
+}
+
 class GlooCommunicator final : public Communicator {
  public:
   GlooCommunicator(const DistributedLaunch& launch, const CommunicatorOptions& options)
@@ -62,6 +72,7 @@ class GlooCommunicator final : public Communicator {
     store_options.numWorkers = launch.world_size;
     store_options.waitWorkers = true;
     store_options.timeout = timeout;
+    use_classic_store_backend(store_options);
     const std::string where = launch.master_addr + ":" + std::to_string(launch.master_port);
     try {
       store_ = c10::make_intrusive<c10d::TCPStore>(launch.master_addr, store_options);
@@ -94,6 +105,7 @@ class GlooCommunicator final : public Communicator {
       health_options.isServer = false;
       health_options.waitWorkers = false;
       health_options.timeout = std::min(timeout, std::chrono::milliseconds(5000));
+      use_classic_store_backend(health_options);
       watchdog_.emplace(
           launch,
           c10::make_intrusive<c10d::PrefixStore>(
