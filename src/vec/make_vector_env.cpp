@@ -45,7 +45,7 @@ std::unique_ptr<VectorEnv> make_mixed_vector_env(const std::string& id, const st
                 static_cast<std::int64_t>(kMaxVectorEnvs));
   check_setting("num_threads", static_cast<std::int64_t>(threads), 0,
                 static_cast<std::int64_t>(kMaxEnvThreads));
-  if (mix_envs >= num_envs && mix_envs > 0) {
+  if (mix_envs >= num_envs) {  // num_envs >= 1: a mix that leaves id no environment
     throw std::invalid_argument("mixed environments: " + std::to_string(mix_envs) + " of " +
                                 std::to_string(num_envs) + " leaves none of " + id);
   }
@@ -54,8 +54,10 @@ std::unique_ptr<VectorEnv> make_mixed_vector_env(const std::string& id, const st
   std::vector<std::unique_ptr<Env>> envs;
   envs.reserve(num_envs);
   for (std::size_t i = 0; i < num_envs; ++i) {
-    envs.push_back(is_mixed_env(i, mix_envs, num_envs) ? mix_factory() : factory());
-    if (i > 0) check_same_spaces(*envs.front(), *envs.back(), id, mix_id);
+    const bool mixed = is_mixed_env(i, mix_envs, num_envs);
+    envs.push_back(mixed ? mix_factory() : factory());
+    // Environment 0 is always id's (mix_envs < num_envs); one factory makes equal spaces.
+    if (mixed) check_same_spaces(*envs.front(), *envs.back(), id, mix_id);
   }
   if (threads == 0) return std::make_unique<SyncVectorEnv>(std::move(envs), autoreset_mode);
   return std::make_unique<ThreadPoolVectorEnv>(std::move(envs), std::min(threads, num_envs),
