@@ -102,9 +102,11 @@ LiveView::~LiveView() = default;
 void LiveView::wait_for_browsers() {
   if (options_.wait_clients <= 0) return;
   const auto count = static_cast<std::size_t>(options_.wait_clients);
-  std::cout << "viewer: waiting for " << count << " browser(s) at " << server_->url() << std::endl;
-  // Ctrl-C or SIGTERM while nobody comes ends the command with an error, not a hang.
+  // Ctrl-C or SIGTERM while nobody comes ends the command with an error, not a hang. The
+  // handlers come before the line that says so: a script (or a test) that signals once it
+  // reads the line must find them installed.
   const InterruptHandlers interrupts;
+  std::cout << "viewer: waiting for " << count << " browser(s) at " << server_->url() << std::endl;
   while (!server_->wait_for_clients(count, std::chrono::seconds(3600), &interrupt_requested)) {
     if (interrupt_requested.load()) {
       throw CommandError("interrupted while waiting for " + std::to_string(count) +
