@@ -15,6 +15,7 @@
 #include "cli/interrupt_handlers.hpp"
 #include "cli/live_view.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/spine_world.hpp"
 #include "model/robot_model.hpp"
 #include "sim/bullet_simulation.hpp"
 #include "sim/mujoco_simulation.hpp"
@@ -59,6 +60,10 @@ struct SpineOptions {
   double push_duration = 0.2;
   double observation_latency = 0.0;  ///< Age of the observations sent [s].
   double cycle_jitter = 0.0;         ///< Lateness of each cycle, up to [s].
+  double action_delay = 0.0;         ///< Age of the commands applied [s].
+  double action_lag = 0.0;           ///< First-order lag of the commands applied [s].
+  /// The hidden world: perturbation options ("NAME=VALUE") of the environments.
+  std::vector<std::string> physics_options;
   LiveViewOptions view;
   /// Write every simulation step to this spine log (mpacklog), empty for none.
   std::string log_path;
@@ -153,6 +158,10 @@ SpineServerConfig spine_config(const SpineOptions& options, const PhysicsSimulat
   const double step_duration = physics.physics_timestep * physics.nb_substeps;
   config.observation_delay_steps =
       static_cast<int>(std::lround(options.observation_latency / step_duration));
+  config.actuation.delay_steps =
+      static_cast<int>(std::lround(options.action_delay / step_duration));
+  config.actuation.time_constant = options.action_lag;
+  config.actuation.step_duration = step_duration;
   config.cycle_jitter = options.cycle_jitter;
   for (std::size_t i = 0; i < kNumServos; ++i) {
     config.maximum_torques[i] = model.servo_limits(i).effort;
@@ -162,7 +171,7 @@ SpineServerConfig spine_config(const SpineOptions& options, const PhysicsSimulat
 
 /// What the spine serves, and how, in the log.
 void log_spine_start(const SpineOptions& options, const PhysicsConfig& physics,
-                     const SpineServerConfig& config) {
+                     const SpineServerConfig& config, const SpineWorld& world) {
   if (config.real_time) {
     spdlog::info("spine {}: {}, real time, {} Hz, one {} s physics step per cycle",
                  options.shm_name, options.backend, options.spine_frequency,
@@ -175,6 +184,11 @@ void log_spine_start(const SpineOptions& options, const PhysicsConfig& physics,
     spdlog::info("spine {}: observations {} simulation steps old, cycles up to {} ms late",
                  options.shm_name, config.observation_delay_steps, 1e3 * config.cycle_jitter);
   }
+  if (config.actuation.any()) {
+    spdlog::info("spine {}: commands applied {} simulation steps late, lag {} s", options.shm_name,
+                 config.actuation.delay_steps, config.actuation.time_constant);
+  }
+  if (world.any()) spdlog::info("spine {}: physics {}", options.shm_name, world.describe());
 }
 
 void run_spine(const SpineOptions& options) {
@@ -198,6 +212,7 @@ void run_spine(const SpineOptions& options) {
   PhysicsSimulation& simulation = *engine;
 
   const SpineServerConfig config = spine_config(options, simulation, physics, *model);
+  const SpineWorld world(options.physics_options);
 
   std::unique_ptr<SpineStepLogger> logger;
   if (!options.log_path.empty()) logger = std::make_unique<SpineStepLogger>(options.log_path);
@@ -206,12 +221,10 @@ void run_spine(const SpineOptions& options) {
     InterruptHandlers handlers;
     SpineServer server(
         simulation, config, [&simulation] { simulation.step_braked(); },
-        [&simulation, starts = std::uint64_t{0}](const SpineStartSettings& settings) mutable {
+        [&simulation, &world,
+         starts = std::uint64_t{0}](const SpineStartSettings& settings) mutable {
           simulation.set_servo_gains(settings.servo_gains);
-          PhysicsVariation variation = simulation.variation();
-          variation.imu = settings.imu_uncertainty;
-          variation.noise_seed = starts++;  // each episode its own, reproducible, noise
-          simulation.set_variation(variation);
+          simulation.set_variation(world.episode_variation(starts++, settings.imu_uncertainty));
         });
     std::unique_ptr<LiveView> view;
     if (options.view.enabled) {
@@ -225,7 +238,7 @@ void run_spine(const SpineOptions& options) {
             if (logger) logger->observe(observation, action, reset);
           });
     }
-    log_spine_start(options, physics, config);
+    log_spine_start(options, physics, config, world);
     server.run(interrupt_requested);
     error = server.error();
     if (view) view->end(error.empty() ? "the spine is over" : "the spine shut down: " + error);
@@ -234,6 +247,27 @@ void run_spine(const SpineOptions& options) {
   }  // the shared memory is unlinked here
   if (logger) logger->close();
   if (!error.empty()) throw CommandError("spine shut down: " + error);
+}
+
+/// The spine's hidden reality: actuation timing and the world's physics.
+void add_reality_options(CLI::App& command, SpineOptions& options) {
+  command
+      .add_option("--action-delay", options.action_delay,
+                  "Sim-to-real actuation: apply the agent's commands this late [s], rounded to "
+                  "simulation steps (hidden from the agent; logs show the commands as sent)")
+      ->capture_default_str()
+      ->check(finite_range(0.0, 1.0));
+  command
+      .add_option("--action-lag", options.action_lag,
+                  "Sim-to-real actuation: the servos' targets follow the commands with this "
+                  "first-order time constant [s]")
+      ->capture_default_str()
+      ->check(finite_range(0.0, 10.0));
+  command.add_option("--physics-option", options.physics_options,
+                     "NAME=VALUE, repeatable: a perturbation option of the environments "
+                     "(mass_scale, payload_mass, payload_offset_x, floor_friction, "
+                     "torque_limit_scale, slope_pitch, ...; `upkie-rl envs --options`), the "
+                     "world this spine plays without telling its agents");
 }
 
 }  // namespace
@@ -290,6 +324,7 @@ void add_spine_command(CLI::App& app) {
                    "Sim-to-real timing, real time: start each cycle up to this late [s]")
       ->capture_default_str()
       ->check(finite_range(0.0, 1.0));
+  add_reality_options(*command, *options);
   command
       ->add_option("--log", options->log_path,
                    "Write every simulation step to this spine log (mpacklog: a stream of "

@@ -333,7 +333,15 @@ std::string identification_yaml(const IdentificationResult& result, const std::s
     env_options << " --env-option " << name << "=" << value;
     set_options << " --set env.options." << name << "=" << value;
   };
+  std::ostringstream left_out;
   for (const FittedParameter& parameter : result.parameters) {
+    // A value the log did not inform is the solver's accident: written, it would replace
+    // what a training configuration already says of that option (its randomisation range).
+    if (!parameter.identifiable) {
+      left_out << "# left out, not identifiable from this log: " << parameter.name << " ("
+               << parameter.reason << ")\n";
+      continue;
+    }
     const std::string value = shortest_text(parameter.value);
     if (parameter.name == "action_lag") {
       option("action_lag_min", value);
@@ -345,9 +353,9 @@ std::string identification_yaml(const IdentificationResult& result, const std::s
   yaml << "# upkie-rl identify --log " << log_name << " --env " << env_id << "\n"
        << "# rmse " << shortest_text(result.rmse_before) << " -> "
        << shortest_text(result.rmse_after) << " over " << shortest_text(result.horizon)
-       << " s replays\n# rollout:" << env_options.str() << "\n# train:" << set_options.str()
-       << "\nenv:\n  options:\n"
-       << entries.str();
+       << " s replays\n"
+       << left_out.str() << "# rollout:" << env_options.str() << "\n# train:" << set_options.str()
+       << "\nenv:\n  options:" << (entries.str().empty() ? " {}\n" : "\n") << entries.str();
   return yaml.str();
 }
 

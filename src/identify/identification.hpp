@@ -60,7 +60,8 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
 std::string identification_json(const IdentificationResult& result);
 
 /// The fitted options as a YAML training-configuration fragment (env.options), with the
-/// matching `--env-option` and `--set` arguments in its comments.
+/// matching `--env-option` and `--set` arguments in its comments; the parameters not
+/// identifiable from the log are left out, each named with its reason in a comment.
 std::string identification_yaml(const IdentificationResult& result, const std::string& log_name,
                                 const std::string& env_id);
 

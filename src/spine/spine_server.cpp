@@ -34,7 +34,8 @@ SpineServer::SpineServer(Simulation& simulation, const SpineServerConfig& config
       memory_(SharedMemory::create(config.shm_name, config.shm_size, config.shm_mode)),
       machine_(config.nb_stop_cycles),
       unpacker_(memory_.max_payload_size()),
-      action_(spine_default_servo_action()) {
+      action_(spine_default_servo_action()),
+      actuation_(config.actuation) {
   publish_state();
   if (config.observation_delay_steps < 0 || config.observation_delay_steps > 100000) {
     throw SpineError("observation delay must be in [0, 100000] steps, got " +
@@ -107,11 +108,11 @@ void SpineServer::process_state() {
       break;
     case SpineState::kStep:
       step_from_payload();
-      advance(action_);
+      advance_sent();
       write_observation();
       break;
     case SpineState::kIdle:
-      if (config_.real_time) advance(action_);
+      if (config_.real_time) advance_sent();
       break;
     case SpineState::kSendStops:
     case SpineState::kShutdown:
@@ -122,7 +123,7 @@ void SpineServer::process_state() {
           nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
           if (observer_) observer_(simulation_.observation(), stop_action_, false);
         } else {
-          advance(stop_action_);
+          advance(stop_action_, stop_action_);  // the spine's own stops are not delayed
         }
       }
       break;
@@ -146,6 +147,7 @@ void SpineServer::reset_from_payload() {
   write_servo_action_msgpack(action_, buffer_);
   action_dictionary_.update(unpacker_.unpack({buffer_.data(), buffer_.size()}));
 
+  actuation_.reset(action_);
   if (set_settings_) set_settings_(settings);
   simulation_.reset(state);
   simulation_ready_ = true;
@@ -163,11 +165,19 @@ void SpineServer::remember_observation() {
   history_next_ = (history_next_ + 1) % history_.size();
 }
 
-void SpineServer::advance(const ServoAction& action) {
+void SpineServer::advance_sent() {
+  if (config_.actuation.any()) {
+    advance(actuation_.apply(action_), action_);
+  } else {
+    advance(action_, action_);
+  }
+}
+
+void SpineServer::advance(const ServoAction& action, const ServoAction& logged) {
   simulation_.step(action);
   remember_observation();
   nb_simulation_steps_.fetch_add(1, std::memory_order_relaxed);
-  if (observer_) observer_(simulation_.observation(), action, false);
+  if (observer_) observer_(simulation_.observation(), logged, false);
 }
 
 void SpineServer::write_observation() {

@@ -16,6 +16,7 @@
 #include "spine/dictionary.hpp"
 #include "spine/payload_unpacker.hpp"
 #include "spine/reset_config.hpp"
+#include "spine/servo_action_lag.hpp"
 #include "spine/shared_memory.hpp"
 #include "spine/spine_state_machine.hpp"
 
@@ -52,6 +53,10 @@ struct SpineServerConfig {
   /// drawn, without shifting the schedule [s].
   double cycle_jitter = 0.0;
   std::uint64_t jitter_seed = 0;  ///< Seed of the jitter's draws.
+  /// Sim-to-real actuation: the agent's commands reach the simulated servos this late and
+  /// this slowly (in simulation steps; the step's duration is the simulation's). The spine
+  /// log and the simulation observer see the commands as sent, as a robot's spine logs them.
+  ServoActionLagSettings actuation;
 };
 
 /// Serves a Simulation over the spine link. Creates the shared memory at construction
@@ -85,8 +90,9 @@ class SpineServer {
               SettingsSetter set_settings = {});
 
   /// Called on the cycling thread after each reset and each simulation step with the
-  /// simulation's observation, the action applied (the defaults after a reset) and whether
-  /// it was a reset; for viewers. Must not throw.
+  /// simulation's observation, the action the agent sent (the defaults after a reset, the
+  /// spine's stops while stopping; what SpineServerConfig::actuation applied may differ)
+  /// and whether it was a reset; for viewers and logs. Must not throw.
   using SimulationObserver =
       std::function<void(const Observation& observation, const ServoAction& action, bool reset)>;
   void set_simulation_observer(SimulationObserver observer) { observer_ = std::move(observer); }
@@ -123,7 +129,10 @@ class SpineServer {
   void fail(const std::string& message);
   void reset_from_payload();
   void step_from_payload();
-  void advance(const ServoAction& action);
+  /// One simulation step with the commands the agent sent, through the actuation.
+  void advance_sent();
+  /// One simulation step applying `action` as it is; the observer sees `logged`.
+  void advance(const ServoAction& action, const ServoAction& logged);
   void write_observation();
   void remember_observation();
   void publish_state() { published_state_.store(machine_.state(), std::memory_order_release); }
@@ -140,6 +149,7 @@ class SpineServer {
   Dictionary action_dictionary_;
   ServoAction action_{};
   ServoAction stop_action_{};
+  ServoActionLag actuation_;
   msgpack::sbuffer buffer_;
   bool simulation_ready_ = false;
   std::string error_;

@@ -154,3 +154,26 @@ TEST(Identification, WrongFrequencyIsRefused) {
 
 }  // namespace
 }  // namespace upkie_rl
+
+// The YAML for training holds what the log told, nothing the solver made up: a parameter
+// not identifiable from the log is named in a comment, not written over the configuration.
+TEST(IdentificationYaml, LeavesOutWhatTheLogDidNotInform) {
+  upkie_rl::IdentificationResult result;
+  result.parameters.push_back({"floor_friction", "", 0.5, 0.01, true, ""});
+  result.parameters.push_back(
+      {"action_lag", "s", 0.0003, 0.0, false, "the log does not excite it"});
+  const std::string yaml =
+      upkie_rl::identification_yaml(result, "robot.mpack", "Upkie-MuJoCo-Servos");
+  EXPECT_NE(yaml.find("\n    floor_friction: 0.5\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("--set env.options.floor_friction=0.5"), std::string::npos) << yaml;
+  EXPECT_EQ(yaml.find("action_lag_m"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("# left out, not identifiable from this log: action_lag (the log does "
+                      "not excite it)"),
+            std::string::npos)
+      << yaml;
+
+  result.parameters.erase(result.parameters.begin());
+  const std::string nothing =
+      upkie_rl::identification_yaml(result, "robot.mpack", "Upkie-MuJoCo-Servos");
+  EXPECT_NE(nothing.find("env:\n  options: {}\n"), std::string::npos) << nothing;
+}

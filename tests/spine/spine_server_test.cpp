@@ -418,6 +418,37 @@ TEST_F(SpineServerTest, ObservationDelaySendsOlderObservations) {
   EXPECT_NEAR(simulation_.observation().time, 0.020, 1e-12);
 }
 
+TEST_F(SpineServerTest, ActuationDelaysTheCommandsAppliedButNotTheOnesObserved) {
+  config_.actuation.delay_steps = 2;
+  make_server(false);
+  std::vector<double> observed_velocities;
+  server_->set_simulation_observer(
+      [&observed_velocities](const Observation&, const ServoAction& action, bool reset) {
+        if (!reset) observed_velocities.push_back(action[kLeftWheel].velocity);
+      });
+  start();
+  ServoAction action = spine_default_servo_action();
+  for (int step = 1; step <= 4; ++step) {
+    action[kLeftWheel].velocity = step;
+    act(action);
+  }
+  ASSERT_EQ(simulation_.actions.size(), 4u);
+  // Two steps late: the reset's command (velocity 0) twice, then the first two sent.
+  EXPECT_EQ(simulation_.actions[0][kLeftWheel].velocity, 0.0);
+  EXPECT_EQ(simulation_.actions[1][kLeftWheel].velocity, 0.0);
+  EXPECT_EQ(simulation_.actions[2][kLeftWheel].velocity, 1.0);
+  EXPECT_EQ(simulation_.actions[3][kLeftWheel].velocity, 2.0);
+  // Logs and viewers see what the agent sent, as a robot's spine logs it.
+  EXPECT_EQ(observed_velocities, (std::vector<double>{1.0, 2.0, 3.0, 4.0}));
+  // A new Start empties the delay line: the next episode starts from the reset's command.
+  agent_->set_request(Request::kStop);
+  server_->cycle();
+  start();
+  ASSERT_EQ(simulation_.resets.size(), 2u);
+  act(action);
+  EXPECT_EQ(simulation_.actions.back()[kLeftWheel].velocity, 0.0);
+}
+
 TEST(SpineServer, RefusesANegativeDelayOrJitter) {
   FakeSimulation simulation;
   SpineServerConfig config;
@@ -426,6 +457,9 @@ TEST(SpineServer, RefusesANegativeDelayOrJitter) {
   EXPECT_THROW({ SpineServer server(simulation, config); }, SpineError);
   config.observation_delay_steps = 0;
   config.cycle_jitter = -0.001;
+  EXPECT_THROW({ SpineServer server(simulation, config); }, SpineError);
+  config.cycle_jitter = 0.0;
+  config.actuation.delay_steps = -1;
   EXPECT_THROW({ SpineServer server(simulation, config); }, SpineError);
 }
 

@@ -1,0 +1,84 @@
+#include "spine/servo_action_lag.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/number_text.hpp"
+#include "spine/spine_error.hpp"
+
+namespace upkie_rl {
+namespace {
+
+/// Largest delay [steps]: 100 s at 1 kHz, far beyond any robot's, bounding the queue.
+constexpr int kMaximumDelaySteps = 100000;
+/// Largest time constant [s]: a motor that slow could not balance anything.
+constexpr double kMaximumTimeConstant = 10.0;
+
+/// One filter step of `target` towards `sent`; a NaN on either side restarts it at `sent`.
+void follow(double sent, double gain, double& target) {
+  if (std::isnan(sent) || std::isnan(target)) {
+    target = sent;
+    return;
+  }
+  target += gain * (sent - target);
+}
+
+}  // namespace
+
+std::string ServoActionLagSettings::problem() const {
+  if (delay_steps < 0 || delay_steps > kMaximumDelaySteps) {
+    return "action delay must be in [0, " + std::to_string(kMaximumDelaySteps) +
+           "] simulation steps, got " + std::to_string(delay_steps);
+  }
+  if (!(time_constant >= 0.0 && time_constant <= kMaximumTimeConstant)) {
+    return "action lag must be in [0, " + shortest_text(kMaximumTimeConstant) + "] s, got " +
+           shortest_text(time_constant);
+  }
+  if (!(step_duration > 0.0 && std::isfinite(step_duration))) {
+    return "the simulation step must be positive and finite, got " + shortest_text(step_duration);
+  }
+  return "";
+}
+
+ServoActionLag::ServoActionLag(const ServoActionLagSettings& settings) : settings_(settings) {
+  if (const std::string problem = settings.problem(); !problem.empty()) throw SpineError(problem);
+  if (settings.time_constant > 0.0) {
+    filter_gain_ = -std::expm1(-settings.step_duration / settings.time_constant);
+  }
+  queue_.resize(static_cast<std::size_t>(settings.delay_steps));
+}
+
+void ServoActionLag::reset(const ServoAction& initial) {
+  std::fill(queue_.begin(), queue_.end(), initial);
+  head_ = 0;
+  filtered_ = initial;
+}
+
+const ServoAction& ServoActionLag::apply(const ServoAction& sent) {
+  // Delay: the command sent delay_steps ago leaves the queue, this one enters it.
+  if (queue_.empty()) {
+    delayed_ = sent;
+  } else {
+    delayed_ = queue_[head_];
+    queue_[head_] = sent;
+    head_ = (head_ + 1) % queue_.size();
+  }
+  // Lag: the targets follow the delayed command; gains and limits are taken as they are.
+  for (std::size_t servo = 0; servo < delayed_.size(); ++servo) {
+    const ServoCommand& command = delayed_[servo];
+    ServoCommand& applied = filtered_[servo];
+    const ServoCommand previous = applied;
+    applied = command;
+    if (filter_gain_ < 1.0) {
+      applied.position = previous.position;
+      applied.velocity = previous.velocity;
+      applied.feedforward_torque = previous.feedforward_torque;
+      follow(command.position, filter_gain_, applied.position);
+      follow(command.velocity, filter_gain_, applied.velocity);
+      follow(command.feedforward_torque, filter_gain_, applied.feedforward_torque);
+    }
+  }
+  return filtered_;
+}
+
+}  // namespace upkie_rl
