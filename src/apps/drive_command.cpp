@@ -134,9 +134,7 @@ void add_drive_command(CLI::App& app) {
   command->add_option("--model", options->model, "Trained model; replaces --controller")
       ->check(CLI::ExistingFile);
   add_env_option_option(*command, options->env_options, "; no time limit by default");
-  command->add_option("--seed", options->loop.seed, "Seed of the first episode")
-      ->check(kSeed)
-      ->capture_default_str();
+  add_seed_option(*command, options->loop.seed, "the first episode; episode e uses seed + e");
   command
       ->add_option("--record", options->record_path,
                    "Write one CSV row per step (replay it with `view` or `render`)")

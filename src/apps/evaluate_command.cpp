@@ -283,19 +283,11 @@ void add_evaluate_command(CLI::App& app) {
                       "Up to two axes name=start:stop:step or name=value, comma-separated: push "
                       "[N], mass, friction, lag [s], delay [steps], pitch [rad], or any "
                       "numeric environment option");
-  CLI::Option* episodes = command
-                              ->add_option("--episodes", options->plan.episodes,
-                                           "Episodes per cell and controller (a suite's own "
-                                           "unless given)")
-                              ->check(finite_range(1, kMaxEvaluationEpisodes))
-                              ->capture_default_str();
+  CLI::Option* episodes = add_episodes_option(
+      *command, options->plan.episodes, " per cell and controller (a suite's own unless given)");
   CLI::Option* seed =
-      command
-          ->add_option("--seed", options->plan.seed,
-                       "Seed of episode 0 of every cell (then seed + e; a suite's own unless "
-                       "given)")
-          ->check(kSeed)
-          ->capture_default_str();
+      add_seed_option(*command, options->plan.seed,
+                      "episode 0 of every cell (then seed + e; a suite's own unless given)");
   CLI::Option* max_steps =
       add_max_steps_option(*command, options->plan.max_steps,
                            "success: not terminated by then (a suite's own figure unless given)");

@@ -11,6 +11,7 @@
 #include "apps/commands.hpp"
 #include "base/atomic_file.hpp"
 #include "base/number_text.hpp"
+#include "cli/common_flags.hpp"
 #include "cli/option_checks.hpp"
 #include "envs/core/env_options.hpp"
 #include "envs/records/robot_log.hpp"
@@ -92,8 +93,7 @@ void add_identify_command(CLI::App& app) {
   command->add_option("--param", options->params,
                       "NAME or NAME=LOW:HIGH to fit (repeatable; default mass_scale, "
                       "floor_friction, action_delay, action_lag)");
-  command->add_option("--env-option", options->env_options,
-                      "Fixed environment option key=value (repeatable)");
+  add_env_option_option(*command, options->env_options, ", held fixed in the fit");
   command
       ->add_option("--output", options->output_path,
                    "Write the fitted options as YAML (env.options of a training config)")
@@ -115,7 +115,7 @@ void add_identify_command(CLI::App& app) {
                    "Replays of the whole log per continuous fit")
       ->capture_default_str()
       ->check(CLI::Range(10, 100000));
-  command->add_option("--seed", options->seed, "Seed of the fit")->capture_default_str();
+  add_seed_option(*command, options->seed, "the fit");
   command->callback([options] { run_identify(*options); });
 }
 

@@ -339,12 +339,8 @@ void add_rollout_command(CLI::App& app) {
                    "Trained model (model_*.ckpt or a checkpoint of `upkie-rl train`): "
                    "deterministic policy with its frozen normalisation; replaces --controller")
       ->check(CLI::ExistingFile);
-  command->add_option("--episodes", options->episodes, "Number of episodes")
-      ->check(finite_range(1, 1'000'000))
-      ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of the first episode; episode e uses seed + e")
-      ->check(kSeed)
-      ->capture_default_str();
+  add_episodes_option(*command, options->episodes);
+  add_seed_option(*command, options->seed, "the first episode; episode e uses seed + e");
   add_max_steps_option(*command, options->max_steps, "its line then ends with \"(max-steps)\"");
   add_env_option_option(*command, options->env_options);
   command->add_option("--record", options->record_path, "Write one CSV row per step to this file")

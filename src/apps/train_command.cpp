@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "cli/common_flags.hpp"
 #include "cli/live_view.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/progress_bar.hpp"
@@ -241,9 +242,8 @@ void add_train_command(CLI::App& app) {
                    "Run directory (default: runs/<config name>-<date>-<time>; with --resume, "
                    "the checkpoint's run)")
       ->check(kNonEmptyPath);
-  options->seed_option =
-      command->add_option("--seed", options->seed, "Random seed (overrides the config's)")
-          ->check(kSeed);
+  options->seed_option = add_seed_option(
+      *command, options->seed, "the run (overrides the config's seed)", DefaultInHelp::kHidden);
   command->add_option("--resume", options->resume, "Continue a run from one of its checkpoints")
       ->check(CLI::ExistingFile);
   command->add_flag("--force-run-dir", options->force_run_dir,

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "cli/option_checks.hpp"
+#include "envs/evaluation/evaluation_start.hpp"
 #include "envs/registry/env_settings.hpp"
 
 namespace upkie_rl::apps {
@@ -29,6 +30,19 @@ CLI::Option* add_env_option_option(CLI::App& command, std::vector<std::string>& 
   return command.add_option("--env-option", env_options,
                             "Environment option key=value" + scope +
                                 " (repeatable; `upkie-rl envs --options` lists them)");
+}
+
+CLI::Option* add_episodes_option(CLI::App& command, int& episodes, const std::string& scope) {
+  return command.add_option("--episodes", episodes, "Number of episodes" + scope)
+      ->check(finite_range(1, kMaxEvaluationEpisodes))
+      ->capture_default_str();
+}
+
+CLI::Option* add_seed_option(CLI::App& command, std::uint64_t& seed, const std::string& of_what,
+                             DefaultInHelp default_in_help) {
+  CLI::Option* option = command.add_option("--seed", seed, "Seed of " + of_what)->check(kSeed);
+  if (default_in_help == DefaultInHelp::kShown) option->capture_default_str();
+  return option;
 }
 
 CLI::Option* add_threads_option(CLI::App& command, int& threads, const std::string& work) {

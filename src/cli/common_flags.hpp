@@ -5,6 +5,7 @@
 /// live_view.hpp, --controller's help in controller_option.hpp).
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -27,6 +28,22 @@ CLI::Option* add_env_id_option(CLI::App& command, std::string& env_id,
 /// the help.
 CLI::Option* add_env_option_option(CLI::App& command, std::vector<std::string>& env_options,
                                    const std::string& scope = "");
+
+/// --episodes N: how many episodes to run, in [1, kMaxEvaluationEpisodes] (the bound of
+/// `upkie_rl.evaluate(episodes=...)` too: a typo cannot start a run that never ends). Its help
+/// is "Number of episodes" then `scope` (" per cell and controller"); its default, shown in
+/// the help, is the caller's: the value of `episodes` when called.
+CLI::Option* add_episodes_option(CLI::App& command, int& episodes, const std::string& scope = "");
+
+/// Whether --help shows a flag's default: not where an absent flag means "the
+/// configuration's own" (train's --seed), which a figure would misstate.
+enum class DefaultInHelp { kShown, kHidden };
+
+/// --seed S: a seed in [0, 2^64 - 1] (kSeed: "-1" and 2^64 are refused, not wrapped). Its help
+/// is "Seed of " then `of_what` ("the fit"); its default is the caller's: the value of `seed`
+/// when called.
+CLI::Option* add_seed_option(CLI::App& command, std::uint64_t& seed, const std::string& of_what,
+                             DefaultInHelp default_in_help = DefaultInHelp::kShown);
 
 /// --threads N: the work (`work`: what the threads run) on N threads; 0: in the calling
 /// thread, without a thread pool. The default is the caller's.

@@ -6,9 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
+#include <map>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "apps/cli_runner.hpp"
 #include "common/temp_files.hpp"
@@ -35,17 +39,16 @@ void expect_one_line_error(const CliResult& result, const std::string& tool,
 }
 
 /// The default CLI11 shows for `flag` in `command --help` ("--flag TYPE=DEFAULT"; "" when
-/// none).
+/// none: the search stays on the flag's line, not another flag's default further down).
 std::string help_default(const std::string& command, const std::string& flag) {
   const CliResult help = run_cli(command + " --help");
   std::smatch match;
-  const std::regex with_default("  " + flag + " [^=]*=(\\S+)");
+  const std::regex with_default("  " + flag + " [^=\\n]*=(\\S+)");
   return std::regex_search(help.output, match, with_default) ? match[1].str() : "";
 }
 
-/// The help text of `flag` in `command --help`: its line and those that continue it.
-std::string help_text(const std::string& command, const std::string& flag) {
-  const CliResult help = run_cli(command + " --help");
+/// The help text of `flag` in a command's help `help`: its line and those that continue it.
+std::string flag_help(const CliResult& help, const std::string& flag) {
   std::string text;
   bool inside = false;
   for (const std::string& line : help.lines()) {
@@ -54,6 +57,24 @@ std::string help_text(const std::string& command, const std::string& flag) {
     if (inside) text += line + "\n";
   }
   return text;
+}
+
+/// The help text of `flag` in `command --help`.
+std::string help_text(const std::string& command, const std::string& flag) {
+  return flag_help(run_cli(command + " --help"), flag);
+}
+
+/// Every subcommand of `upkie-rl`, as its --help lists them.
+std::vector<std::string> subcommands() {
+  std::vector<std::string> names;
+  bool inside = false;
+  for (const std::string& line : run_cli("--help").lines()) {
+    if (inside && line.rfind("  ", 0) == 0 && line[2] != ' ') {
+      names.push_back(line.substr(2, line.find(' ', 2) - 2));
+    }
+    if (!line.empty() && line.back() == ':') inside = line == "Subcommands:";
+  }
+  return names;
 }
 
 TEST(CliConsistency, ParserRefusalsAreOneLineWithStatusOne) {
@@ -165,6 +186,58 @@ TEST(CliConsistency, ThreadsZeroMeansTheCallingThreadInEveryCommand) {
 TEST(CliConsistency, MaxStepsHasOneDefault) {
   EXPECT_EQ(help_default("rollout", "--max-steps"), "1000");
   EXPECT_EQ(help_default("evaluate", "--max-steps"), "1000");
+}
+
+/// A command that declared --episodes, --seed or --env-option by itself, with another bound or
+/// check, fails here: every subcommand's help must show common_flags.hpp's.
+TEST(CliConsistency, SharedFlagsHaveOneCheckAndOneWordingInEveryCommand) {
+  // The commands that take each flag, to be sure the loop below looks at them.
+  const std::vector<std::string> with_episodes = {"rollout", "evaluate"};
+  const std::vector<std::string> with_seed = {"rollout", "drive", "evaluate", "train", "identify"};
+  const std::vector<std::string> with_env_option = {"rollout", "drive", "evaluate", "bench",
+                                                    "identify"};
+  // Each flag's type and check ([1, 1e6]: the episodes bound of docs/python.md), then the
+  // start or end of its help, as common_flags.hpp declares them.
+  const std::vector<std::array<std::string, 3>> shared = {
+      {"--episodes", "--episodes INT:NUMBER in [1, 1e+06]", "Number of episodes"},
+      {"--seed", "--seed UINT:SEED in [0, 2^64 - 1]", "Seed of "},
+      {"--env-option", "--env-option TEXT ...",
+       "(repeatable; `upkie-rl envs --options` lists them)"}};
+  std::map<std::string, std::vector<std::string>> takers;
+  const std::vector<std::string> commands = subcommands();
+  ASSERT_GE(commands.size(), 14u);
+  for (const std::string& command : commands) {
+    const CliResult help = run_cli(command + " --help");
+    ASSERT_EQ(help.exit_code, 0) << command << "\n" << help.output;
+    for (const auto& [flag, check, wording] : shared) {
+      const std::string text = flag_help(help, flag);
+      if (text.empty()) continue;
+      takers[flag].push_back(command);
+      EXPECT_NE(text.find(check), std::string::npos) << command << "\n" << text;
+      EXPECT_NE(text.find(wording), std::string::npos) << command << "\n" << text;
+    }
+  }
+  for (const auto& [flag, expected] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"--episodes", with_episodes},
+           {"--seed", with_seed},
+           {"--env-option", with_env_option}}) {
+    for (const std::string& command : expected) {
+      EXPECT_NE(std::find(takers[flag].begin(), takers[flag].end(), command), takers[flag].end())
+          << command << " " << flag;
+    }
+  }
+}
+
+/// Apart from the check above: CLI11 2.4 shows defaults otherwise (as for
+/// MaxStepsHasOneDefault, docs/install.md).
+TEST(CliConsistency, SharedFlagsKeepEachCommandsDefault) {
+  EXPECT_EQ(help_default("rollout", "--episodes"), "1");
+  EXPECT_EQ(help_default("evaluate", "--episodes"), "10");
+  for (const char* command : {"rollout", "drive", "evaluate", "identify"}) {
+    EXPECT_EQ(help_default(command, "--seed"), "0") << command;
+  }
+  // Train's seed is the configuration's unless given: no default shown.
+  EXPECT_EQ(help_default("train", "--seed"), "");
 }
 
 TEST(CliConsistency, BothToolsPrintTheirVersion) {

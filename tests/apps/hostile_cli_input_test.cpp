@@ -95,6 +95,10 @@ TEST(HostileCliInput, SeedsOutsideTheirRangeAreRefusedNotWrapped) {
     expect_clean_refusal("evaluate --env Upkie-Mock-Pendulum --controller zero --seed " + seed,
                          "--seed: " + seed);
     expect_clean_refusal(kTrain + " --seed " + seed, "--seed: " + seed);
+    expect_clean_refusal("drive --env Upkie-Mock-Velocity --seed " + seed, "--seed: " + seed);
+    expect_clean_refusal(
+        "identify --log " + std::string(UPKIE_RL_SOURCE_DIR) + "/CMakeLists.txt --seed " + seed,
+        "--seed: " + seed);
   }
   EXPECT_EQ(run_cli("rollout --env Upkie-Mock-Pendulum --max-steps 5 --seed 18446744073709551615")
                 .exit_code,

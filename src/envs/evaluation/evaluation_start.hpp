@@ -23,8 +23,8 @@ inline constexpr EvaluationStartBound kEvaluationStart[] = {{"init_rand_pitch", 
                                                             {"init_rand_omega_y", 0.1}};
 
 /// Most episodes `upkie_rl.evaluate(episodes=...)` runs, so that a typo cannot start a run
-/// that never ends: the bound of `upkie-rl evaluate --episodes` (python/tests/
-/// test_arguments.py checks that they agree until the command uses this declaration).
+/// that never ends: the bound of every command's --episodes too (add_episodes_option in
+/// src/cli/common_flags.hpp; python/tests/test_arguments.py runs `upkie-rl evaluate`).
 inline constexpr int kMaxEvaluationEpisodes = 1'000'000;
 
 /// Help of the CLI's --exact-start flag (rollout, evaluate).
