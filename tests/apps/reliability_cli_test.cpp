@@ -69,11 +69,21 @@ TEST(ReliabilityCli, SpineNumbersMustBeFiniteAndBounded) {
                                                         {"--push-duration", "nan"},
                                                         {"--push-duration", "1e308"},
                                                         {"--observation-latency", "nan"},
-                                                        {"--cycle-jitter", "nan"}}) {
+                                                        {"--cycle-jitter", "nan"},
+                                                        {"--action-delay", "nan"},
+                                                        {"--action-lag", "-1"},
+                                                        {"--action-lag", "1e308"},
+                                                        {"--physics-option", "payload_mass=1e308"}}) {
     const testing::CliResult result = expect_clean_refusal(
         "spine --shm-name " + name + " --nb-substeps 1 " + flag + " " + value, flag);
     EXPECT_LT(result.output.size(), 300u) << result.output;  // no 300-digit DBL_MAX
   }
+  // A mistyped option name gets the nearest one suggested (and the valid ones listed).
+  const testing::CliResult mistyped = expect_clean_refusal(
+      "spine --shm-name " + name + " --nb-substeps 1 --physics-option payload_mas=1",
+      "--physics-option");
+  EXPECT_NE(mistyped.output.find("did you mean \"payload_mass\"?"), std::string::npos)
+      << mistyped.output;
   EXPECT_FALSE(std::filesystem::exists("/dev/shm" + name));
   const testing::CliResult help = run_cli("spine --help", 60);
   EXPECT_EQ(help.exit_code, 0);
