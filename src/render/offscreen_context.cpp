@@ -4,6 +4,7 @@
 #include <string>
 
 #include "render/egl_library.hpp"
+#include "render/llvm_target_registry.hpp"
 #include "render/render_error.hpp"
 
 namespace upkie_rl {
@@ -40,6 +41,9 @@ OffscreenContext::OffscreenContext(int /*width*/, int /*height*/)
       get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   if (impl_->display == EGL_NO_DISPLAY)
     throw RenderError(egl_error(egl, "eglGetPlatformDisplayEXT"));
+  // libEGL has loaded Mesa by now; its llvmpipe must find its targets in its own libLLVM
+  // before eglInitialize (see llvm_target_registry.hpp: Debian 13's libtorch).
+  register_shadowed_llvm_targets();
   EGLint major = 0, minor = 0;
   if (!egl.initialize(impl_->display, &major, &minor)) {
     throw RenderError(egl_error(egl, "eglInitialize"));

@@ -38,15 +38,6 @@ void expect_one_line_error(const CliResult& result, const std::string& tool,
   EXPECT_NE(result.output.find(message), std::string::npos) << result.output;
 }
 
-/// The default CLI11 shows for `flag` in `command --help` ("--flag TYPE=DEFAULT"; "" when
-/// none: the search stays on the flag's line, not another flag's default further down).
-std::string help_default(const std::string& command, const std::string& flag) {
-  const CliResult help = run_cli(command + " --help");
-  std::smatch match;
-  const std::regex with_default("  " + flag + " [^=\\n]*=(\\S+)");
-  return std::regex_search(help.output, match, with_default) ? match[1].str() : "";
-}
-
 /// The help text of `flag` in a command's help `help`: its line and those that continue it.
 std::string flag_help(const CliResult& help, const std::string& flag) {
   std::string text;
@@ -75,6 +66,23 @@ std::vector<std::string> subcommands() {
     if (!line.empty() && line.back() == ':') inside = line == "Subcommands:";
   }
   return names;
+}
+
+/// The default CLI11 shows for `flag` in `command --help`, "" when none. CLI11 writes it at
+/// the end of the option's column (its name, type and checks; the description follows after
+/// two spaces or on the next line): "--flag TYPE=DEFAULT" up to 2.3 (Debian 12 has 2.1),
+/// "--flag TYPE [DEFAULT]" from 2.4 (Debian 13), where the checks may hold brackets too
+/// ("INT:NUMBER in [1, 1e+09] [1000]"). The column alone is read: a description's
+/// "key=value" is no default.
+std::string help_default(const std::string& command, const std::string& flag) {
+  const std::string text = help_text(command, flag);
+  std::string column = text.substr(0, text.find('\n'));
+  column.erase(0, column.find(flag));
+  column = column.substr(0, column.find("  "));
+  std::smatch match;
+  static const std::regex shown_default(R"((?:=(\S+)|\[([^\],]+)\])\s*$)");
+  if (!std::regex_search(column, match, shown_default)) return "";
+  return match[1].matched ? match[1].str() : match[2].str();
 }
 
 TEST(CliConsistency, ParserRefusalsAreOneLineWithStatusOne) {

@@ -8,12 +8,14 @@
 #include <fstream>
 #include <memory>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "apps/cli_runner.hpp"
 #include "common/background_process.hpp"
+#include "common/shell_output.hpp"
 #include "common/temp_files.hpp"
 
 namespace upkie_rl {
@@ -290,6 +292,21 @@ TEST(DistributedTrain, WhenRankZeroDiesTheOthersNameIt) {
       << run.rank1->output();
 }
 
+/// The command line of torchrun's interpreter, from its first line ("#!/usr/bin/python3.11",
+/// "#!/usr/bin/env python3"): the Python that has torch, which python3 on the PATH may not.
+std::vector<std::string> torchrun_interpreter() {
+  std::string path = testing::shell_output("command -v torchrun");
+  path.erase(path.find_last_not_of(" \n") + 1);
+  std::ifstream script(path);
+  std::string first_line;
+  std::getline(script, first_line);
+  if (first_line.rfind("#!", 0) != 0) return {"python3"};
+  std::vector<std::string> command;
+  std::stringstream words(first_line.substr(2));
+  for (std::string word; words >> word;) command.push_back(word);
+  return command;
+}
+
 TEST(DistributedTrain, TorchrunLaunchesIt) {
   if (std::system("command -v torchrun > /dev/null 2>&1") != 0) {
     GTEST_SKIP() << "torchrun is not installed (python3-torch); the variables it sets are "
@@ -301,9 +318,16 @@ TEST(DistributedTrain, TorchrunLaunchesIt) {
   // torchrun 1.13 (Debian) knows only the underscore spellings; later ones take both. On
   // Python 3.11 it cannot parse its default "--redirects 0 --tee 0" (Std.from_str returns
   // None for 0), so the output goes through its tee instead.
-  args.insert(args.begin(),
-              {"torchrun", "--nproc_per_node", "2", "--master_port", std::to_string(free_port()),
-               "--redirects", "1", "--tee", "1", "--no_python"});
+  args.insert(args.begin(), {"--nproc_per_node", "2", "--master_port", std::to_string(free_port()),
+                             "--redirects", "1", "--tee", "1", "--no_python"});
+  // torchrun through scripts/torchrun_classic_store.py, run by torchrun's own Python: torchrun
+  // unchanged where PyTorch has libuv or predates it (Debian 12's 1.13); where it lacks libuv
+  // (Debian 13's 2.6, on which every plain torchrun rendezvous fails), torchrun with the
+  // classic store backend, the workaround docs/training.md gives.
+  std::vector<std::string> launcher_command = torchrun_interpreter();
+  launcher_command.push_back(std::string(UPKIE_RL_SOURCE_DIR) +
+                             "/scripts/torchrun_classic_store.py");
+  args.insert(args.begin(), launcher_command.begin(), launcher_command.end());
   Process launcher(args, "torchrun");
   ASSERT_EQ(launcher.wait(), 0) << launcher.output();
   const std::string checksum = checksum_of(launcher.output(), 0);
