@@ -6,7 +6,8 @@
 # those options on MuJoCo from the spine's log; the velocity policy is retrained with them;
 # and both policies are evaluated on the hidden reality, side by side.
 #
-# Usage: scripts/sim2real-demo.sh [OUTPUT_DIR]   (default runs/sim2real-demo-<date>-<time>)
+# Usage: scripts/sim2real-demo.sh [OUTPUT_DIR]   (default runs/sim2real-demo-<date>-<time>;
+# an earlier run's directory goes on where it stopped)
 # Settings (environment variables, defaults in brackets): BUILD_DIR [build], NOMINAL_MODEL
 # [tests/data/policies/velocity_mujoco_seed0.ckpt], RECORD_SECONDS [62], TOTAL_TIMESTEPS [the
 # configuration's], EPISODES [20], SEED [1000]. Smaller values make a quick check of the
@@ -57,31 +58,44 @@ start_spine() {
   exit 1
 }
 
-echo "== 1/4 the robot's run: $record_seconds s of configs/identify_commands.csv on the hidden reality"
-record_shm=/upkie_sim2real_record_$$
-start_spine "$record_shm" --log "$out/robot.mpack"
-"$agent" --model "$nominal_model" --shm-name "$record_shm" \
-  --commands configs/identify_commands.csv --duration "$record_seconds" \
-  --record "$out/robot.csv" >"$out/agent.log" 2>&1 || {
-  echo "sim2real-demo: the runner stopped early (it may have fallen); the log so far is used" >&2
-}
-stop_spine
-tail -n 1 "$out/agent.log"
+# A run given the directory of an earlier one goes on where that one stopped: the robot's
+# log and its fit, and a finished training, are kept (and said so), not redone.
+if [[ -s $out/identify.txt ]]; then
+  echo "== 1-2/4 the robot's log and its fit: kept from $out"
+else
+  echo "== 1/4 the robot's run: $record_seconds s of configs/identify_commands.csv on the hidden reality"
+  record_shm=/upkie_sim2real_record_$$
+  start_spine "$record_shm" --log "$out/robot.mpack"
+  "$agent" --model "$nominal_model" --shm-name "$record_shm" \
+    --commands configs/identify_commands.csv --duration "$record_seconds" \
+    --record "$out/robot.csv" >"$out/agent.log" 2>&1 || {
+    echo "sim2real-demo: the runner stopped early (it may have fallen); the log so far is used" >&2
+  }
+  stop_spine
+  tail -n 1 "$out/agent.log"
 
-echo "== 2/4 identify on MuJoCo from the spine's log"
-"$cli" identify --log "$out/robot.mpack" --env Upkie-MuJoCo-Servos \
-  --env-option frequency=50 "${known_options[@]}" \
-  --param payload_offset_x=-0.1:0.1 --param floor_friction=0.2:1.5 \
-  --param action_delay=0:3 --param action_lag=0:0.1 \
-  --output "$out/identified.yaml" --json | tee "$out/identify.txt"
+  echo "== 2/4 identify on MuJoCo from the spine's log"
+  "$cli" identify --log "$out/robot.mpack" --env Upkie-MuJoCo-Servos \
+    --env-option frequency=50 "${known_options[@]}" \
+    --param payload_offset_x=-0.1:0.1 --param floor_friction=0.2:1.5 \
+    --param action_delay=0:3 --param action_lag=0:0.1 \
+    --output "$out/identified.yaml" --json >"$out/identify.txt.partial"
+  mv "$out/identify.txt.partial" "$out/identify.txt"
+  cat "$out/identify.txt"
+fi
 
-echo "== 3/4 retrain the velocity policy with the identified options"
-read -r -a identified_sets <<<"$(sed -n 's/^# train://p' "$out/identified.yaml")"
-steps=()
-[[ -n ${TOTAL_TIMESTEPS:-} ]] && steps=(--set "ppo.total_timesteps=$TOTAL_TIMESTEPS")
-"$cli" train --config configs/velocity.yaml "${identified_sets[@]}" "${known_sets[@]}" \
-  "${steps[@]}" --run-dir "$out/retrained" --quiet
-identified_model=$(ls -t "$out"/retrained/model_*.ckpt | head -n 1)
+identified_model=$(ls -t "$out"/retrained/model_*.ckpt 2>/dev/null | head -n 1 || true)
+if [[ -n $identified_model ]]; then
+  echo "== 3/4 the retrained policy: kept, $identified_model"
+else
+  echo "== 3/4 retrain the velocity policy with the identified options"
+  read -r -a identified_sets <<<"$(sed -n 's/^# train://p' "$out/identified.yaml")"
+  steps=()
+  [[ -n ${TOTAL_TIMESTEPS:-} ]] && steps=(--set "ppo.total_timesteps=$TOTAL_TIMESTEPS")
+  "$cli" train --config configs/velocity.yaml "${identified_sets[@]}" "${known_sets[@]}" \
+    "${steps[@]}" --run-dir "$out/retrained" --quiet
+  identified_model=$(ls -t "$out"/retrained/model_*.ckpt | head -n 1)
+fi
 
 echo "== 4/4 both policies on the hidden reality: $episodes episodes of 20 s, random commands"
 evaluate() {
@@ -90,6 +104,7 @@ evaluate() {
   start_spine "$shm_name" --nb-substeps 20
   "$cli" rollout --env Upkie-Spine-Velocity --model "$model" \
     --env-option "shm_name=$shm_name" --env-option regulate_frequency=false \
+    --env-option request_timeout=10 \
     --env-option max_episode_steps=1000 --max-steps 1000 \
     --episodes "$episodes" --seed "$seed" --json >"$out/$name.txt" 2>&1
   stop_spine
