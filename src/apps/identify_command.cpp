@@ -88,7 +88,7 @@ void add_identify_command(CLI::App& app) {
                    "file with servo commands")
       ->required()
       ->check(kNonEmptyPath);
-  command->add_option("--env", options->env_id, "Environment whose servos replay the log")
+  add_env_id_option(*command, options->env_id, "Environment whose servos replay the log")
       ->capture_default_str();
   command->add_option("--param", options->params,
                       "NAME or NAME=LOW:HIGH to fit (repeatable; default mass_scale, "
@@ -98,7 +98,7 @@ void add_identify_command(CLI::App& app) {
       ->add_option("--output", options->output_path,
                    "Write the fitted options as YAML (env.options of a training config)")
       ->check(kNonEmptyPath);
-  command->add_flag("--json", options->json, "Print the result as JSON on the last line");
+  add_json_flag(*command, options->json);
   command->add_option("--horizon", options->horizon, "Each replay's duration [s]")
       ->capture_default_str()
       ->check(finite_range(0.01, 5.0));

@@ -134,6 +134,9 @@ TEST(CliConsistency, AMistypedEnvironmentIdGetsTheNearestSuggested) {
   expect_one_line_error(run_cli("bench --env Upkie-MuJoCo-Pendlum"), "upkie-rl", suggestion);
   expect_one_line_error(run_cli("drive --env Upkie-MuJoCo-Velocty"), "upkie-rl",
                         "(did you mean \"Upkie-MuJoCo-Velocity\"?)");
+  // Checked before the log is even looked for.
+  expect_one_line_error(run_cli("identify --log absent.mpack --env Upkie-Mujoco-Servos"),
+                        "upkie-rl", "(did you mean \"Upkie-MuJoCo-Servos\"?)");
 }
 
 TEST(CliConsistency, AMistypedConfigKeyGetsTheNearestSuggested) {
