@@ -12,11 +12,20 @@
 set(UPKIE_RL_ARM64_LIBDIR /usr/lib/aarch64-linux-gnu CACHE PATH "Debian's arm64 libraries")
 set(staged ${PROJECT_BINARY_DIR}/staged-include)
 file(MAKE_DIRECTORY ${staged})
+# Debian 13 moved urdfdom's headers one folder down (urdfdom/, urdfdom_headers/).
 foreach(header eigen3 nlohmann msgpack msgpack.hpp spdlog fmt CLI yaml-cpp urdf_model
         urdf_model_state urdf_world urdf_sensor urdf_exception urdf_parser console_bridge
         console_bridge_export.h tinyxml.h)
   if(NOT EXISTS ${staged}/${header})
-    file(CREATE_LINK /usr/include/${header} ${staged}/${header} SYMBOLIC)
+    foreach(folder /usr/include /usr/include/urdfdom /usr/include/urdfdom_headers)
+      if(EXISTS ${folder}/${header})
+        file(CREATE_LINK ${folder}/${header} ${staged}/${header} SYMBOLIC)
+        break()
+      endif()
+    endforeach()
+    if(NOT EXISTS ${staged}/${header})
+      message(FATAL_ERROR "/usr/include/${header} is missing: run scripts/install-deps.sh")
+    endif()
   endif()
 endforeach()
 
