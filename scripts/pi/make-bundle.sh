@@ -23,13 +23,28 @@ cp -L "$cross_libdir/libstdc++.so.6" "$cross_libdir/libgcc_s.so.1" "$bundle/lib/
 cp "$policy" "$bundle/policy.ckpt"
 cp "$root/models/upkie/upkie.urdf" "$bundle/upkie.urdf"
 cp "$here/run-agent.sh" "$here/README.md" "$bundle/"
-# Every library needed is in lib/ or the C library's (libc, libm, the loader).
-for file in "$bundle/upkie-rl-agent" "$bundle"/lib/*; do
-  for needed in $(aarch64-linux-gnu-readelf -d "$file" | sed -n 's/.*Shared library: \[\(.*\)\]/\1/p'); do
-    case "$needed" in
-      libc.so.6|libm.so.6|ld-linux-aarch64.so.1) ;;
-      *) [ -f "$bundle/lib/$needed" ] || { echo "make-bundle: $file needs $needed, not in lib/" >&2; exit 1; } ;;
-    esac
+# Every library needed is in lib/ or the C library's (libc, libm, the loader). One that a
+# library above needs in its turn is taken from Debian's arm64 libraries too (urdfdom 4 needs
+# TinyXML2 on Debian 13), until nothing is missing.
+added=1
+while [ "$added" = 1 ]; do
+  added=0
+  for file in "$bundle/upkie-rl-agent" "$bundle"/lib/*; do
+    for needed in $(aarch64-linux-gnu-readelf -d "$file" | sed -n 's/.*Shared library: \[\(.*\)\]/\1/p'); do
+      case "$needed" in
+        libc.so.6|libm.so.6|ld-linux-aarch64.so.1) ;;
+        *)
+          [ -f "$bundle/lib/$needed" ] && continue
+          if [ -f "$arm64_libdir/$needed" ]; then
+            cp -L "$arm64_libdir/$needed" "$bundle/lib/"
+            added=1
+          else
+            echo "make-bundle: $file needs $needed, not in lib/ nor in $arm64_libdir" >&2
+            exit 1
+          fi
+          ;;
+      esac
+    done
   done
 done
 echo "bundle $bundle: $(du -sh "$bundle" | cut -f1), binary $(du -h "$bundle/upkie-rl-agent" | cut -f1)"
