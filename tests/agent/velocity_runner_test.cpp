@@ -287,5 +287,75 @@ TEST_F(HeightRunner, StandardInputAndKeysCarryAHeight) {
       << keys;
 }
 
+/// A velocity policy that sees the last two observations (env option observation_history;
+/// a short training made here, as above).
+class HistoryRunner : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    model_ = train_tiny_velocity_policy("history", {"env.options.observation_history=2"});
+  }
+
+  static inline std::string model_;
+};
+
+/// Checks that the rows of `record` show, after "t", the observation then the previous one
+/// (the history of the checkpoint's environment) and that its actions are the checkpoint's;
+/// returns the rows where the previous row was the step before in the same episode.
+std::size_t expect_history_rows(const RecordTable& record, const std::string& model) {
+  const std::size_t first = record.column("t") + 1;
+  const std::size_t previous = record.column("gyro.y@t-1");
+  const std::size_t current = record.column("gyro.y");
+  EXPECT_LT(previous, record.columns.size());
+  EXPECT_EQ(current, first + 10);  // VelocityTask's observation, newest first
+  if (previous >= record.columns.size()) return 0;
+  const std::size_t size = previous - current;  // one observation
+  EXPECT_EQ(record.columns.at(first + size), record.columns.at(first) + "@t-1");
+  std::size_t consecutive = 0;
+  for (std::size_t row = 1; row < record.rows.size(); ++row) {
+    const auto& now = record.rows[row];
+    const auto& before = record.rows[row - 1];
+    if (now.at(0) != before.at(0) || std::stoi(now.at(1)) != std::stoi(before.at(1)) + 1) continue;
+    for (std::size_t i = 0; i < size; ++i) {
+      EXPECT_EQ(now.at(first + size + i), before.at(first + i)) << "row " << row << ", " << i;
+    }
+    ++consecutive;
+  }
+  EXPECT_EQ(expect_checkpoint_actions(record, model), record.rows.size());
+  return consecutive;
+}
+
+TEST_F(HistoryRunner, RolloutTheSpineEnvAndTheRunnerFeedTheHistoryTheCheckpointWants) {
+  const DeployedPolicy policy = DeployedPolicy::load(model_);
+  EXPECT_EQ(policy.observation_space().size(), 40u);  // 2 x the 20 of height_command=false
+  // `upkie-rl rollout` on the training's engine, then on a MuJoCo spine: the checkpoint's
+  // observation_history comes with its task options, as the runner's does.
+  const auto mujoco_record = temp_path("history_rollout_mujoco.csv");
+  const auto on_mujoco = testing::run_cli("rollout --env Upkie-MuJoCo-Velocity --model " + model_ +
+                                          " --max-steps 30 --record " + mujoco_record.string());
+  ASSERT_EQ(on_mujoco.exit_code, 0) << on_mujoco.output;
+  EXPECT_GT(expect_history_rows(read_record(mujoco_record.string()), model_), 20u);
+  const auto spine_record = temp_path("history_rollout_spine.csv");
+  {
+    Spine spine("history_rollout", {}, "mujoco");
+    const auto on_spine = testing::run_cli(
+        "rollout --env Upkie-Spine-Velocity --env-option shm_name=" + spine.shm_name() +
+        " --model " + model_ + " --max-steps 30 --record " + spine_record.string());
+    ASSERT_EQ(on_spine.exit_code, 0) << on_spine.output;
+  }
+  EXPECT_GT(expect_history_rows(read_record(spine_record.string()), model_), 20u);
+  // upkie-rl-agent on the spine.
+  const auto agent_record = temp_path("history_agent.csv");
+  run_velocity_agent(model_, "history_agent", "2", {"--record", agent_record.string()});
+  EXPECT_GT(expect_history_rows(read_record(agent_record.string()), model_), 20u);
+  // The ONNX export takes the whole history as its input.
+  const auto onnx = temp_path("history.onnx");
+  const auto exported = testing::run_cli("export " + model_ + " --onnx " + onnx.string());
+  ASSERT_EQ(exported.exit_code, 0) << exported.output;
+  const auto info = testing::run_cli("info " + onnx.string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("input: observation FLOAT [batch, 40]"), std::string::npos)
+      << info.output;
+}
+
 }  // namespace
 }  // namespace upkie_rl

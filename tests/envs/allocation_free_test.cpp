@@ -53,7 +53,8 @@ TEST(AllocationFree, PerturbedStepsAllocateNothingEither) {
                                 {"push_interval", "0.2"},
                                 {"observation_noise", "0.01"},
                                 {"action_lag_max", "0.03"},
-                                {"action_delay", "2"}};
+                                {"action_delay", "2"},
+                                {"observation_history", "4"}};
   for (const char* id :
        {"Upkie-MuJoCo-Servos", "Upkie-MuJoCo-Pendulum", "Upkie-MuJoCo-ServosTask"}) {
     auto env = make_env(id, perturbed);

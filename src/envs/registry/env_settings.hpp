@@ -49,6 +49,8 @@ struct EnvSettings {
   FloorBumps bumps;
   double observation_noise = 0.0;  ///< Half-width, in the observation's units.
   ActionLagSettings action_lag;
+  /// Observations the agent sees, newest first (ObservationHistory); 1: the current one.
+  int observation_history = 1;
   SpineBackendConfig spine;
   int max_episode_steps = 0;  ///< 0: no time limit.
   PendulumConfig pendulum;
@@ -76,7 +78,7 @@ EnvSettings parse_env_settings(const EnvId& id, const std::string& name, const E
 SpineBackendConfig spine_backend_config(const EnvSettings& settings);
 
 /// The task chain of `id` on `simulation`: ServosEnv, the kind's task, then the action lag,
-/// observation noise and time limit wrappers that `settings` ask for.
+/// observation noise, observation history and time limit wrappers that `settings` ask for.
 std::unique_ptr<Env> assemble_env(const EnvId& id, const EnvSettings& settings,
                                   std::unique_ptr<Simulation> simulation,
                                   int physics_steps_per_step);

@@ -13,6 +13,7 @@
 #include "envs/kinds/velocity_env.hpp"
 #include "envs/randomization/observation_noise.hpp"
 #include "envs/registry/env_settings.hpp"
+#include "envs/wrappers/observation_history.hpp"
 #include "envs/wrappers/time_limit.hpp"
 
 namespace upkie_rl {
@@ -164,6 +165,11 @@ OptionTable env_option_table(const EnvId& id, EnvSettings& settings) {
                    "uniform noise in +-it on every observation component");
     settings.action_lag.declare_options(table);
   });
+  // Part of the task, not a randomisation: it sets the policy's input size, so rollouts,
+  // evaluations and the robot's runner carry it from the training options (task_options).
+  table.add_integer("observation_history", &settings.observation_history, 1, kMaxObservationHistory,
+                    "observations the agent sees: the last k concatenated, newest first "
+                    "(\"gyro.y@t-1\" the previous step's), filled with the reset's at reset");
   table.add_integer("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
                     "truncate episodes after this many steps, 0 for never");
   declare_randomization(table, [&] { settings.init_rand.declare_options(table); });
@@ -229,6 +235,10 @@ std::unique_ptr<Env> assemble_env(const EnvId& id, const EnvSettings& settings,
   }
   if (settings.observation_noise > 0.0) {
     env = std::make_unique<ObservationNoise>(std::move(env), settings.observation_noise);
+  }
+  // After the noise: the history holds the noisy observations the robot's agent would see.
+  if (settings.observation_history > 1) {
+    env = std::make_unique<ObservationHistory>(std::move(env), settings.observation_history);
   }
   if (settings.max_episode_steps > 0) {
     env = std::make_unique<TimeLimit>(std::move(env), settings.max_episode_steps);
