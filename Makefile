@@ -211,8 +211,9 @@ FUZZ_TARGETS ?=
 # libFuzzer reports on stderr.
 fuzz:
 	UPKIE_RL_FUZZ=1 bash scripts/install-deps.sh
+	# The release's clang, which install-deps.sh installs (14 on Debian 12, 19 on Debian 13).
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_CXX_COMPILER=clang++-14 -DUPKIE_RL_BUILD_FUZZ=ON \
+	  -DCMAKE_CXX_COMPILER=$$(ls /usr/bin/clang++-[0-9]* | sort -V | tail -n 1) -DUPKIE_RL_BUILD_FUZZ=ON \
 	  -DUPKIE_RL_BUILD_TESTS=OFF -DUPKIE_RL_BUILD_BENCH=OFF -DUPKIE_RL_BUILD_PYTHON=OFF \
 	  -DPython_EXECUTABLE=$(PYTHON)
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(or $(FUZZ_TARGETS),fuzzers)
