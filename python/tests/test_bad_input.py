@@ -95,6 +95,24 @@ def test_bytearray_longer_than_the_file_is_refused_and_nothing_is_printed(tmp_pa
     assert capfd.readouterr().err == ""
 
 
+class _GeneratorPickledByClass:
+    """Pickles as NumPy 2.2 pickles a generator's PCG64: the class named, then its state."""
+
+    def __reduce__(self):
+        import numpy as np
+        return (np.random.PCG64, (), {"bit_generator": "PCG64", "state": {"state": 1, "inc": 3}})
+
+
+def test_a_random_generator_named_by_its_class_is_read_as_a_record(tmp_path):
+    import pickle
+    path = tmp_path / "vecnormalize.pkl"
+    path.write_bytes(pickle.dumps({"np_random": _GeneratorPickledByClass()}))
+    loaded = load_allowlisted(path)
+    record = loaded["np_random"]
+    assert isinstance(record, upkie_rl.safe_pickle.InertRecord)
+    assert record.state["state"] == {"state": 1, "inc": 3}
+
+
 @pytest.mark.parametrize("make", [
     lambda: upkie_rl.env_options(None),
     lambda: upkie_rl.UpkieEnv(None),

@@ -63,6 +63,11 @@ _ALLOWED = {
     ("numpy.random._pickle", "__generator_ctor"): _inert_factory,
     ("numpy.random._pickle", "__bit_generator_ctor"): _inert_factory,
     ("numpy.random._pickle", "__randomstate_ctor"): _inert_factory,
+    # Newer NumPy (Debian 13's 2.2) pickles a space's random generator by naming its bit
+    # generator's class itself; kept as an inert record, like the constructors above.
+    **{(f"numpy.random._{module}", name): InertRecord
+       for module, name in (("pcg64", "PCG64"), ("pcg64", "PCG64DXSM"), ("mt19937", "MT19937"),
+                            ("philox", "Philox"), ("sfc64", "SFC64"), ("generator", "Generator"))},
 }
 
 
