@@ -68,6 +68,9 @@ _ALLOWED = {
     **{(f"numpy.random._{module}", name): InertRecord
        for module, name in (("pcg64", "PCG64"), ("pcg64", "PCG64DXSM"), ("mt19937", "MT19937"),
                             ("philox", "Philox"), ("sfc64", "SFC64"), ("generator", "Generator"))},
+    # ... and its seed sequence through Cython's unpickling function.
+    ("numpy.random.bit_generator", "__pyx_unpickle_SeedSequence"): _inert_factory,
+    ("numpy.random.bit_generator", "SeedSequence"): InertRecord,
 }
 
 
