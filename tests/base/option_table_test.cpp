@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "common/error_message.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -40,14 +41,7 @@ struct Settings {
   }
 };
 
-std::string error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing::error_message;
 
 TEST(OptionTable, ApplyReadsEveryTypeAndChecksRangesAtOnce) {
   Settings settings;
@@ -72,35 +66,35 @@ TEST(OptionTable, ApplyReadsEveryTypeAndChecksRangesAtOnce) {
 TEST(OptionTable, ErrorsNameTheOptionTheValueAndTheRange) {
   Settings settings;
   const OptionTable table = settings.table();
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"gain", "0"}}, "Test");
             }),
             "Test: option gain: 0 is outside (0, 1]");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"gain", "-1.0"}}, "Test");
             }),
             "Test: option gain: -1.0 is outside (0, 1]");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"steps", "11"}}, "Test");
             }),
             "Test: option steps: 11 is outside [0, 10]");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"steps", "two"}}, "Test");
             }),
             "Test: option steps: \"two\" is not an integer");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"colour", "green"}}, "Test");
             }),
             "Test: option colour: \"green\" is not one of red, blue");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"gain", "nan"}}, "Test");
             }),
             "Test: option gain: nan is not a finite number; expected one in (0, 1]");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"budget", "2"}}, "Test");
             }),
             "Test: option budget: must be at least steps");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.apply({{"speed", "1"}}, "Test");
             }),
             "Test: unknown option \"speed\"; valid options: gain, steps, budget, name, colour, "
@@ -111,7 +105,7 @@ TEST(OptionTable, CheckNamesTheOptionAsTheCallerWritesIt) {
   Settings settings;
   const OptionTable table = settings.table();
   settings.steps = 20;  // set directly, as code does, then checked
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(error_message([&] {
               table.check([](const std::string& n) { return "key '" + n + "'"; }, "Test");
             }),
             "key 'steps': 20 is outside [0, 10]");
@@ -169,7 +163,7 @@ TEST(OptionTable, TableRulesRunAfterEveryOption) {
   table.add_rule([&] { return low > high ? std::string("low is above high") : std::string(); });
   // Each value alone would break the rule against the other's old value; together they pass.
   EXPECT_NO_THROW(table.apply({{"low", "5"}, {"high", "6"}}, "Test"));
-  EXPECT_EQ(error_of([&] { table.apply({{"low", "7"}}, "Test"); }), "Test: low is above high");
+  EXPECT_EQ(error_message([&] { table.apply({{"low", "7"}}, "Test"); }), "Test: low is above high");
 }
 
 }  // namespace

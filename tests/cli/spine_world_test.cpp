@@ -5,18 +5,14 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "common/error_message.hpp"
 
 namespace upkie_rl::apps {
 namespace {
 
 /// The message of the std::invalid_argument SpineWorld throws for `options`, "" if none.
 std::string refusal(const std::vector<std::string>& options) {
-  try {
-    SpineWorld world(options);
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
+  return testing::error_message([&] { SpineWorld world(options); });
 }
 
 TEST(SpineWorld, WithoutOptionsEveryEpisodeIsTheNominalRobot) {

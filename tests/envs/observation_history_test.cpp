@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error_message.hpp"
 #include "envs/registry/env_factory.hpp"
 #include "envs/registry/registry.hpp"
 
@@ -63,16 +64,7 @@ Trace run(Env& env, std::uint64_t seed, int steps) {
   return trace;
 }
 
-/// The error message of `make`, or "" when it does not throw std::invalid_argument.
-template <class F>
-std::string error_of(F&& make) {
-  try {
-    make();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing::error_message;
 
 TEST(ObservationHistory, LengthOneIsTodaysEnvironmentBitForBit) {
   EnvOptions today = trained_options("1");
@@ -138,13 +130,13 @@ TEST(ObservationHistory, SpaceRepeatsTheInnerBoundsAndNamesTheAges) {
 
 TEST(ObservationHistory, BadLengthsAreRefusedNamingTheOption) {
   for (const char* bad : {"0", "-1", "1000000", "1e6", "2.5", "three"}) {
-    const std::string message = error_of([bad] {
+    const std::string message = error_message([bad] {
       make_env("Upkie-Mock-Pendulum", {{"observation_history", bad}});
     });
     EXPECT_NE(message.find("observation_history"), std::string::npos) << bad << ": " << message;
   }
   const std::string direct =
-      error_of([] { ObservationHistory history(make_env("Upkie-Mock-Pendulum"), 0); });
+      error_message([] { ObservationHistory history(make_env("Upkie-Mock-Pendulum"), 0); });
   EXPECT_NE(direct.find("observation_history"), std::string::npos) << direct;
   EXPECT_NO_THROW(make_env("Upkie-Mock-Pendulum",
                            {{"observation_history", std::to_string(kMaxObservationHistory)}}));

@@ -5,20 +5,14 @@
 #include <algorithm>
 #include <array>
 
+#include "common/error_message.hpp"
 #include "envs/kinds/servos_env.hpp"
 #include "envs/registry/env_factory.hpp"
 
 namespace upkie_rl {
 namespace {
 
-std::string error_of(const std::function<void()>& run) {
-  try {
-    run();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing::error_message;
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
@@ -37,11 +31,11 @@ TEST(Registry, ListsEveryKindForEachBackend) {
 }
 
 TEST(Registry, UnknownIdIsNotFoundAndListsTheKnownIds) {
-  const std::string message = error_of([] { make_env("Upkie-Mock-Walker"); });
+  const std::string message = error_message([] { make_env("Upkie-Mock-Walker"); });
   EXPECT_TRUE(contains(message, "\"Upkie-Mock-Walker\" not found")) << message;
   EXPECT_TRUE(contains(message, "Upkie-Mock-Pendulum")) << message;
-  EXPECT_FALSE(error_of([] { make_env("Pendulum"); }).empty());
-  EXPECT_FALSE(error_of([] { make_env("Upkie-Mock-"); }).empty());
+  EXPECT_FALSE(error_message([] { make_env("Pendulum"); }).empty());
+  EXPECT_FALSE(error_message([] { make_env("Upkie-Mock-"); }).empty());
 }
 
 TEST(Registry, PyBulletIsAnAliasOfBullet) {
@@ -51,35 +45,35 @@ TEST(Registry, PyBulletIsAnAliasOfBullet) {
 }
 
 TEST(Registry, UnknownOptionListsTheValidOnes) {
-  const std::string message = error_of([] {
+  const std::string message = error_message([] {
     make_env("Upkie-Mock-Pendulum", {{"max_ground_speed", "2"}});
   });
   EXPECT_TRUE(contains(message, "unknown option \"max_ground_speed\"")) << message;
   EXPECT_TRUE(contains(message, "max_ground_velocity")) << message;
   EXPECT_TRUE(contains(message, "fall_pitch")) << message;
   // Servos has no pendulum options.
-  EXPECT_FALSE(error_of([] { make_env("Upkie-Mock-Servos", {{"fall_pitch", "1"}}); }).empty());
+  EXPECT_FALSE(error_message([] { make_env("Upkie-Mock-Servos", {{"fall_pitch", "1"}}); }).empty());
 }
 
 TEST(Registry, BadlyTypedValuesAreNamed) {
-  const std::string message = error_of([] {
+  const std::string message = error_message([] {
     make_env("Upkie-Mock-Pendulum", {{"fall_pitch", "abc"}});
   });
   EXPECT_TRUE(contains(message, "fall_pitch")) << message;
   EXPECT_TRUE(contains(message, "not a finite number")) << message;
-  EXPECT_TRUE(contains(error_of([] {
+  EXPECT_TRUE(contains(error_message([] {
                          make_env("Upkie-Mock-Servos", {{"nb_substeps", "2.5"}});
                        }),
                        "not an integer"));
-  EXPECT_TRUE(contains(error_of([] {
+  EXPECT_TRUE(contains(error_message([] {
                          make_env("Upkie-Mock-Servos", {{"frequency", "-5"}});
                        }),
                        "outside"));
-  EXPECT_TRUE(contains(error_of([] {
+  EXPECT_TRUE(contains(error_message([] {
                          make_env("Upkie-Mock-Servos", {{"inertia", "cube"}});
                        }),
                        "box, urdf"));
-  EXPECT_TRUE(contains(error_of([] {
+  EXPECT_TRUE(contains(error_message([] {
                          make_env("Upkie-Mock-Servos", {{"frequency", "nan"}});
                        }),
                        "not a finite number"));
@@ -90,9 +84,9 @@ TEST(Registry, ParseEnvOptions) {
   ASSERT_EQ(options.size(), 2u);
   EXPECT_EQ(options[0], (std::pair<std::string, std::string>{"fall_pitch", "0.5"}));
   EXPECT_EQ(options[1].second, "urdf");
-  EXPECT_TRUE(contains(error_of([] { parse_env_options({"fall_pitch"}); }), "\"fall_pitch\""));
-  EXPECT_FALSE(error_of([] { parse_env_options({"=1"}); }).empty());
-  EXPECT_FALSE(error_of([] { parse_env_options({"a="}); }).empty());
+  EXPECT_TRUE(contains(error_message([] { parse_env_options({"fall_pitch"}); }), "\"fall_pitch\""));
+  EXPECT_FALSE(error_message([] { parse_env_options({"=1"}); }).empty());
+  EXPECT_FALSE(error_message([] { parse_env_options({"a="}); }).empty());
 }
 
 TEST(Registry, OptionsAcceptedByEveryKind) {
@@ -117,15 +111,15 @@ TEST(Registry, SpineOptionsAreTheirOwn) {
   } catch (const std::runtime_error& error) {
     EXPECT_TRUE(contains(error.what(), "upkie-rl-no-such-spine")) << error.what();
   }
-  EXPECT_TRUE(contains(error_of([] {
+  EXPECT_TRUE(contains(error_message([] {
                          make_env("Upkie-Spine-Servos", {{"nb_substeps", "5"}});
                        }),
                        "unknown option \"nb_substeps\""));
-  EXPECT_TRUE(contains(error_of([] {
+  EXPECT_TRUE(contains(error_message([] {
                          make_env("Upkie-Mock-Servos", {{"shm_name", "/x"}});
                        }),
                        "unknown option"));
-  EXPECT_TRUE(contains(error_of([] {
+  EXPECT_TRUE(contains(error_message([] {
                          make_env("Upkie-Spine-Servos", {{"regulate_frequency", "maybe"}});
                        }),
                        "true, false"));

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "common/error_message.hpp"
 #include "envs/registry/env_factory.hpp"
 #include "envs/registry/registry.hpp"
 #include "envs/scripted_simulation.hpp"
@@ -25,16 +26,7 @@ using Obs = std::array<float, VelocityTask::kMaxObservationSize>;
 using LegacyObs = std::array<float, VelocityTask::kObservationSize>;
 using Act = std::array<float, VelocityTask::kActionSize>;
 
-/// The error message of `make`, or "" when it does not throw std::invalid_argument.
-template <class F>
-std::string error_of(F&& make) {
-  try {
-    make();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing::error_message;
 
 TEST(VelocityCommandSampler, DrawsWithinTheRangesWithAShareOfZeroCommands) {
   VelocityCommandRanges ranges;
@@ -332,35 +324,35 @@ TEST(VelocityEnv, BadOptionsNameTheOption) {
   for (const char* option : {"max_forward_velocity", "max_yaw_rate", "zero_command_probability",
                              "command_resample_time_min", "command_max_acceleration",
                              "command_max_yaw_acceleration", "fall_tilt"}) {
-    EXPECT_NE(error_of([&] {
+    EXPECT_NE(error_message([&] {
                 make_env(id, {{option, "-1"}});
               }).find(option),
               std::string::npos)
         << option;
-    EXPECT_NE(error_of([&] {
+    EXPECT_NE(error_message([&] {
                 make_env(id, {{option, "nan"}});
               }).find(option),
               std::string::npos)
         << option;
   }
-  const std::string crossed = error_of([&] {
+  const std::string crossed = error_message([&] {
     make_env(id, {{"command_resample_time_min", "6"}, {"command_resample_time_max", "3"}});
   });
   EXPECT_NE(crossed.find("command_resample_time_min"), std::string::npos) << crossed;
   EXPECT_NE(crossed.find("command_resample_time_max"), std::string::npos) << crossed;
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               make_env(id, {{"zero_command_probability", "1.5"}});
             }).find("zero_command_probability"),
             std::string::npos);
   for (const char* value : {"-1", "nan", "2"}) {
-    EXPECT_NE(error_of([&] {
+    EXPECT_NE(error_message([&] {
                 make_env(id, {{"residual_scale", value}});
               }).find("residual_scale"),
               std::string::npos)
         << value;
   }
   for (const char* spec : {"balancer:1,2", "zero2", "linear:1,2,3,nan"}) {
-    EXPECT_NE(error_of([&] {
+    EXPECT_NE(error_message([&] {
                 make_env(id, {{"base_controller", spec}});
               }).find("base_controller"),
               std::string::npos)

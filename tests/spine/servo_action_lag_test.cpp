@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "common/error_message.hpp"
 #include "model/joint_order.hpp"
 #include "spine/spine_error.hpp"
 
@@ -83,12 +84,7 @@ TEST(ServoActionLag, GainsAndLimitsAreDelayedNotFiltered) {
 
 TEST(ServoActionLag, SettingsOutOfTheirDomainAreRefusedNamingTheValue) {
   const auto message = [](const ServoActionLagSettings& settings) {
-    try {
-      ServoActionLag lag(settings);
-    } catch (const SpineError& error) {
-      return std::string(error.what());
-    }
-    return std::string();
+    return testing::error_message<SpineError>([&] { ServoActionLag lag(settings); });
   };
   EXPECT_NE(message({-1, 0.0, 0.001}).find("action delay must be in [0, 100000]"),
             std::string::npos);
