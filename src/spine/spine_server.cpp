@@ -165,13 +165,7 @@ void SpineServer::remember_observation() {
   history_next_ = (history_next_ + 1) % history_.size();
 }
 
-void SpineServer::advance_sent() {
-  if (config_.actuation.any()) {
-    advance(actuation_.apply(action_), action_);
-  } else {
-    advance(action_, action_);
-  }
-}
+void SpineServer::advance_sent() { advance(actuation_.apply(action_), action_); }
 
 void SpineServer::advance(const ServoAction& action, const ServoAction& logged) {
   simulation_.step(action);
