@@ -48,6 +48,7 @@ test: build
 	$(MAKE) docs
 	$(MAKE) test-cpp
 	$(MAKE) test-python
+	WHEEL_TEST_SB3=$(or $(WHEEL_TEST_SB3),1) $(MAKE) test-wheel
 
 # The C++ and Python tests of a clean clone of HEAD inside a Debian 13 (trixie) chroot made
 # by debootstrap (scripts/test-debian13.sh; root, DEBIAN13_ROOT=/var/tmp/upkie-rl-trixie by
@@ -78,9 +79,10 @@ wheel:
 	JOBS=$(JOBS) bash scripts/wheels/build.sh $(WHEEL_PYTHONS)
 
 # The cp312 wheel, built (again, incrementally) then installed into a bare pyenv 3.12 venv
-# and tested from outside the repository (scripts/wheels/test.sh). Not part of `make test`:
-# it needs PyPI (build requirements, the wheel's dependencies) and takes a cold build of its
-# own. WHEEL_TEST_SB3=1 adds SB3 and PyPI's torch (about 3 GB) for the training tests.
+# and tested from outside the repository (scripts/wheels/test.sh); the last step of `make
+# test`, so CI tests a wheel. It needs PyPI (build requirements, the wheel's dependencies) and
+# a build tree of its own. WHEEL_TEST_SB3=1 adds SB3 and PyPI's torch (about 3 GB) for the
+# training tests, which are skipped without it.
 test-wheel:
 	JOBS=$(JOBS) bash scripts/wheels/build.sh 3.12
 	bash scripts/wheels/test.sh

@@ -2,14 +2,17 @@
 text shows (doc_examples.py says how blocks are marked, run and compared). The slow ones run
 with UPKIE_RL_DOCS_SLOW=1 (`make test-docs`)."""
 
+import math
 import os
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from doc_examples import (find_examples, line_mismatch, output_mismatches,
-                          run_example)
+import doc_examples
+from doc_examples import (ATAN2F_PROBE, NUMBER, as_float32, figures_vary, find_examples,
+                          line_mismatch, output_mismatches, run_example)
 from spine_process import cli_path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -84,6 +87,25 @@ def test_an_unmarked_block_and_a_bad_marker_are_found(tmp_path):
     page.write_text("<!-- example: not-run: -->\n```console\n$ ls\n```\n")
     with pytest.raises(ValueError, match="needs a reason"):
         find_examples(page)
+
+
+def test_float_libm_figures_are_compared_only_where_atan2f_rounds_as_measured(tmp_path,
+                                                                            monkeypatch):
+    """The probe tells the two roundings apart (glibc 2.36's result is one unit below the
+    correctly rounded one), and a `float-libm` block's figures are compared only where
+    atan2f gives the former."""
+    y, x, measured = ATAN2F_PROBE
+    correctly_rounded = as_float32(math.atan2(as_float32(y), as_float32(x)))
+    assert correctly_rounded != measured
+    assert np.nextafter(np.float32(measured), np.float32(np.inf)) == correctly_rounded
+    page = tmp_path / "page.md"
+    page.write_text('<!-- example: run float-libm vary="ms" -->\n```console\n$ ls\n```\n')
+    [example] = find_examples(page)
+    assert example.float_libm and example.run
+    monkeypatch.setattr(doc_examples, "atan2f_rounds_as_measured", lambda: True)
+    assert figures_vary(example).pattern == "ms"
+    monkeypatch.setattr(doc_examples, "atan2f_rounds_as_measured", lambda: False)
+    assert figures_vary(example) is NUMBER
 
 
 def test_the_readme_results_are_the_checked_examples_figures():
