@@ -129,7 +129,9 @@ in_chroot "cd build && ctest --output-on-failure -j $jobs" || status=$?
 stage_done ctest
 if [ "$run_pytest" = "1" ]; then
   stage "pytest (Debian 13's python3)"
-  in_chroot "python3 -m pytest -q python/tests" || status=$?
+  # The docs site first (MkDocs from PyPI into .venv-docs), which test_docs_site.py checks.
+  in_chroot "make docs PYTHON=/usr/bin/python3 BUILD_DIR=build" || status=$?
+  in_chroot "python3 -m pytest -q -rs python/tests" || status=$?
   stage_done pytest
 fi
 echo "test-debian13: $(in_chroot '. /etc/os-release; echo $PRETTY_NAME'), exit status $status"
