@@ -64,9 +64,11 @@ FENCE = re.compile(r"^(?P<indent>\s*)```(?P<language>[\w-]*)\s*$")
 NUMBER = re.compile(r"[-+]?(?:\d{1,3}(?:,\d{3})+(?:\.\d+)?|\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 DEFAULT_RELATIVE_TOLERANCE = 1e-3
 REPOSITORY_LINKS = ("configs", "models", "tests", "examples")
-# atan2f(0.079f, -0.9447f): glibc 2.36 returns 0x1.8771dcp+1, one unit below the correctly
-# rounded 0x1.8771dep+1 of glibc 2.41 (docs measured with the former; `float-libm` above).
-ATAN2F_PROBE = (0.079, -0.9447, float.fromhex("0x1.8771dcp+1"))
+# atan2f(y, x) at the input of the C++ twin (atan2f_rounds_as_recorded in
+# tests/apps/velocity_command_test.cpp): glibc 2.36 returns -0x1.0c4eb8p-3, one unit from
+# the correctly rounded -0x1.0c4ebap-3 of glibc 2.41 (docs measured with the former).
+ATAN2F_PROBE = (float.fromhex("-0x1.e5c998p-4"), float.fromhex("0x1.ccd96p-1"),
+                float.fromhex("-0x1.0c4eb8p-3"))
 # A background command (a spine) gets this long to be ready before the next command runs.
 BACKGROUND_START_SECONDS = 2.0
 

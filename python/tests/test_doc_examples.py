@@ -91,13 +91,14 @@ def test_an_unmarked_block_and_a_bad_marker_are_found(tmp_path):
 
 def test_float_libm_figures_are_compared_only_where_atan2f_rounds_as_measured(tmp_path,
                                                                             monkeypatch):
-    """The probe tells the two roundings apart (glibc 2.36's result is one unit below the
-    correctly rounded one), and a `float-libm` block's figures are compared only where
+    """The probe tells the two roundings apart (glibc 2.36's result is one float32 unit from
+    the correctly rounded one), and a `float-libm` block's figures are compared only where
     atan2f gives the former."""
     y, x, measured = ATAN2F_PROBE
-    correctly_rounded = as_float32(math.atan2(as_float32(y), as_float32(x)))
+    assert as_float32(y) == y and as_float32(x) == x  # the probe's inputs are float32s
+    correctly_rounded = as_float32(math.atan2(y, x))
     assert correctly_rounded != measured
-    assert np.nextafter(np.float32(measured), np.float32(np.inf)) == correctly_rounded
+    assert np.nextafter(np.float32(measured), np.float32(-np.inf)) == correctly_rounded
     page = tmp_path / "page.md"
     page.write_text('<!-- example: run float-libm vary="ms" -->\n```console\n$ ls\n```\n')
     [example] = find_examples(page)
