@@ -399,6 +399,14 @@ TEST(Perturbations, TaskOptionsDropRandomisationAndOptionsTheTargetLacks) {
   EXPECT_EQ(pendulum, pendulum_expected);
 }
 
+TEST(Perturbations, TaskOptionsLeaveTheTrainingsPhysicsStepOut) {
+  // A policy trained at 5 ms for speed is rolled out at the 1 ms reference.
+  const EnvOptions trained = {{"nb_substeps", "4"}, {"residual_scale", "1"}};
+  const EnvOptions expected = {{"residual_scale", "1"}};
+  EXPECT_EQ(task_options("Upkie-MuJoCo-Velocity", trained, "Upkie-MuJoCo-Velocity"), expected);
+  EXPECT_EQ(task_options("Upkie-MuJoCo-Velocity", trained, "Upkie-Bullet-Velocity"), expected);
+}
+
 TEST(ActionLag, RejectsNonFiniteActionsAtOnceNamingThem) {
   ActionLagSettings settings;
   settings.delay_steps = 5;

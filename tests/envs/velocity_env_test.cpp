@@ -319,6 +319,42 @@ TEST(VelocityEnv, RegisteredWithTheTaskRateAndTimeLimit) {
   EXPECT_EQ(make_env("Upkie-MuJoCo-Velocity")->physics_steps_per_step(), 20);
 }
 
+TEST(VelocityEnv, CommandCurriculumNarrowsTheDrawsUntilTheScaleReachesOne) {
+  // Commands held 0.02 s: a new draw every step.
+  auto env = make_env("Upkie-Mock-Velocity", {{"command_curriculum_start", "0.2"},
+                                              {"command_max_acceleration", "0"},
+                                              {"command_resample_time_min", "0.02"},
+                                              {"command_resample_time_max", "0.02"},
+                                              {"zero_command_probability", "0"}});
+  VelocityEnv* velocity = find_velocity_env(*env);
+  ASSERT_NE(velocity, nullptr);
+  const VelocityCommandRanges& ranges = velocity->command_ranges();
+  EXPECT_DOUBLE_EQ(ranges.curriculum_scale(0.0), 0.2);
+  EXPECT_DOUBLE_EQ(ranges.curriculum_scale(0.5), 0.6);
+  const auto largest_forward_velocity = [&](double scale) {
+    env->set_randomization_scale(scale);
+    Obs observation{};
+    env->reset(9, observation);
+    double largest = 0.0;
+    for (int step = 0; step < 200; ++step) {
+      env->step(Act{}, observation);
+      largest = std::max(largest, std::abs(velocity->target().forward_velocity));
+    }
+    return largest;
+  };
+  const double at_start = largest_forward_velocity(0.0);
+  EXPECT_LE(at_start, 0.2 * ranges.max_forward_velocity);
+  EXPECT_GT(at_start, 0.15 * ranges.max_forward_velocity);
+  EXPECT_GT(largest_forward_velocity(1.0), 0.9 * ranges.max_forward_velocity);
+  for (const char* value : {"-0.1", "1.5", "nan"}) {
+    EXPECT_NE(error_message([&] {
+                make_env("Upkie-Mock-Velocity", {{"command_curriculum_start", value}});
+              }).find("command_curriculum_start"),
+              std::string::npos)
+        << value;
+  }
+}
+
 TEST(VelocityEnv, BadOptionsNameTheOption) {
   const std::string id = "Upkie-Mock-Velocity";
   for (const char* option : {"max_forward_velocity", "max_yaw_rate", "zero_command_probability",

@@ -77,6 +77,11 @@ BaseVelocity VelocityEnv::measured_velocity() const {
   return task_.measure(*servos_->full_observation());
 }
 
+void VelocityEnv::set_randomization_scale(double scale) {
+  ServosWrapperEnv::set_randomization_scale(scale);
+  sampler_.set_scale(sampler_.ranges().curriculum_scale(scale));
+}
+
 void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
   const Observation& full = servos_->reset_servos(seed);
   if (seed) {

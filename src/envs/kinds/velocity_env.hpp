@@ -61,6 +61,9 @@ class VelocityEnv final : public ServosWrapperEnv {
   VelocityTermination termination_reason() const { return task_.termination_reason(); }
   const VelocityTask& task() const { return task_; }
 
+  /// Passes `scale` to the servos' randomisation and narrows the random commands to the
+  /// ranges' curriculum_scale(scale) (VelocityCommandRanges::curriculum_start).
+  void set_randomization_scale(double scale) override;
   void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
   StepResult step(std::span<const float> action, std::span<float> observation) override;
   std::span<const std::string_view> reward_term_names() const override {

@@ -81,8 +81,13 @@ void declare_backend_options(Backend backend, EnvSettings& settings, OptionTable
     settings.spine.declare_options(table);
     return;
   }
-  table.add_integer("nb_substeps", &settings.nb_substeps, 0, 10000,
-                    "physics steps per agent step, 0 for round(1000/frequency)");
+  // A condition, not part of the task: a policy trained on a coarser step for speed is
+  // rolled out, evaluated and run on the spine at the 1 ms reference unless told otherwise.
+  declare_randomization(table, [&] {
+    table.add_integer("nb_substeps", &settings.nb_substeps, 0, 10000,
+                      "physics steps per agent step, 0 for round(1000/frequency) (the 1 ms "
+                      "reference); a training's value is not carried to its rollouts");
+  });
   table.add_choice("inertia", &settings.inertia_source,
                    {{"box", InertiaSource::kBulletBoxRule}, {"urdf", InertiaSource::kUrdf}},
                    "link inertias: Bullet's box rule (as PyBullet) or the URDF tensors");

@@ -42,6 +42,9 @@ std::string VelocityCommandRanges::problem() const {
     return "zero_command_probability must be at most 1, got " +
            std::to_string(zero_command_probability);
   }
+  if (!(curriculum_start >= 0.0 && curriculum_start <= 1.0)) {
+    return "command_curriculum_start must be in [0, 1], got " + std::to_string(curriculum_start);
+  }
   if (standing_height_probability > 1.0) {
     return "standing_height_probability must be at most 1, got " +
            std::to_string(standing_height_probability);
@@ -107,6 +110,9 @@ void VelocityCommandRanges::declare_options(OptionTable& table) {
   table.add_real("command_max_height_velocity", &max_height_velocity, 0.0, kOptionHuge,
                  "the followed base height moves toward the drawn or set command at most this "
                  "fast [m/s], 0 for steps");
+  table.add_real("command_curriculum_start", &curriculum_start, 0.0, 1.0,
+                 "share of the command ranges drawn at the start of a training run's "
+                 "curriculum (env.curriculum_steps), growing to 1 with it; 1 for none");
   table.add_rule([this] { return problem(); });
 }
 

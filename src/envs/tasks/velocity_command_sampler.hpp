@@ -59,6 +59,17 @@ struct VelocityCommandRanges {
   /// The followed height moves toward each drawn (or set) one at most this fast [m/s]; 0:
   /// at once. 0.1 m/s crouches the whole default range in 1.6 s, inside the shortest hold.
   double max_height_velocity = 0.1;
+  /// Command curriculum of a training run: the share of the velocity and crouch ranges drawn
+  /// while the run's randomisation scale (env.curriculum_steps) is 0; they grow linearly to
+  /// the full ranges as that scale reaches 1. 1 (default): the full ranges from the start.
+  /// Evaluations never set a scale and always draw the full ranges.
+  double curriculum_start = 1.0;
+
+  /// The share of the ranges drawn at randomisation scale `randomization_scale` in [0, 1]:
+  /// curriculum_start + (1 - curriculum_start)·randomization_scale.
+  double curriculum_scale(double randomization_scale) const {
+    return curriculum_start + (1.0 - curriculum_start) * randomization_scale;
+  }
 
   /// What is wrong, naming the option at fault: a negative or non-finite value, a
   /// probability above 1, or resample_time_min above resample_time_max; "" if nothing.
@@ -72,8 +83,8 @@ struct VelocityCommandRanges {
   /// Declares the options max_forward_velocity, max_yaw_rate, zero_command_probability,
   /// command_resample_time_min, command_resample_time_max, command_max_acceleration and
   /// command_max_yaw_acceleration, command_start_delay, height_command, min_height_command,
-  /// max_height_command, standing_height_probability, command_max_height_velocity, and
-  /// problem() as their rule.
+  /// max_height_command, standing_height_probability, command_max_height_velocity,
+  /// command_curriculum_start, and problem() as their rule.
   void declare_options(OptionTable& table);
 };
 
