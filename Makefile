@@ -132,9 +132,9 @@ VELOCITY_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_epis
   --env-option push_force=20 --env-option push_duration=0.2 --env-option push_interval=3 \
   --env-option push_direction=any --env-option height_command=false --env-option leg_action_scale=0.5
 # A velocity run's evaluations: $(1) its directory, $(2) the policy's name in the tables,
-# $(3) the evaluations' options, $(4) the stem of the outputs. 20 episodes on MuJoCo beside
-# the classical baseline, the policy alone on Bullet (sim-to-sim), then the scripted commands
-# of configs/velocity_commands.csv plotted and filmed, with a still at 10 s.
+# $(3) the evaluations' options, $(4) the stem of the outputs, $(5) the scripted commands.
+# 20 episodes on MuJoCo beside the classical baseline, the policy alone on Bullet
+# (sim-to-sim), then the scripted commands plotted and filmed, with a still at 10 s.
 define evaluate_velocity_run
 	@run=$(1); model=$$(ls -t $$run/model_*.ckpt | head -n 1); \
 	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-MuJoCo-Velocity --model $(2)=$$model \
@@ -142,7 +142,7 @@ define evaluate_velocity_run
 	  $(BUILD_DIR)/upkie-rl evaluate --env Upkie-Bullet-Velocity --model $(2)=$$model \
 	    $(3) --output $$run/$(4)-bullet && \
 	  $(BUILD_DIR)/upkie-rl rollout --env Upkie-MuJoCo-Velocity --model $$model \
-	    --commands configs/velocity_commands.csv --max-steps 1000 --env-option max_episode_steps=1000 \
+	    --commands $(5) --max-steps 1000 --env-option max_episode_steps=1000 \
 	    --plot $$run/$(4) --json --video $$run/$(4).mp4 && \
 	  ffmpeg -loglevel error -y -ss 10 -i $$run/$(4).mp4 -frames:v 1 $$run/$(4)_still.png && \
 	  echo "wrote $$run/$(4).mp4 and $$run/$(4)_still.png"
@@ -152,7 +152,7 @@ train-velocity: VELOCITY_RUN := runs/velocity-$(shell date +%Y%m%d-%H%M%S)
 train-velocity:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
 	  RUN_DIR=$(VELOCITY_RUN)
-	$(call evaluate_velocity_run,$(VELOCITY_RUN),policy,$(VELOCITY_EVAL),velocity)
+	$(call evaluate_velocity_run,$(VELOCITY_RUN),policy,$(VELOCITY_EVAL),velocity,configs/velocity_commands.csv)
 	@model=$$(ls -t $(VELOCITY_RUN)/model_*.ckpt | head -n 1); \
 	  $(BUILD_DIR)/upkie-rl evaluate --suite reality --model policy=$$model --controller lqr \
 	    --output $(VELOCITY_RUN)/reality-suite
@@ -172,7 +172,7 @@ train-scratch: SCRATCH_RUN := runs/velocity-scratch-$(shell date +%Y%m%d-%H%M%S)
 train-scratch:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity_scratch.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
 	  RUN_DIR=$(SCRATCH_RUN)
-	$(call evaluate_velocity_run,$(SCRATCH_RUN),scratch,$(SCRATCH_EVAL),scratch)
+	$(call evaluate_velocity_run,$(SCRATCH_RUN),scratch,$(SCRATCH_EVAL),scratch,configs/velocity_height_commands.csv)
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done
