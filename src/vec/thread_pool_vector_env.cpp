@@ -3,26 +3,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/spin_then_wait.hpp"
+
 namespace upkie_rl {
-
-namespace {
-
-// Spins this many times before sleeping on a futex: a step takes tens of microseconds, so a
-// short spin saves the wake-up latency without burning a shared core for long.
-constexpr int kSpinCount = 4000;
-
-template <typename T, typename Predicate>
-void spin_then_wait(const std::atomic<T>& value, Predicate done) {
-  for (int i = 0; i < kSpinCount; ++i) {
-    if (done(value.load(std::memory_order_acquire))) return;
-  }
-  for (T seen = value.load(std::memory_order_acquire); !done(seen);
-       seen = value.load(std::memory_order_acquire)) {
-    value.wait(seen, std::memory_order_acquire);
-  }
-}
-
-}  // namespace
 
 ThreadPoolVectorEnv::ThreadPoolVectorEnv(std::vector<std::unique_ptr<Env>> envs,
                                          std::size_t threads, AutoresetMode autoreset_mode)

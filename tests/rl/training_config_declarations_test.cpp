@@ -26,8 +26,11 @@ std::string changed_value(const OptionInfo& option) {
       const double base = std::stod(option.default_value);
       return exact(base != 0.0 ? base / 2 : option.max / 2);
     }
-    case OptionInfo::Type::kInteger:
-      return std::to_string(std::stoll(option.default_value) + 1);
+    case OptionInfo::Type::kInteger: {
+      // One below when the default is the largest value (ppo.update_threads: 2 of [1, 2]).
+      const long long base = std::stoll(option.default_value);
+      return std::to_string(static_cast<double>(base) + 1 <= option.max ? base + 1 : base - 1);
+    }
     case OptionInfo::Type::kBoolean:
       return option.default_value == "true" ? "false" : "true";
     case OptionInfo::Type::kChoice:

@@ -93,6 +93,22 @@ TEST(TrainingConfig, GradientMethodFollowsTheActivation) {
   expect_error_mentions([&] { apply_overrides(config, {"ppo.gradient=fast"}); }, "ppo.gradient");
 }
 
+TEST(TrainingConfig, UpdateThreadsAreOneOrTwo) {
+  TrainingConfig config;
+  EXPECT_EQ(config.ppo.update_threads, 2);
+  apply_overrides(config, {"ppo.update_threads=1"});
+  EXPECT_NO_THROW(config.validate());
+  EXPECT_EQ(parse_training_config(to_yaml(config)).ppo.update_threads, 1);
+  EXPECT_EQ(parse_training_config("ppo:\n  update_threads: 2\n").ppo.update_threads, 2);
+  for (const char* bad : {"ppo.update_threads=0", "ppo.update_threads=3"}) {
+    TrainingConfig broken;
+    apply_overrides(broken, {bad});
+    expect_error_mentions([&] { broken.validate(); }, "'ppo.update_threads'");
+  }
+  expect_error_mentions([&] { apply_overrides(config, {"ppo.update_threads=two"}); },
+                        "ppo.update_threads");
+}
+
 TEST(TrainingConfig, ActivationAcceptsEverySpellingTheParserKnows) {
   // PyTorch's class names (as Stable-Baselines3 and checkpoint converters write them) load
   // as well as the lower-case names, in YAML and in overrides; to_yaml writes the latter.

@@ -96,7 +96,8 @@ Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
   // At most one episode ends per environment and step: no allocation during rollouts.
   ended_episodes_.reserve(static_cast<std::size_t>(2 * num_envs_ * buffer_.num_steps()));
   if (upkie_rl::uses_hand_gradient(config_)) {
-    gradient_.emplace(*policy_, std::min(config_.ppo.batch_size, buffer_.size()));
+    gradient_.emplace(*policy_, std::min(config_.ppo.batch_size, buffer_.size()),
+                      PpoGradientKernel::kFastest, config_.ppo.update_threads);
   }
 }
 

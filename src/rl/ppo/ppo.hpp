@@ -91,6 +91,8 @@ class Ppo {
   std::int64_t num_timesteps() const { return num_timesteps_; }
   /// Whether update() uses the hand-written gradient (else autograd): uses_hand_gradient.
   bool uses_hand_gradient() const { return gradient_.has_value(); }
+  /// Threads the hand-written gradient runs on (ppo.update_threads); 1 with autograd.
+  std::int64_t update_threads() const { return gradient_ ? gradient_->update_threads() : 1; }
   std::int64_t iterations() const { return iterations_; }
   std::int64_t n_updates() const { return n_updates_; }
   const TrainingConfig& config() const { return config_; }

@@ -39,14 +39,20 @@ void check_span(std::span<const float> span, std::int64_t expected, const char* 
   }
 }
 
-std::int64_t widest_layer(const ActorCriticNetworks& networks) {
+// The most values one row of a layer's input or output holds in `mlp`.
+std::int64_t widest_layer(const Mlp& mlp) {
   std::int64_t width = 1;
-  for (const Mlp* network : {&networks.actor, &networks.critic}) {
-    for (const DenseLayerLayout& layer : network->layers()) {
-      width = std::max({width, layer.in, layer.out});
-    }
-  }
+  for (const DenseLayerLayout& layer : mlp.layers()) width = std::max({width, layer.in, layer.out});
   return width;
+}
+
+// The most weights a layer of `mlp` has.
+std::int64_t largest_weight(const Mlp& mlp) {
+  std::int64_t weights = 0;
+  for (const DenseLayerLayout& layer : mlp.layers()) {
+    weights = std::max(weights, layer.in * layer.out);
+  }
+  return weights;
 }
 
 }  // namespace
@@ -84,39 +90,52 @@ PpoMinibatchView view_minibatch(const PpoMinibatch& batch) {
 
 bool PpoGradient::covers(Activation activation) { return hand_gradient_covers(activation); }
 
-PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
-                         PpoGradientKernel kernel)
-    : avx2_(kernel == PpoGradientKernel::kFastest && cpu_has_avx2_fma()),
-      max_batch_size_(max_batch_size),
-      networks_(actor_critic_networks(
-          policy.observation_size(), policy.action_size(), policy.config().actor_hidden_sizes,
-          policy.config().critic_hidden_sizes, policy.config().activation)) {
+PpoGradient::NetworkScratch::NetworkScratch(const Mlp& mlp, std::int64_t max_batch_size) {
+  const auto rows = static_cast<std::size_t>(max_batch_size);
+  for (const DenseLayerLayout& layer : mlp.layers()) {
+    outputs.emplace_back(rows * static_cast<std::size_t>(layer.out));
+  }
+  output_gradient.resize(rows * static_cast<std::size_t>(widest_layer(mlp)));
+  input_gradient.resize(output_gradient.size());
+  transposed_weight.resize(static_cast<std::size_t>(largest_weight(mlp)));
+}
+
+namespace {
+
+// The policy's networks, after checking what PpoGradient can compute with them.
+ActorCriticNetworks checked_networks(const ActorCritic& policy, std::int64_t max_batch_size,
+                                     std::int64_t update_threads) {
   if (max_batch_size < 1) throw std::invalid_argument("PpoGradient: max_batch_size must be >= 1");
-  if (!covers(policy.config().activation)) {
+  if (update_threads != 1 && update_threads != 2) {
+    throw std::invalid_argument("PpoGradient: ppo.update_threads must be 1 or 2, got " +
+                                std::to_string(update_threads));
+  }
+  if (!hand_gradient_covers(policy.config().activation)) {
     throw std::invalid_argument(std::string("PpoGradient: the hand-written gradient covers relu "
                                             "and tanh, not ") +
                                 activation_name(policy.config().activation) +
                                 " (train with ppo.gradient: " + "autograd)");
   }
-  const auto rows = static_cast<std::size_t>(max_batch_size);
-  std::int64_t largest_weight = 0;
-  for (auto [mlp, outputs] : {std::pair{&networks_.actor, &actor_outputs_},
-                              std::pair{&networks_.critic, &critic_outputs_}}) {
-    for (const DenseLayerLayout& layer : mlp->layers()) {
-      outputs->emplace_back(rows * static_cast<std::size_t>(layer.out));
-      largest_weight = std::max(largest_weight, layer.in * layer.out);
-    }
-  }
-  const std::size_t widest = rows * static_cast<std::size_t>(widest_layer(networks_));
-  output_gradient_.resize(widest);
-  input_gradient_.resize(widest);
-  transposed_weight_.resize(static_cast<std::size_t>(largest_weight));
-  log_prob_gradient_.resize(rows);
-  advantages_.resize(rows);
+  return actor_critic_networks(policy.observation_size(), policy.action_size(),
+                               policy.config().actor_hidden_sizes,
+                               policy.config().critic_hidden_sizes, policy.config().activation);
 }
 
-void PpoGradient::forward(const Mlp& mlp, LayerOutputs& outputs, const float* parameters,
-                          const float* input, std::int64_t rows) {
+}  // namespace
+
+PpoGradient::PpoGradient(const ActorCritic& policy, std::int64_t max_batch_size,
+                         PpoGradientKernel kernel, std::int64_t update_threads)
+    : avx2_(kernel == PpoGradientKernel::kFastest && cpu_has_avx2_fma()),
+      max_batch_size_(max_batch_size),
+      networks_(checked_networks(policy, max_batch_size, update_threads)),
+      actor_(networks_.actor, max_batch_size),
+      critic_(networks_.critic, max_batch_size),
+      log_prob_gradient_(static_cast<std::size_t>(max_batch_size)),
+      advantages_(static_cast<std::size_t>(max_batch_size)),
+      companion_(update_threads == 2 ? std::make_unique<CompanionThread>() : nullptr) {}
+
+void PpoGradient::forward(const Mlp& mlp, NetworkScratch& scratch, const float* parameters,
+                          const float* input, std::int64_t rows) const {
   const bool relu = mlp.activation() == Activation::kReLU;  // else tanh: covers() allows no other
   const float* x = input;
   for (std::size_t i = 0; i < mlp.layers().size(); ++i) {
@@ -124,18 +143,18 @@ void PpoGradient::forward(const Mlp& mlp, LayerOutputs& outputs, const float* pa
     const bool hidden = mlp.activated(i);
     const ConstMatrixMap in(x, rows, layer.in);
     const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
-    float* y_data = outputs[i].data();
+    float* y_data = scratch.outputs[i].data();
     MatrixMap y(y_data, rows, layer.out);
     if (avx2_) {
       // y = x·Wᵀ + b with Wᵀ copied row-major (in x out) for the kernel.
-      transpose_avx2(weight.data(), layer.out, layer.in, transposed_weight_.data());
+      transpose_avx2(weight.data(), layer.out, layer.in, scratch.transposed_weight.data());
       gemm_avx2({.m = rows,
                  .n = layer.out,
                  .k = layer.in,
                  .a = x,
                  .a_row_stride = layer.in,
                  .a_depth_stride = 1,
-                 .b = transposed_weight_.data(),
+                 .b = scratch.transposed_weight.data(),
                  .ldb = layer.out,
                  .c = y_data,
                  .ldc = layer.out,
@@ -157,23 +176,23 @@ void PpoGradient::forward(const Mlp& mlp, LayerOutputs& outputs, const float* pa
   }
 }
 
-void PpoGradient::backward(const Mlp& mlp, const LayerOutputs& outputs, const float* parameters,
-                           const float* input, std::int64_t rows, float* gradients) {
+void PpoGradient::backward(const Mlp& mlp, NetworkScratch& scratch, const float* parameters,
+                           const float* input, std::int64_t rows, float* gradients) const {
   const bool relu = mlp.activation() == Activation::kReLU;  // else tanh: covers() allows no other
-  // output_gradient_ holds ∂L/∂(output of the last layer) on entry, and ∂L/∂z (before the
-  // activation) of the layer below at the end of each iteration. Through the activation,
-  // from its output y: relu passes the gradient where y > 0 (none at 0, like torch's
-  // threshold_backward); tanh' = 1 − y².
+  // scratch.output_gradient holds ∂L/∂(output of the last layer) on entry, and ∂L/∂z
+  // (before the activation) of the layer below at the end of each iteration. Through the
+  // activation, from its output y: relu passes the gradient where y > 0 (none at 0, like
+  // torch's threshold_backward); tanh' = 1 − y².
   // Every layer below the output layer is activated (Mlp::activated).
   for (std::size_t k = mlp.layers().size(); k-- > 0;) {
     const DenseLayerLayout& layer = mlp.layers()[k];
-    const float* in_data = k == 0 ? input : outputs[k - 1].data();
+    const float* in_data = k == 0 ? input : scratch.outputs[k - 1].data();
     const ConstMatrixMap in(in_data, rows, layer.in);
     const ConstMatrixMap weight(parameters + layer.weight, layer.out, layer.in);
-    MatrixMap d_output(output_gradient_.data(), rows, layer.out);
+    MatrixMap d_output(scratch.output_gradient.data(), rows, layer.out);
     MatrixMap d_weight(gradients + layer.weight, layer.out, layer.in);
     RowVectorMap d_bias(gradients + layer.bias, layer.out);
-    MatrixMap d_input(input_gradient_.data(), rows, layer.in);
+    MatrixMap d_input(scratch.input_gradient.data(), rows, layer.in);
     if (!avx2_) {
       d_bias = d_output.colwise().sum();
       d_weight.noalias() = d_output.transpose() * in;
@@ -194,12 +213,12 @@ void PpoGradient::backward(const Mlp& mlp, const LayerOutputs& outputs, const fl
                            .d_output = d_output.data(),
                            .gate = k > 0 ? in_data : nullptr,
                            .relu = relu,
-                           .scratch = transposed_weight_.data(),
+                           .scratch = scratch.transposed_weight.data(),
                            .d_weight = d_weight.data(),
                            .d_bias = d_bias.data(),
                            .d_input = d_input.data()});
     }
-    if (k > 0) std::swap(output_gradient_, input_gradient_);  // Swaps pointers, no copy.
+    if (k > 0) std::swap(scratch.output_gradient, scratch.input_gradient);  // Pointers only.
   }
 }
 
@@ -358,8 +377,7 @@ double value_term(const PpoMinibatchView& batch, const float* values, const PpoC
 
 }  // namespace
 
-PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCritic& policy,
-                                       const PpoConfig& config) {
+void PpoGradient::check_batch(const PpoMinibatchView& batch, const ActorCritic& policy) const {
   const std::int64_t n = batch.size;
   if (n < 1 || n > max_batch_size_) {
     throw std::invalid_argument("PpoGradient: minibatch of " + std::to_string(n) +
@@ -368,43 +386,67 @@ PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCriti
   if (!same_shape(policy)) {
     throw std::invalid_argument("PpoGradient: the policy's shape differs from the constructor's");
   }
-  const std::int64_t action_size = networks_.actor.output_size();
   check_span(batch.observations, n * networks_.actor.input_size(), "observations");
-  check_span(batch.actions, n * action_size, "actions");
+  check_span(batch.actions, n * networks_.actor.output_size(), "actions");
   check_span(batch.old_log_prob, n, "old_log_prob");
   check_span(batch.old_values, n, "old_values");
   check_span(batch.advantages, n, "advantages");
   check_span(batch.returns, n, "returns");
+}
 
-  const float* parameters = policy.flat_parameters().data_ptr<float>();
-  float* gradients = policy.flat_gradients().data_ptr<float>();
-  forward(networks_.actor, actor_outputs_, parameters, batch.observations.data(), n);
-  forward(networks_.critic, critic_outputs_, parameters, batch.observations.data(), n);
+PpoLossStatistics PpoGradient::actor_part(const PpoMinibatchView& batch, const float* parameters,
+                                          const PpoConfig& config, float* gradients) {
+  const std::int64_t n = batch.size;
+  const std::int64_t action_size = networks_.actor.output_size();
+  forward(networks_.actor, actor_, parameters, batch.observations.data(), n);
   normalise_advantages(batch.advantages, config.normalize_advantage, advantages_.data());
-
   // Policy term: ∂L/∂μ into the actor's output gradient, ∂L/∂log σ straight into the flat
   // gradient, then back through the actor.
-  const GaussianPolicy gaussian{actor_outputs_.back().data(), parameters + networks_.log_std,
+  const GaussianPolicy gaussian{actor_.outputs.back().data(), parameters + networks_.log_std,
                                 action_size};
   const SurrogateSums sums =
       surrogate_term(batch, gaussian, advantages_.data(), config, log_prob_gradient_.data());
   gaussian_gradients(batch, gaussian, log_prob_gradient_.data(), config.ent_coef,
-                     output_gradient_.data(), gradients + networks_.log_std);
-  backward(networks_.actor, actor_outputs_, parameters, batch.observations.data(), n, gradients);
-
-  // Value term, then back through the critic.
-  const double value_sum =
-      value_term(batch, critic_outputs_.back().data(), config, output_gradient_.data());
-  backward(networks_.critic, critic_outputs_, parameters, batch.observations.data(), n, gradients);
+                     actor_.output_gradient.data(), gradients + networks_.log_std);
+  backward(networks_.actor, actor_, parameters, batch.observations.data(), n, gradients);
 
   const double inverse_n = 1.0 / static_cast<double>(n);
   PpoLossStatistics statistics;
   statistics.policy_gradient_loss = -sums.surrogate * inverse_n;
-  statistics.value_loss = value_sum * inverse_n;
   statistics.entropy_loss = -gaussian_entropy(
       std::span<const float>(gaussian.log_std, static_cast<std::size_t>(action_size)));
   statistics.approx_kl = sums.kl * inverse_n;
   statistics.clip_fraction = static_cast<double>(sums.clipped) * inverse_n;
+  return statistics;
+}
+
+double PpoGradient::critic_part(const PpoMinibatchView& batch, const float* parameters,
+                                const PpoConfig& config, float* gradients) {
+  const std::int64_t n = batch.size;
+  forward(networks_.critic, critic_, parameters, batch.observations.data(), n);
+  // Value term, then back through the critic.
+  const double value_sum =
+      value_term(batch, critic_.outputs.back().data(), config, critic_.output_gradient.data());
+  backward(networks_.critic, critic_, parameters, batch.observations.data(), n, gradients);
+  return value_sum * (1.0 / static_cast<double>(n));
+}
+
+PpoLossStatistics PpoGradient::compute(const PpoMinibatchView& batch, ActorCritic& policy,
+                                       const PpoConfig& config) {
+  check_batch(batch, policy);
+  const float* parameters = policy.flat_parameters().data_ptr<float>();
+  float* gradients = policy.flat_gradients().data_ptr<float>();
+  PpoLossStatistics statistics;
+  double value_loss = 0.0;
+  const auto run_actor = [&] { statistics = actor_part(batch, parameters, config, gradients); };
+  const auto run_critic = [&] { value_loss = critic_part(batch, parameters, config, gradients); };
+  if (companion_) {
+    companion_->run_beside(run_actor, run_critic);
+  } else {
+    run_actor();
+    run_critic();
+  }
+  statistics.value_loss = value_loss;
   statistics.total = statistics.policy_gradient_loss + config.vf_coef * statistics.value_loss;
   if (config.ent_coef != 0.0) statistics.total += config.ent_coef * statistics.entropy_loss;
   return statistics;

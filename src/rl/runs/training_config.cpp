@@ -273,6 +273,9 @@ void PpoConfig::declare_options(OptionTable& table, const std::int64_t& num_envs
                      return std::string("hand covers the relu and tanh activations, not ") +
                             activation_name(activation) + "; use autograd or auto";
                    });
+  table.add_integer<I>("ppo.update_threads", &update_threads, 1, kMaxUpdateThreads,
+                       "threads of the hand-written gradient (2: the critic's part beside the "
+                       "actor's, the same results)");
 }
 
 void TrainingConfig::validate() const {

@@ -24,6 +24,9 @@ inline constexpr std::int64_t kMaxRolloutSteps = std::int64_t{1} << 30;
 inline constexpr double kMaxClip = 1e6;
 /// Most intra-op threads of libtorch (torch_threads).
 inline constexpr std::int64_t kMaxTorchThreads = 256;
+/// Most threads of the hand-written gradient (ppo.update_threads): its work splits in two
+/// independent parts, the actor's and the critic's.
+inline constexpr std::int64_t kMaxUpdateThreads = 2;
 
 /// Separate actor and critic MLPs (SB3 `net_arch=dict(pi=..., vf=...)`).
 struct PolicyConfig {
@@ -67,6 +70,10 @@ struct PpoConfig {
   double adam_eps = 1e-5;
   bool normalize_advantage = true;
   GradientMethod gradient = GradientMethod::kAuto;  ///< Not SB3's: how the gradient is made.
+  /// Not SB3's: threads of the hand-written gradient, 1 (the caller's) or 2 (with a
+  /// companion running the critic's part beside the actor's). 2 by default: the results
+  /// are the same bit for bit, sooner when a core is free. Unused by autograd.
+  std::int64_t update_threads = 2;
 
   /// Declares the keys ppo.*; n_steps and batch_size are checked against `num_envs`, the
   /// gradient against `activation` (both bound, read when the table checks).
