@@ -236,6 +236,67 @@ TEST(VelocityEnv, ActionMappingAroundTheDefaultPose) {
   EXPECT_FLOAT_EQ(observation[12 + 4], 1.0f);
 }
 
+TEST(VelocityEnv, RelativeWheelActionStartsFromTheMeasuredWheelVelocities) {
+  auto simulation = std::make_unique<testing::ScriptedSimulation>(0.02);
+  testing::ScriptedSimulation* scripted = simulation.get();
+  scripted->on_reset.servo[kLeftWheel].velocity = 10.0;
+  scripted->on_reset.servo[kRightWheel].velocity = -8.0;
+  Observation second = scripted->on_reset;
+  second.servo[kLeftWheel].velocity = 12.0;
+  scripted->script = {second};
+  VelocityTaskConfig task;
+  task.relative_wheel_action = true;
+  task.wheel_velocity_scale = 3.0;
+  VelocityEnv env(std::make_unique<ServosEnv>(std::move(simulation), RobotModel::default_model()),
+                  task, VelocityCommandRanges{});
+  Obs observation{};
+  env.reset(0, observation);
+  const Act action{0.0f, 0.0f, 0.5f, 0.0f, 0.0f, -1.0f};
+  env.step(action, observation);
+  EXPECT_NEAR(scripted->received.back()[kLeftWheel].velocity, 11.5, 1e-9);
+  EXPECT_NEAR(scripted->received.back()[kRightWheel].velocity, -11.0, 1e-9);
+  // The next step starts from the velocities the last step measured.
+  env.step(action, observation);
+  EXPECT_NEAR(scripted->received.back()[kLeftWheel].velocity, 13.5, 1e-9);
+  // The legs keep their absolute targets.
+  EXPECT_NEAR(scripted->received.back()[kLeftHip].position, 0.0, 1e-9);
+}
+
+TEST(VelocityEnv, WheelFeedforwardAddsTheFollowedCommandsWheelSpeeds) {
+  auto simulation = std::make_unique<testing::ScriptedSimulation>(0.02);
+  testing::ScriptedSimulation* scripted = simulation.get();
+  VelocityTaskConfig task;
+  task.wheel_command_feedforward = true;
+  task.wheel_velocity_scale = 10.0;
+  VelocityCommandRanges commands;
+  commands.max_acceleration = 0.0;  // steps: the followed command is the override at once
+  const auto model = RobotModel::default_model();
+  VelocityEnv env(std::make_unique<ServosEnv>(std::move(simulation), model), task, commands);
+  env.set_command_override(VelocityCommand{0.5, 1.0, kStandingBaseHeight});
+  Obs observation{};
+  env.reset(0, observation);
+  const Act action{0.0f, 0.0f, 0.1f, 0.0f, 0.0f, 0.0f};
+  env.step(action, observation);
+  const double forward = 0.5 / model->wheel_radius();
+  const double turn = -0.5 * model->track() / model->wheel_radius() * 1.0;
+  // 1e-6: the action 0.1f is a float.
+  EXPECT_NEAR(scripted->received.back()[kLeftWheel].velocity, forward + turn + 1.0, 1e-6);
+  EXPECT_NEAR(scripted->received.back()[kRightWheel].velocity, -forward + turn, 1e-9);
+  task.relative_wheel_action = true;
+  const std::string message =
+      error_message([&] { VelocityTask both(*model, task, /*height_command=*/true); });
+  EXPECT_NE(message.find("relative_wheel_action"), std::string::npos) << message;
+}
+
+TEST(VelocityEnv, RelativeWheelActionRefusesTheBalancer) {
+  const std::string message = error_message([] {
+    make_env("Upkie-Mock-Velocity", {{"relative_wheel_action", "true"},
+                                     {"base_controller", "balancer:1,2,3,4,5,6,7,8,9,10"}});
+  });
+  EXPECT_NE(message.find("relative_wheel_action"), std::string::npos) << message;
+  EXPECT_NE(message.find("base_controller"), std::string::npos) << message;
+}
+
 TEST(VelocityEnv, OverrideReplacesTheRandomCommandsFromTheNextObservation) {
   // Steps, so that the command is the target at once (velocity_command_limiter_test ramps).
   auto env = make_env("Upkie-Mock-Velocity", {{"command_max_acceleration", "0"}});

@@ -41,6 +41,12 @@ double velocity_task_pitch_rate(std::span<const float> observation) { return obs
 VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& gains)
     : gains_(gains), legs_(velocity_env(env).servos().model()) {
   const VelocityEnv& velocity = velocity_env(env);
+  const VelocityTaskConfig& task = velocity.task().config();
+  if (task.relative_wheel_action || task.wheel_command_feedforward) {
+    throw std::invalid_argument(
+        "the velocity balancer computes whole wheel velocity targets: it needs "
+        "relative_wheel_action and wheel_command_feedforward false");
+  }
   const RobotModel& model = velocity.servos().model();
   wheel_radius_ = model.wheel_radius();
   yaw_factor_ = 0.5 * model.track() / wheel_radius_;

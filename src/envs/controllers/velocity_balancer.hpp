@@ -84,7 +84,9 @@ class VelocityBalancer final : public Controller {
   static constexpr double kCrouchShinTilt = 0.34;
   static constexpr double kCrouchLeanGain = 2.0;
 
-  /// @throws std::invalid_argument when `env` is not a velocity environment.
+  /// @throws std::invalid_argument when `env` is not a velocity environment, or one with
+  ///         relative_wheel_action or wheel_command_feedforward (the balancer computes
+  ///         whole wheel targets).
   VelocityBalancer(const Env& env, const VelocityBalancerGains& gains);
 
   void reset() override;

@@ -115,7 +115,7 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
           std::clamp(static_cast<float>(base_action_[i] + scale * action_[i]), -1.0f, 1.0f);
     }
   }
-  task_.servo_action(action_, servo_action_);
+  task_.servo_action(action_, *servos_->full_observation(), command(), servo_action_);
   const Observation& full = servos_->step_servos(servo_action_);
   held_command_ = command();
   held_target_ = target_;

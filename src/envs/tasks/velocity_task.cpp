@@ -17,7 +17,17 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& config,
                            bool height_command)
-    : config_(config), height_command_(height_command), legs_(model), reward_(config.reward) {
+    : config_(config),
+      height_command_(height_command),
+      legs_(model),
+      wheel_radius_(model.wheel_radius()),
+      half_track_(0.5 * model.track()),
+      reward_(config.reward) {
+  if (config.relative_wheel_action && config.wheel_command_feedforward) {
+    throw std::invalid_argument(
+        "wheel_command_feedforward adds the command to absolute wheel targets: it needs "
+        "relative_wheel_action false");
+  }
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const JointLimits& limits = model.servo_limits(i);
     effort_[i] = limits.effort;
@@ -49,14 +59,28 @@ BoxSpace VelocityTask::make_action_space() {
   return space;
 }
 
-void VelocityTask::servo_action(std::span<const float> action, ServoAction& commands) const {
+void VelocityTask::servo_action(std::span<const float> action, const Observation& measured,
+                                const VelocityCommand& command_followed,
+                                ServoAction& commands) const {
+  std::array<double, kNumServos> wheel_start{};
+  if (config_.wheel_command_feedforward) {
+    // Joint convention: the right wheel turns backward when driving forward; the left one
+    // forward and the right one backward turn clockwise.
+    const double forward = command_followed.forward_velocity / wheel_radius_;
+    const double turn = -half_track_ / wheel_radius_ * command_followed.yaw_rate;
+    wheel_start[kLeftWheel] = forward + turn;
+    wheel_start[kRightWheel] = -forward + turn;
+  } else if (config_.relative_wheel_action) {
+    wheel_start[kLeftWheel] = measured.servo[kLeftWheel].velocity;
+    wheel_start[kRightWheel] = measured.servo[kRightWheel].velocity;
+  }
   for (std::size_t i = 0; i < kNumServos; ++i) {
     ServoCommand& command = commands[i];
     command.feedforward_torque = 0.0;
     command.maximum_torque = effort_[i];
     if (is_wheel(i)) {
       command.position = std::numeric_limits<double>::quiet_NaN();
-      command.velocity = config_.wheel_velocity_scale * action[i];
+      command.velocity = wheel_start[i] + config_.wheel_velocity_scale * action[i];
       command.kp_scale = 0.0;
       command.kd_scale = config_.wheel_kd_scale;
     } else {
@@ -167,7 +191,17 @@ StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand
 
 void VelocityTaskConfig::declare_options(OptionTable& table) {
   table.add_real("wheel_velocity_scale", &wheel_velocity_scale, 1e-6, kOptionHuge,
-                 "wheel velocity target at action 1 [rad/s]");
+                 "wheel velocity target at action 1 [rad/s] (with relative_wheel_action: the "
+                 "change from the measured wheel velocity)");
+  table.add_choice("relative_wheel_action", &relative_wheel_action,
+                   {{"true", true}, {"false", false}},
+                   "wheel velocity targets are the measured wheel velocity plus "
+                   "wheel_velocity_scale times the action (a change of speed) rather than "
+                   "wheel_velocity_scale times the action");
+  table.add_choice("wheel_command_feedforward", &wheel_command_feedforward,
+                   {{"true", true}, {"false", false}},
+                   "absolute wheel targets add the followed command's wheel speeds (forward "
+                   "velocity over the wheel radius, the yaw rate's differential)");
   table.add_real("leg_action_scale", &leg_action_scale, 1e-6, 10.0,
                  "hip and knee target offset from the default pose at action 1 [rad] (1.0: the "
                  "default crouch and room around it; 0.5 before the height command)");

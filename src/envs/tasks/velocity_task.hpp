@@ -24,6 +24,17 @@ namespace upkie_rl {
 /// Settings of the task (environment options of the same names).
 struct VelocityTaskConfig {
   double wheel_velocity_scale = 60.0;  ///< Wheel velocity target at |u| = 1 [rad/s].
+  /// Wheel targets relative to the wheels' measured velocities: target = measured +
+  /// wheel_velocity_scale·u, so that an action is a change of speed (about a torque) rather
+  /// than the speed itself. Why: with absolute targets the velocity loop (kd 1 N.m.s/rad,
+  /// 1.7 N.m) saturates beyond ±1.7 rad/s of error, ±0.03 of the action range at the
+  /// default scale: a policy has to reproduce the wheels' own speed that precisely at every
+  /// speed, and learned ones drifted and ran away above the speeds they were trained at.
+  bool relative_wheel_action = false;
+  /// Adds the followed command's wheel speeds (forward velocity / wheel radius, ± the yaw
+  /// rate's differential) to absolute wheel targets, as the balancer's steady command does:
+  /// an action of zero drives at the command and the policy adds what balance needs.
+  bool wheel_command_feedforward = false;
   /// Hip or knee target offset at |u| = 1 [rad]. 1.0 (mjlab_upkie's scale): room for the
   /// crouch of the default height range (knees at -0.80 rad) and corrections around it;
   /// VelocityEnv refuses a height range whose crouch needs more. The policies trained
@@ -64,7 +75,8 @@ constexpr const char* to_string(VelocityTermination reason) {
 /// hips and knees track position = default pose (0) + leg_action_scale·u, clamped to the
 /// joint limits; wheels track
 /// velocity = wheel_velocity_scale·u (joint convention: the right wheel turns backward
-/// when the robot drives forward).
+/// when the robot drives forward), or the measured wheel velocity plus that with
+/// relative_wheel_action.
 ///
 /// Observation (20, what the robot measures): 4 hip and knee angles [rad] (deviation from
 /// the default pose), 2 wheel velocities [rad/s], the unit gravity vector in the base frame
@@ -98,8 +110,12 @@ class VelocityTask {
   static BoxSpace make_observation_space(bool height_command);
   static BoxSpace make_action_space();
 
-  /// The servo commands of the normalised action `action` (already clamped to [-1, 1]).
-  void servo_action(std::span<const float> action, ServoAction& commands) const;
+  /// The servo commands of the normalised action `action` (already clamped to [-1, 1]);
+  /// `measured` is the last observation, whose wheel velocities a relative wheel action
+  /// (VelocityTaskConfig::relative_wheel_action) starts from; `command` the followed
+  /// command of a wheel feedforward (VelocityTaskConfig::wheel_command_feedforward).
+  void servo_action(std::span<const float> action, const Observation& measured,
+                    const VelocityCommand& command, ServoAction& commands) const;
 
   /// Writes the observation of `full` with the last action and the command to follow.
   void write_observation(const Observation& full, std::span<const float> last_action,
@@ -142,6 +158,8 @@ class VelocityTask {
   std::array<double, kNumServos> lower_limit_{};
   std::array<double, kNumServos> upper_limit_{};
   std::array<double, kNumServos> effort_{};
+  double wheel_radius_;
+  double half_track_;
   VelocityReward reward_;
   VelocityTermination reason_ = VelocityTermination::kNone;
 };
