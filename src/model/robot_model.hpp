@@ -17,6 +17,7 @@
 
 #include "base/error.hpp"
 #include "model/joint_order.hpp"
+#include "model/wheel_geometry.hpp"
 
 namespace upkie_rl {
 
@@ -118,6 +119,8 @@ class RobotModel {
   }
   /// Lateral distance between the two tire centres [m].
   double track() const { return track_; }
+  /// Wheel radius and track, to turn base velocities into wheel speeds.
+  WheelGeometry wheel_geometry() const { return WheelGeometry{wheel_radius_, track_}; }
   /// Rotation from the base frame to the IMU frame, R_base_to_imu (maps IMU-frame vectors
   /// to base-frame vectors).
   const Eigen::Matrix3d& rotation_base_to_imu() const { return rotation_base_to_imu_; }

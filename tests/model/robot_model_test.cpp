@@ -31,6 +31,20 @@ TEST(RobotModelTest, WheelFacts) {
   EXPECT_TRUE(model().left_wheeled());
 }
 
+TEST(RobotModelTest, WheelGeometryMapsBaseVelocitiesToWheelSpeeds) {
+  const WheelGeometry wheels = model().wheel_geometry();
+  const WheelVelocities forward = wheels.velocities(1.0, 0.0);
+  EXPECT_DOUBLE_EQ(forward.left, 1.0 / 0.05);  // the left wheel turns forward
+  EXPECT_DOUBLE_EQ(forward.right, -1.0 / 0.05);
+  // Counter-clockwise: the right wheel rolls forward (negative), the left one backward.
+  const WheelVelocities turn = wheels.velocities(0.0, 1.0);
+  EXPECT_DOUBLE_EQ(turn.left, -0.5 * model().track() / 0.05);
+  EXPECT_DOUBLE_EQ(turn.right, turn.left);
+  const WheelVelocities both = wheels.velocities(0.5, -2.0);
+  EXPECT_DOUBLE_EQ(both.left, 0.5 / 0.05 + 2.0 * 0.5 * model().track() / 0.05);
+  EXPECT_DOUBLE_EQ(both.right, -0.5 / 0.05 + 2.0 * 0.5 * model().track() / 0.05);
+}
+
 TEST(RobotModelTest, JointsInStandardOrderWithLimits) {
   for (std::size_t servo = 0; servo < kNumServos; ++servo) {
     EXPECT_EQ(model().joints()[model().servo_joint(servo)].name, kServoNames[servo]);

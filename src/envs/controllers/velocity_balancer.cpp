@@ -48,8 +48,7 @@ VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& 
         "relative_wheel_action and wheel_command_feedforward false");
   }
   const RobotModel& model = velocity.servos().model();
-  wheel_radius_ = model.wheel_radius();
-  yaw_factor_ = 0.5 * model.track() / wheel_radius_;
+  wheels_ = model.wheel_geometry();
   wheel_velocity_scale_ = velocity.task().config().wheel_velocity_scale;
   leg_action_scale_ = velocity.task().config().leg_action_scale;
   timestep_ = env.timestep();
@@ -81,7 +80,7 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   reference_acceleration_ +=
       kAccelerationFilterGain * (change / timestep_ - reference_acceleration_);
   const double odometry =
-      0.5 * wheel_radius_ * (observation[kLeftWheelVelocity] - observation[kRightWheelVelocity]);
+      0.5 * wheels_.radius * (observation[kLeftWheelVelocity] - observation[kRightWheelVelocity]);
   filtered_velocity_ += kVelocityFilterGain * (odometry - filtered_velocity_);
   const double velocity_error = filtered_velocity_ - reference_velocity_;
   // Bounded, so that a command the robot cannot follow does not wind the integral up.
@@ -106,14 +105,13 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
                                         -kMaxYawRateIntegral, kMaxYawRateIntegral);
   const double yaw_rate =
       yaw_command + kYawRateGain * yaw_error + kYawRateIntegralGain * yaw_rate_error_integral_;
-  // Joint convention: the left wheel forward and the right one backward turn clockwise.
-  const double turn = -yaw_factor_ * yaw_rate;
   std::fill(action.begin(), action.end(), 0.0f);
   const auto normalized = [this](double wheel_velocity) {
     return static_cast<float>(std::clamp(wheel_velocity / wheel_velocity_scale_, -1.0, 1.0));
   };
-  action[kLeftWheel] = normalized(ground_velocity_ / wheel_radius_ + turn);
-  action[kRightWheel] = normalized(-ground_velocity_ / wheel_radius_ + turn);
+  const WheelVelocities wheels = wheels_.velocities(ground_velocity_, yaw_rate);
+  action[kLeftWheel] = normalized(wheels.left);
+  action[kRightWheel] = normalized(wheels.right);
   if (observation.size() > VelocityTask::kHeightCommandIndex) crouch(observation, action);
 }
 

@@ -11,6 +11,7 @@
 #include "envs/controllers/controller.hpp"
 #include "envs/core/env.hpp"
 #include "envs/tasks/leg_kinematics.hpp"
+#include "model/wheel_geometry.hpp"
 
 namespace upkie_rl {
 
@@ -105,8 +106,7 @@ class VelocityBalancer final : public Controller {
   void crouch(std::span<const float> observation, std::span<float> action) const;
 
   VelocityBalancerGains gains_;
-  double wheel_radius_;
-  double yaw_factor_;            ///< (track / 2) / r
+  WheelGeometry wheels_;
   double wheel_velocity_scale_;  ///< rad/s at action 1
   double leg_action_scale_;      ///< rad at action 1
   LegKinematics legs_;

@@ -8,10 +8,9 @@ namespace upkie_rl {
 
 GroundVelocityCommander::GroundVelocityCommander(const RobotModel& model, double timestep,
                                                  const GroundVelocityCommanderConfig& config)
-    : wheel_radius_(model.wheel_radius()),
-      yaw_factor_(0.5 * model.track() / model.wheel_radius()),
+    : wheels_(model.wheel_geometry()),
       filter_gain_(std::min(1.0, timestep / config.leg_time_constant)) {
-  if (!(wheel_radius_ > 0.0)) {
+  if (!(wheels_.radius > 0.0)) {
     throw std::invalid_argument("GroundVelocityCommander: wheel radius must be positive");
   }
   for (std::size_t i = 0; i < kNumServos; ++i) {
@@ -43,10 +42,11 @@ const ServoAction& GroundVelocityCommander::command(double ground_velocity, doub
   for (std::size_t i = 0; i < kNumServos; ++i) {
     if (!is_wheel(i)) action_[i].position += filter_gain_ * (0.0 - action_[i].position);
   }
-  const double forward = ground_velocity / wheel_radius_;
-  const double turn = yaw_factor_ * yaw_velocity;
-  action_[kLeftWheel].velocity = forward + turn;
-  action_[kRightWheel].velocity = -forward + turn;
+  // Public Upkie's gyropod convention: a positive yaw velocity command turns both wheels
+  // forward (clockwise seen from above), the opposite sign of WheelGeometry's yaw rate.
+  const WheelVelocities wheels = wheels_.velocities(ground_velocity, -yaw_velocity);
+  action_[kLeftWheel].velocity = wheels.left;
+  action_[kRightWheel].velocity = wheels.right;
   return action_;
 }
 

@@ -37,8 +37,7 @@ class GroundVelocityCommander {
   const ServoAction& action() const { return action_; }
 
  private:
-  double wheel_radius_;
-  double yaw_factor_;   // (track / 2) / r
+  WheelGeometry wheels_;
   double filter_gain_;  // dt / T, at most 1
   ServoAction action_{};
 };

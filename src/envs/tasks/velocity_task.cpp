@@ -20,8 +20,7 @@ VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& co
     : config_(config),
       height_command_(height_command),
       legs_(model),
-      wheel_radius_(model.wheel_radius()),
-      half_track_(0.5 * model.track()),
+      wheels_(model.wheel_geometry()),
       reward_(config.reward) {
   if (config.relative_wheel_action && config.wheel_command_feedforward) {
     throw std::invalid_argument(
@@ -64,12 +63,10 @@ void VelocityTask::servo_action(std::span<const float> action, const Observation
                                 ServoAction& commands) const {
   std::array<double, kNumServos> wheel_start{};
   if (config_.wheel_command_feedforward) {
-    // Joint convention: the right wheel turns backward when driving forward; the left one
-    // forward and the right one backward turn clockwise.
-    const double forward = command_followed.forward_velocity / wheel_radius_;
-    const double turn = -half_track_ / wheel_radius_ * command_followed.yaw_rate;
-    wheel_start[kLeftWheel] = forward + turn;
-    wheel_start[kRightWheel] = -forward + turn;
+    const WheelVelocities followed =
+        wheels_.velocities(command_followed.forward_velocity, command_followed.yaw_rate);
+    wheel_start[kLeftWheel] = followed.left;
+    wheel_start[kRightWheel] = followed.right;
   } else if (config_.relative_wheel_action) {
     wheel_start[kLeftWheel] = measured.servo[kLeftWheel].velocity;
     wheel_start[kRightWheel] = measured.servo[kRightWheel].velocity;

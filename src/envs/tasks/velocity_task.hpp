@@ -158,8 +158,7 @@ class VelocityTask {
   std::array<double, kNumServos> lower_limit_{};
   std::array<double, kNumServos> upper_limit_{};
   std::array<double, kNumServos> effort_{};
-  double wheel_radius_;
-  double half_track_;
+  WheelGeometry wheels_;
   VelocityReward reward_;
   VelocityTermination reason_ = VelocityTermination::kNone;
 };
