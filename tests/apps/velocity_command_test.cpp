@@ -234,20 +234,22 @@ TEST(VelocityCommand, ShortTrainingImprovesTheReturnAndLogsEachTerm) {
 
 // configs/velocity_scratch.yaml, with no controller underneath, starts to stand within a
 // few hundred thousand steps: the untrained policy falls within a third of a second
-// (episodes of 16-18 steps, returns of 22-24); after 50 iterations (204,800 steps) the
-// episodes last 44-46 steps and the returns reach 77-83 (measured; at 400,000 steps the
-// episodes pass 350 steps).
+// (episodes of 16-19 steps, returns of 23-25); after 50 iterations (204,800 steps) the
+// episodes last 34-35 steps and the returns reach 61-64 (measured with the soft wheel loop,
+// wheel_kd_scale 0.15; with kd_scale 1: 44-46 steps, returns 77-83).
 TEST(VelocityCommand, ShortFromScratchTrainingLearnsToStand) {
   const ScalarTable table = train_progress("scratch", "velocity_scratch.yaml",
                                            "--set env.threads=0 --set ppo.total_timesteps=204800 "
                                            "--set checkpoint_every=0");
   ASSERT_GE(table.rows.size(), 50u);
   const std::size_t end = table.rows.size() - 3;
+  // Lengths grow 2.0 times and returns 2.6 times (measured): both asked for 1.5 times, so
+  // that the test checks learning rather than this seed's exact pace.
   for (const char* tag : {"rollout/ep_len_mean", "rollout/ep_rew_mean"}) {
     const std::size_t column = table.index(tag);
     const double first = mean_of_three_rows(table, 0, column);
     const double last = mean_of_three_rows(table, end, column);
-    EXPECT_GT(last, 2.0 * first) << tag << ": first " << first << ", last " << last;
+    EXPECT_GT(last, 1.5 * first) << tag << ": first " << first << ", last " << last;
   }
 }
 
