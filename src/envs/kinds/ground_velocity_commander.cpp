@@ -42,8 +42,9 @@ const ServoAction& GroundVelocityCommander::command(double ground_velocity, doub
   for (std::size_t i = 0; i < kNumServos; ++i) {
     if (!is_wheel(i)) action_[i].position += filter_gain_ * (0.0 - action_[i].position);
   }
-  // Public Upkie's gyropod convention: a positive yaw velocity command turns both wheels
-  // forward (clockwise seen from above), the opposite sign of WheelGeometry's yaw rate.
+  // Public Upkie's gyropod convention: a positive yaw velocity command makes both wheel
+  // joint velocities positive (left wheel forward, right one backward: clockwise seen from
+  // above), the opposite sign of WheelGeometry's yaw rate.
   const WheelVelocities wheels = wheels_.velocities(ground_velocity, -yaw_velocity);
   action_[kLeftWheel].velocity = wheels.left;
   action_[kRightWheel].velocity = wheels.right;
