@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <utility>
 #include <vector>
 
 #include "apps/cli_runner.hpp"
@@ -243,13 +244,16 @@ TEST(VelocityCommand, ShortFromScratchTrainingLearnsToStand) {
                                            "--set checkpoint_every=0");
   ASSERT_GE(table.rows.size(), 50u);
   const std::size_t end = table.rows.size() - 3;
-  // Lengths grow 2.0 times and returns 2.6 times (measured): both asked for 1.5 times, so
-  // that the test checks learning rather than this seed's exact pace.
-  for (const char* tag : {"rollout/ep_len_mean", "rollout/ep_rew_mean"}) {
+  // Lengths grow 2.0 times and returns 2.6 times (measured): lengths are asked for 1.5
+  // times, so that the test checks learning rather than this seed's exact pace; returns
+  // keep the former 2 times.
+  const std::pair<const char*, double> growths[] = {{"rollout/ep_len_mean", 1.5},
+                                                    {"rollout/ep_rew_mean", 2.0}};
+  for (const auto& [tag, growth] : growths) {
     const std::size_t column = table.index(tag);
     const double first = mean_of_three_rows(table, 0, column);
     const double last = mean_of_three_rows(table, end, column);
-    EXPECT_GT(last, 1.5 * first) << tag << ": first " << first << ", last " << last;
+    EXPECT_GT(last, growth * first) << tag << ": first " << first << ", last " << last;
   }
 }
 
