@@ -12,7 +12,8 @@ struct WheelVelocities {
 /// so that tasks and controllers keep a copy (RobotModel::wheel_geometry()).
 ///
 /// Why one place: the velocity task's wheel feedforward, its balancer and the ground
-/// velocity commander each turned a base velocity into wheel speeds, and a sign flipped in
+/// velocity commander each turned a base velocity into wheel speeds (and the odometry and
+/// the balancer wheel speeds back into a velocity), and a sign flipped in
 /// one of them turns the robot the wrong way without any error.
 struct WheelGeometry {
   double radius = 0.0;  ///< [m]
@@ -27,6 +28,12 @@ struct WheelGeometry {
     const double turn = -(0.5 * track / radius) * yaw_rate;
     return WheelVelocities{forward + turn, -forward + turn};
   }
+
+  /// The base's forward motion [m or m/s] of a motion of the wheels [rad or rad/s, each in
+  /// its joint's sign]: the average of the two wheels' rolling, the turn cancelling out.
+  /// Linear, so that it maps wheel angles to a travelled distance as well as speeds to a
+  /// velocity; the inverse of velocities() for its forward part.
+  double forward_motion(double left, double right) const { return 0.5 * (left - right) * radius; }
 };
 
 }  // namespace upkie_rl

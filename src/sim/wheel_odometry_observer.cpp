@@ -11,9 +11,9 @@ void WheelOdometryObserver::observe(const std::array<ServoObservation, kNumServo
                                     WheelOdometryObservation& odometry) const {
   const double left_angle = servo[kLeftWheel].position - left_origin_;
   const double right_angle = servo[kRightWheel].position - right_origin_;
-  odometry.position = 0.5 * (left_angle - right_angle) * wheel_radius_;
+  odometry.position = wheels_.forward_motion(left_angle, right_angle);
   odometry.velocity =
-      0.5 * (servo[kLeftWheel].velocity - servo[kRightWheel].velocity) * wheel_radius_;
+      wheels_.forward_motion(servo[kLeftWheel].velocity, servo[kRightWheel].velocity);
 }
 
 }  // namespace upkie_rl

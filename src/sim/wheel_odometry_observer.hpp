@@ -13,7 +13,7 @@ namespace upkie_rl {
 /// the average contact point travels r * (left - right) / 2, zero at reset.
 class WheelOdometryObserver {
  public:
-  explicit WheelOdometryObserver(const RobotModel& model) : wheel_radius_(model.wheel_radius()) {}
+  explicit WheelOdometryObserver(const RobotModel& model) : wheels_(model.wheel_geometry()) {}
 
   /// Remembers the wheel angles of the reset state as the origin.
   void reset(const std::array<ServoObservation, kNumServos>& servo);
@@ -22,7 +22,7 @@ class WheelOdometryObserver {
                WheelOdometryObservation& odometry) const;
 
  private:
-  double wheel_radius_;
+  WheelGeometry wheels_;
   double left_origin_ = 0.0;   ///< [rad]
   double right_origin_ = 0.0;  ///< [rad]
 };

@@ -43,6 +43,9 @@ TEST(RobotModelTest, WheelGeometryMapsBaseVelocitiesToWheelSpeeds) {
   const WheelVelocities both = wheels.velocities(0.5, -2.0);
   EXPECT_DOUBLE_EQ(both.left, 0.5 / 0.05 + 2.0 * 0.5 * model().track() / 0.05);
   EXPECT_DOUBLE_EQ(both.right, -0.5 / 0.05 + 2.0 * 0.5 * model().track() / 0.05);
+  // Back from the wheels: the forward part returns, the turn cancels out.
+  EXPECT_NEAR(wheels.forward_motion(both.left, both.right), 0.5, 1e-12);
+  EXPECT_NEAR(wheels.forward_motion(turn.left, turn.right), 0.0, 1e-12);
 }
 
 TEST(RobotModelTest, JointsInStandardOrderWithLimits) {

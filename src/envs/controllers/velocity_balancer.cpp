@@ -80,7 +80,7 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   reference_acceleration_ +=
       kAccelerationFilterGain * (change / timestep_ - reference_acceleration_);
   const double odometry =
-      0.5 * wheels_.radius * (observation[kLeftWheelVelocity] - observation[kRightWheelVelocity]);
+      wheels_.forward_motion(observation[kLeftWheelVelocity], observation[kRightWheelVelocity]);
   filtered_velocity_ += kVelocityFilterGain * (odometry - filtered_velocity_);
   const double velocity_error = filtered_velocity_ - reference_velocity_;
   // Bounded, so that a command the robot cannot follow does not wind the integral up.
