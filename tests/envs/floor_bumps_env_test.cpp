@@ -45,7 +45,7 @@ Drive drive(const std::string& id, const EnvOptions& options, double velocity) {
   VelocityEnv* task = find_velocity_env(*env);
   std::unique_ptr<Controller> controller = make_builtin_controller(kBaseline, *env);
   task->set_command_override(VelocityCommand{velocity, 0.0});
-  std::array<float, VelocityTask::kMaxObservationSize> observation{};
+  std::array<float, VelocityTask::kHeightObservationSize> observation{};
   std::array<float, VelocityTask::kActionSize> action{};
   env->reset(0, observation);
   controller->reset();
@@ -126,7 +126,7 @@ TEST_P(FloorBumpsEnv, BevelledTwoCentimetreBumpsAreCrossedOnTheTires) {
 std::vector<Eigen::Vector3d> episode(const std::string& id, const EnvOptions& options) {
   std::unique_ptr<Env> env = make_env(id, options);
   std::unique_ptr<Controller> controller = make_builtin_controller(kBaseline, *env);
-  std::array<float, VelocityTask::kMaxObservationSize> observation{};
+  std::array<float, VelocityTask::kHeightObservationSize> observation{};
   std::array<float, VelocityTask::kActionSize> action{};
   env->reset(7, observation);
   controller->reset();

@@ -36,7 +36,7 @@ constexpr const char* kMujocoBaseline =
     "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
     "-0.000164539185,1.00066929,0.0579007226,0.13798033";
 
-using Obs = std::array<float, VelocityTask::kMaxObservationSize>;
+using Obs = std::array<float, VelocityTask::kHeightObservationSize>;
 using Act = std::array<float, VelocityTask::kActionSize>;
 
 TEST(LegKinematics, StandingHeightOfTheDescription) {
@@ -190,7 +190,7 @@ TEST(HeightCommandSchedule, OptionalHeightColumnIsCheckedAndNamed) {
 
 TEST(HeightCommandEnv, ObservationEndsWithTheHeightUnlessSwitchedOff) {
   auto env = make_env("Upkie-Mock-Velocity");
-  EXPECT_EQ(env->observation_space().size(), VelocityTask::kMaxObservationSize);
+  EXPECT_EQ(env->observation_space().size(), VelocityTask::kHeightObservationSize);
   EXPECT_EQ(env->observation_space().names.back(), kHeightCommandColumn);
   auto legacy = make_env("Upkie-Mock-Velocity", {{"height_command", "false"}});
   EXPECT_EQ(legacy->observation_space().size(), VelocityTask::kObservationSize);

@@ -27,7 +27,7 @@ constexpr const char* kMujocoBaseline =
 /// stay straight).
 using Obs = std::array<float, VelocityTask::kObservationSize>;
 /// An observation of the default task (with the height command).
-using EnvObs = std::array<float, VelocityTask::kMaxObservationSize>;
+using EnvObs = std::array<float, VelocityTask::kHeightObservationSize>;
 using Act = std::array<float, VelocityTask::kActionSize>;
 
 /// An upright observation (gravity straight down in the base frame) with a command.
@@ -55,7 +55,7 @@ void reset_past_touchdown(Controller& balancer, double timestep) {
 }
 
 TEST(VelocityBalancer, LawOfHandMadeObservations) {
-  auto env = make_env("Upkie-Mock-Velocity");
+  auto env = make_env("Upkie-Mock-Velocity", {{"height_command", "false"}});
   const double wheel_radius = find_velocity_env(*env)->servos().model().wheel_radius();
   const double scale = find_velocity_env(*env)->task().config().wheel_velocity_scale;
   VelocityBalancerGains gains;
@@ -256,7 +256,7 @@ TEST(VelocityEnv, MujocoTiresRollWithoutSlipping) {
 }
 
 TEST(VelocityBalancer, SpecsOfEightOrTenNumbers) {
-  auto env = make_env("Upkie-Mock-Velocity");
+  auto env = make_env("Upkie-Mock-Velocity", {{"height_command", "false"}});
   EXPECT_NO_THROW(make_builtin_controller("balancer:10,1,2,0.5,0.01,0.1,0,1", *env));
   EXPECT_NO_THROW(make_builtin_controller("balancer:10,1,2,0.5,0.01,0.1,0,1,0.03,0.1", *env));
   for (const char* spec :

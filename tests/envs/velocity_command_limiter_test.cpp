@@ -55,7 +55,7 @@ TEST(VelocityEnv, FollowedCommandRampsTowardTheTarget) {
   VelocityEnv* velocity = find_velocity_env(*env);
   ASSERT_NE(velocity, nullptr);
   velocity->set_command_override(VelocityCommand{0.3, 1.0});
-  std::array<float, VelocityTask::kMaxObservationSize> observation{};
+  std::array<float, VelocityTask::kHeightObservationSize> observation{};
   env->reset(0, observation);
   EXPECT_EQ(velocity->target(), (VelocityCommand{0.3, 1.0}));
   EXPECT_EQ(velocity->command(), (VelocityCommand{0.0, 0.0}));
@@ -70,6 +70,42 @@ TEST(VelocityEnv, FollowedCommandRampsTowardTheTarget) {
                 1e-9);
     EXPECT_EQ(velocity->last_step_target(), (VelocityCommand{0.3, 1.0}));
   }
+}
+
+TEST(VelocityCommandLimiter, RateIsTheNextStepsChange) {
+  VelocityCommandLimiter limiter(1.0, 0.0);  // the yaw rate steps
+  limiter.start({0.05, 1.0});
+  // Ramping: the forward limit; the step component none.
+  EXPECT_DOUBLE_EQ(limiter.rate({0.05, 1.0}, kDt).forward_velocity, 1.0);
+  EXPECT_EQ(limiter.rate({0.05, 1.0}, kDt).yaw_rate, 0.0);
+  limiter.advance({0.05, 1.0}, kDt);
+  limiter.advance({0.05, 1.0}, kDt);
+  // The last step of the ramp: 0.01 m/s left, so 0.5 m/s² over it.
+  EXPECT_NEAR(limiter.rate({0.05, 1.0}, kDt).forward_velocity, 0.5, 1e-9);
+  limiter.advance({0.05, 1.0}, kDt);
+  EXPECT_EQ(limiter.rate({0.05, 1.0}, kDt).forward_velocity, 0.0);          // at the target
+  EXPECT_DOUBLE_EQ(limiter.rate({-1.0, 1.0}, kDt).forward_velocity, -1.0);  // a new one behind
+}
+
+TEST(VelocityEnv, ObservesTheCommandsAccelerationsWhenAsked) {
+  auto plain = make_env("Upkie-Mock-Velocity", {});
+  auto env = make_env("Upkie-Mock-Velocity", {{"observe_command_acceleration", "true"},
+                                              {"command_max_acceleration", "0.5"},
+                                              {"command_max_yaw_acceleration", "2"}});
+  ASSERT_EQ(env->observation_space().size(), plain->observation_space().size() + 2);
+  const std::size_t forward = plain->observation_space().size();
+  EXPECT_EQ(env->observation_space().names[forward], "command.forward_acceleration");
+  EXPECT_EQ(env->observation_space().names[forward + 1], "command.yaw_acceleration");
+  VelocityEnv* velocity = find_velocity_env(*env);
+  velocity->set_command_override(VelocityCommand{0.03, -1.0});
+  std::array<float, VelocityTask::kMaxObservationSize> observation{};
+  env->reset(0, observation);
+  EXPECT_FLOAT_EQ(observation[forward], 0.5f);       // ramping up at the limit
+  EXPECT_FLOAT_EQ(observation[forward + 1], -2.0f);  // and down in yaw
+  const std::array<float, VelocityTask::kActionSize> action{};
+  for (int step = 0; step < 5; ++step) env->step(action, observation);
+  EXPECT_FLOAT_EQ(observation[forward], 0.0f);  // 0.03 m/s reached in 3 steps
+  EXPECT_FLOAT_EQ(observation[forward + 1], -2.0f);
 }
 
 TEST(VelocityEnv, BadAccelerationLimitsNameTheOption) {

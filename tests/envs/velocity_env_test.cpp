@@ -21,7 +21,7 @@ namespace upkie_rl {
 namespace {
 
 /// An observation of the default task (with the height command).
-using Obs = std::array<float, VelocityTask::kMaxObservationSize>;
+using Obs = std::array<float, VelocityTask::kHeightObservationSize>;
 /// An observation of the task without the height command.
 using LegacyObs = std::array<float, VelocityTask::kObservationSize>;
 using Act = std::array<float, VelocityTask::kActionSize>;
@@ -140,6 +140,25 @@ TEST(VelocityReward, TermsAtPerfectTrackingAndAtOneKernelWidth) {
   double sum = 0.0;
   for (const double term : terms) sum += term;
   EXPECT_DOUBLE_EQ(total, sum);
+}
+
+TEST(VelocityReward, LegSymmetryPenalisesScissoredLegsNotASymmetricCrouch) {
+  VelocityRewardWeights weights;
+  weights.w_leg_symmetry = 2.0;
+  VelocityReward reward(weights);
+  VelocityRewardInputs inputs;
+  // A symmetric crouch: the right leg's angles are the left's negated.
+  inputs.leg_deviation = {0.3, -0.6, -0.3, 0.6};
+  reward(inputs);
+  EXPECT_DOUBLE_EQ(reward.terms()[VelocityReward::kLegSymmetry], 0.0);
+  // Scissored hips (both negative: one leg swung back, the other forward), a knee bent.
+  inputs.leg_deviation = {-0.3, 0.0, -0.5, 0.2};
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kLegSymmetry], -2.0 * (0.64 + 0.04), 1e-12);
+  // Off by default: the configurations before the term are unchanged.
+  VelocityReward unweighted;
+  unweighted(inputs);
+  EXPECT_EQ(unweighted.terms()[VelocityReward::kLegSymmetry], 0.0);
 }
 
 /// An observation of a base rotated by `rotation`, moving at `velocity` in the world.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "envs/kinds/velocity_env.hpp"
 
@@ -51,6 +52,7 @@ VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& 
   wheels_ = model.wheel_geometry();
   wheel_velocity_scale_ = velocity.task().config().wheel_velocity_scale;
   leg_action_scale_ = velocity.task().config().leg_action_scale;
+  height_command_ = velocity.task().height_command();
   timestep_ = env.timestep();
   touchdown_steps_ = static_cast<int>(std::lround(kTouchdownTime / timestep_));
 }
@@ -112,7 +114,14 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   const WheelVelocities wheels = wheels_.velocities(ground_velocity_, yaw_rate);
   action[kLeftWheel] = normalized(wheels.left);
   action[kRightWheel] = normalized(wheels.right);
-  if (observation.size() > VelocityTask::kHeightCommandIndex) crouch(observation, action);
+  if (height_command_) {
+    if (observation.size() <= VelocityTask::kHeightCommandIndex) {
+      throw std::invalid_argument("velocity balancer: an observation of " +
+                                  std::to_string(observation.size()) +
+                                  " components has no height command, which its env has");
+    }
+    crouch(observation, action);
+  }
 }
 
 void VelocityBalancer::crouch(std::span<const float> observation, std::span<float> action) const {

@@ -109,6 +109,7 @@ class VelocityBalancer final : public Controller {
   WheelGeometry wheels_;
   double wheel_velocity_scale_;  ///< rad/s at action 1
   double leg_action_scale_;      ///< rad at action 1
+  bool height_command_ = false;  ///< Whether the env commands a height (crouch by IK).
   LegKinematics legs_;
   double timestep_;
   int touchdown_steps_;  ///< kTouchdownTime in agent steps

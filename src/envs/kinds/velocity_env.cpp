@@ -39,7 +39,8 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
       sampler_(commands),
       limiter_(commands.max_acceleration, commands.max_yaw_acceleration,
                commands.height_command ? commands.max_height_velocity : 0.0) {
-  observation_space_ = VelocityTask::make_observation_space(commands.height_command);
+  observation_space_ = VelocityTask::make_observation_space(commands.height_command,
+                                                            task.observe_command_acceleration);
   check_crouch_reach(task, commands);
   action_space_ = VelocityTask::make_action_space();
   if (!task.base_controller.empty()) {
@@ -73,6 +74,10 @@ const VelocityCommand& VelocityEnv::refresh_target() {
   return target_;
 }
 
+VelocityCommand VelocityEnv::command_rate() const {
+  return limiter_.rate(target_, servos_->timestep());
+}
+
 BaseVelocity VelocityEnv::measured_velocity() const {
   return task_.measure(*servos_->full_observation());
 }
@@ -96,7 +101,7 @@ void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> obse
   held_target_ = target_;
   action_.fill(0.0f);
   previous_action_.fill(0.0f);
-  task_.write_observation(full, action_, command(), observation);
+  task_.write_observation(full, action_, command(), observation, command_rate());
   if (base_) {
     base_->reset();
     std::copy(observation.begin(), observation.end(), last_observation_.begin());
@@ -122,7 +127,7 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   const StepResult result = task_.evaluate(full, held_command_, action_, previous_action_);
   sampler_.advance(servos_->timestep());
   limiter_.advance(refresh_target(), servos_->timestep());
-  task_.write_observation(full, action_, command(), observation);
+  task_.write_observation(full, action_, command(), observation, command_rate());
   if (base_) std::copy(observation.begin(), observation.end(), last_observation_.begin());
   return result;
 }

@@ -46,6 +46,9 @@ class VelocityEnv final : public ServosWrapperEnv {
 
   /// The command the robot follows now (in the last observation).
   const VelocityCommand& command() const { return limiter_.command(); }
+  /// The followed command's rates over the coming step toward the target
+  /// (VelocityCommandLimiter::rate): observed with observe_command_acceleration.
+  VelocityCommand command_rate() const;
   /// The target the followed command moves toward (random draw or override).
   const VelocityCommand& target() const { return target_; }
   /// The command the last step was rewarded against (the one before the step).

@@ -14,6 +14,11 @@ inline constexpr std::array<const char*, 2> kCommandColumns = {"command.forward_
 /// Name of the command's base height, as a column (after kCommandColumns) of observations,
 /// record files and viewer frames, when the task has a height command.
 inline constexpr const char* kHeightCommandColumn = "command.height";
+/// Names of the followed command's rates over the coming step, as columns of observations
+/// (after the height, with option observe_command_acceleration): forward acceleration
+/// [m/s²], then yaw acceleration [rad/s²].
+inline constexpr std::array<const char*, 2> kCommandAccelerationColumns = {
+    "command.forward_acceleration", "command.yaw_acceleration"};
 /// Name of the measured base height (record files, viewer frames).
 inline constexpr const char* kMeasuredHeightColumn = "measured.height";
 

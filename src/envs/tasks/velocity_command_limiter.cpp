@@ -23,6 +23,18 @@ void VelocityCommandLimiter::start(const VelocityCommand& target, double rest_he
   command_.height = max_height_velocity_ > 0.0 ? rest_height : target.height;
 }
 
+VelocityCommand VelocityCommandLimiter::rate(const VelocityCommand& target, double dt) const {
+  const auto component_rate = [dt](double current, double goal, double max_rate) {
+    return max_rate > 0.0 ? (approach(current, goal, max_rate, dt) - current) / dt : 0.0;
+  };
+  VelocityCommand rates;
+  rates.forward_velocity =
+      component_rate(command_.forward_velocity, target.forward_velocity, max_acceleration_);
+  rates.yaw_rate = component_rate(command_.yaw_rate, target.yaw_rate, max_yaw_acceleration_);
+  rates.height = component_rate(command_.height, target.height, max_height_velocity_);
+  return rates;
+}
+
 const VelocityCommand& VelocityCommandLimiter::advance(const VelocityCommand& target, double dt) {
   command_.forward_velocity =
       approach(command_.forward_velocity, target.forward_velocity, max_acceleration_, dt);

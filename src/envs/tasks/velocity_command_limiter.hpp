@@ -30,6 +30,13 @@ class VelocityCommandLimiter {
   /// Advances `dt` [s] toward `target`; returns the command.
   const VelocityCommand& advance(const VelocityCommand& target, double dt);
 
+  /// The rate of change [per s] that advance(target, dt) would give each component now:
+  /// ±its limit while ramping, less on the last step of a ramp, 0 at the target or for an
+  /// unlimited component (it steps). Why: a controller that sees only the followed command
+  /// cannot tell that it ramps; the classical balancer feeds the ramp's acceleration
+  /// forward, and a policy can only if it is observed.
+  VelocityCommand rate(const VelocityCommand& target, double dt) const;
+
   /// The command the robot follows now.
   const VelocityCommand& command() const { return command_; }
 

@@ -27,6 +27,9 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
     const double change = inputs.action[i] - inputs.previous_action[i];
     action_change += change * change;
   }
+  // The reference is symmetric, so the deviations' mirror sums are the legs' own.
+  const double hip_asymmetry = inputs.leg_deviation[0] + inputs.leg_deviation[2];
+  const double knee_asymmetry = inputs.leg_deviation[1] + inputs.leg_deviation[3];
   terms_[kTrackForwardVelocity] =
       weights_.w_track_forward_velocity * kernel(forward_error, weights_.forward_velocity_sigma);
   terms_[kTrackYawRate] = weights_.w_track_yaw_rate * kernel(yaw_error, weights_.yaw_rate_sigma);
@@ -39,6 +42,8 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
           ? weights_.w_track_height *
                 kernel(inputs.command.height - inputs.velocity.height, weights_.height_sigma)
           : 0.0;
+  terms_[kLegSymmetry] =
+      -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;
   for (const double term : terms_) sum += term;
   return sum;
@@ -62,6 +67,8 @@ void VelocityRewardWeights::declare_options(OptionTable& table) {
                  "reward weight of base height tracking (with height_command)");
   table.add_real("height_sigma", &height_sigma, 1e-6, kOptionHuge,
                  "width of the base height tracking kernel [m]");
+  table.add_real("w_leg_symmetry", &w_leg_symmetry, 0.0, kOptionHuge,
+                 "penalty weight of the legs' squared difference from their mirror image");
 }
 
 }  // namespace upkie_rl

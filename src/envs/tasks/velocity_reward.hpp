@@ -27,6 +27,11 @@ struct VelocityRewardWeights {
   /// Width of the height tracking kernel [m]: a 5 cm error keeps 1/e of the weight, a
   /// third of the default crouch range.
   double height_sigma = 0.05;
+  /// Subtracted: a penalty on the legs' difference from their mirror image (one leg ahead
+  /// of the other). Without it the from-scratch policies crouched by scissoring the hips
+  /// (one -0.33 rad, the other +0.52 rad, knees nearly straight) and straightened the legs
+  /// to drive, 2 cm above the commanded crouch.
+  double w_leg_symmetry = 0.0;
 
   /// Declares the options of the fields, by their names.
   void declare_options(OptionTable& table);
@@ -38,15 +43,19 @@ struct VelocityRewardInputs {
   BaseVelocity velocity;      ///< Measured at the end of the step.
   bool track_height = false;  ///< Whether the command's height is tracked (a height command).
   Eigen::Vector3d gravity_in_base = Eigen::Vector3d(0.0, 0.0, -1.0);  ///< Unit vector.
-  std::array<double, 4> leg_deviation{};   ///< Hip and knee angles minus the default pose [rad].
+  /// Left hip, left knee, right hip and right knee angles minus the pose reference [rad].
+  std::array<double, 4> leg_deviation{};
   std::span<const float> action;           ///< Normalised action of the step.
   std::span<const float> previous_action;  ///< Of the step before (zero at reset).
 };
 
 /// r = w_vx·exp(-(vx* - vx)²/σ_vx²) + w_wz·exp(-(ωz* - ωz)²/σ_wz²) [+ w_h·exp(-(h* - h)²/σ_h²)]
 ///   + w_upright·exp(-(g_x² + g_y²)/0.1) + w_pose·exp(-Σ Δq²/0.25) - w_action_rate·Σ Δu²
+///   - w_leg_symmetry·((Δq_lh + Δq_rh)² + (Δq_lk + Δq_rk)²)
 /// where g is the unit gravity vector in the base frame, Δq the leg joints' deviations from
-/// the pose reference (VelocityTask) and Δu the change of the normalised action. The height
+/// the pose reference (VelocityTask) and Δu the change of the normalised action; the right
+/// leg's joints mirror the left's (negated angles), so a sum of a left and a right
+/// deviation is the legs' asymmetry (0 for any symmetric pose). The height
 /// term (track_height) is 0 without a height command. Every term is bounded, so a
 /// fall costs the rewards of the steps it forfeits.
 class VelocityReward {
@@ -58,11 +67,13 @@ class VelocityReward {
     kPose,
     kActionRate,
     kTrackHeight,
+    kLegSymmetry,
     kNumTerms
   };
   /// Term names, as logged (`episode/reward_<name>`).
   static constexpr std::array<std::string_view, kNumTerms> kTermNames = {
-      "track_forward_velocity", "track_yaw_rate", "upright", "pose", "action_rate", "track_height"};
+      "track_forward_velocity", "track_yaw_rate", "upright", "pose", "action_rate",
+      "track_height",           "leg_symmetry"};
 
   explicit VelocityReward(const VelocityRewardWeights& weights = {}) : weights_(weights) {}
 

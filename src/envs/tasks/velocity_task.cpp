@@ -35,7 +35,7 @@ VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& co
   }
 }
 
-BoxSpace VelocityTask::make_observation_space(bool height_command) {
+BoxSpace VelocityTask::make_observation_space(bool height_command, bool command_acceleration) {
   BoxSpace space;
   for (const std::size_t joint : kLegJoints) {
     space.add(std::string(kServoNames[joint]) + ".position", -kInf, kInf);
@@ -49,6 +49,9 @@ BoxSpace VelocityTask::make_observation_space(bool height_command) {
   }
   for (const char* column : kCommandColumns) space.add(column, -kInf, kInf);
   if (height_command) space.add(kHeightCommandColumn, -kInf, kInf);
+  if (command_acceleration) {
+    for (const char* column : kCommandAccelerationColumns) space.add(column, -kInf, kInf);
+  }
   return space;
 }
 
@@ -139,8 +142,8 @@ std::array<double, 4> VelocityTask::leg_deviation(const Observation& full,
 }
 
 void VelocityTask::write_observation(const Observation& full, std::span<const float> last_action,
-                                     const VelocityCommand& command,
-                                     std::span<float> observation) const {
+                                     const VelocityCommand& command, std::span<float> observation,
+                                     const VelocityCommand& command_rate) const {
   if (observation.size() != observation_size() || last_action.size() != kActionSize) {
     throw std::invalid_argument("VelocityTask: observation buffer has " +
                                 std::to_string(observation.size()) + " components, expected " +
@@ -161,6 +164,10 @@ void VelocityTask::write_observation(const Observation& full, std::span<const fl
   observation[k++] = static_cast<float>(command.forward_velocity);
   observation[k++] = static_cast<float>(command.yaw_rate);
   if (height_command_) observation[k++] = static_cast<float>(command.height);
+  if (config_.observe_command_acceleration) {
+    observation[k++] = static_cast<float>(command_rate.forward_velocity);
+    observation[k++] = static_cast<float>(command_rate.yaw_rate);
+  }
 }
 
 StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand& command,
@@ -203,6 +210,10 @@ void VelocityTaskConfig::declare_options(OptionTable& table) {
                  "hip and knee target offset from the default pose at action 1 [rad] (1.0: the "
                  "default crouch and room around it; 0.5 before the height command)");
   table.set_recorded_default("leg_action_scale", "0.5");
+  table.add_choice("observe_command_acceleration", &observe_command_acceleration,
+                   {{"true", true}, {"false", false}},
+                   "append the followed command's forward and yaw accelerations over the "
+                   "coming step to the observation (the ramp toward the target)");
   table.add_real("leg_kp_scale", &leg_kp_scale, 0.0, ServosEnv::kMaxGainScale,
                  "kp_scale of hips and knees");
   table.add_real("leg_kd_scale", &leg_kd_scale, 0.0, ServosEnv::kMaxGainScale,

@@ -41,6 +41,12 @@ struct VelocityTaskConfig {
   /// before the height command used 0.5 (a checkpoint that does not name the option is
   /// read with 0.5).
   double leg_action_scale = 1.0;
+  /// Appends the followed command's forward and yaw accelerations over the coming step to
+  /// the observation (VelocityCommandLimiter::rate): what the classical balancer feeds
+  /// forward. Why: an MLP that sees only the followed command cannot tell that it ramps,
+  /// and 82 % of a from-scratch policy's squared forward error fell in ramps and the second
+  /// after them.
+  bool observe_command_acceleration = false;
   double wheel_kd_scale = 1.0;  ///< Wheels: velocity loop only (kp unused).
   double leg_kp_scale = 2.0;
   double leg_kd_scale = 1.7;
@@ -83,7 +89,9 @@ constexpr const char* to_string(VelocityTermination reason) {
 /// (3, from the IMU's attitude), the base angular velocity in the base frame (3, the
 /// gyroscope) [rad/s], the last action (6), the command (forward velocity [m/s], yaw rate
 /// [rad/s]), then, with a height command (option height_command), the commanded base
-/// height [m] (21 components). No base linear velocity: the robot does not measure it.
+/// height [m] (21 components), then, with observe_command_acceleration, the followed
+/// command's forward [m/s²] and yaw [rad/s²] accelerations over the coming step (2 more).
+/// No base linear velocity: the robot does not measure it.
 ///
 /// With a height command, the pose reward's reference is the crouch pose of the commanded
 /// height (LegKinematics::crouch_pose) rather than straight legs, and the height is
@@ -93,11 +101,13 @@ class VelocityTask {
   static constexpr std::size_t kActionSize = kNumServos;
   /// Observation size without a height command.
   static constexpr std::size_t kObservationSize = 20;
-  /// Observation size with a height command: the largest.
-  static constexpr std::size_t kMaxObservationSize = kObservationSize + 1;
+  /// Observation size with a height command (and without the command's accelerations).
+  static constexpr std::size_t kHeightObservationSize = kObservationSize + 1;
+  /// Observation size with a height command and the command's accelerations: the largest.
+  static constexpr std::size_t kMaxObservationSize = kObservationSize + 1 + 2;
   /// Index of the command's forward velocity in the observation (yaw rate next).
   static constexpr std::size_t kCommandIndex = 18;
-  /// Index of the commanded base height in an observation of kMaxObservationSize.
+  /// Index of the commanded base height in an observation with a height command.
   static constexpr std::size_t kHeightCommandIndex = 20;
   /// Hip and knee joints, in the order of the observation.
   static constexpr std::array<std::size_t, 4> kLegJoints = {kLeftHip, kLeftKnee, kRightHip,
@@ -106,8 +116,9 @@ class VelocityTask {
   /// @param height_command Whether the command has a base height (observed, rewarded).
   VelocityTask(const RobotModel& model, const VelocityTaskConfig& config, bool height_command);
 
-  /// The observation space, with the commanded height last when `height_command`.
-  static BoxSpace make_observation_space(bool height_command);
+  /// The observation space: the commanded height when `height_command`, then the command's
+  /// accelerations when `command_acceleration`.
+  static BoxSpace make_observation_space(bool height_command, bool command_acceleration = false);
   static BoxSpace make_action_space();
 
   /// The servo commands of the normalised action `action` (already clamped to [-1, 1]);
@@ -117,9 +128,11 @@ class VelocityTask {
   void servo_action(std::span<const float> action, const Observation& measured,
                     const VelocityCommand& command, ServoAction& commands) const;
 
-  /// Writes the observation of `full` with the last action and the command to follow.
+  /// Writes the observation of `full` with the last action and the command to follow;
+  /// `command_rate` (VelocityCommandLimiter::rate) is read with observe_command_acceleration.
   void write_observation(const Observation& full, std::span<const float> last_action,
-                         const VelocityCommand& command, std::span<float> observation) const;
+                         const VelocityCommand& command, std::span<float> observation,
+                         const VelocityCommand& command_rate = {}) const;
 
   /// Reward (terms in reward().terms()) and termination of a step that held `command`,
   /// applied `action` after `previous_action` and led to `full`.
@@ -143,7 +156,8 @@ class VelocityTask {
   const VelocityTaskConfig& config() const { return config_; }
   bool height_command() const { return height_command_; }
   std::size_t observation_size() const {
-    return height_command_ ? kMaxObservationSize : kObservationSize;
+    return kObservationSize + (height_command_ ? 1 : 0) +
+           (config_.observe_command_acceleration ? 2 : 0);
   }
   const LegKinematics& legs() const { return legs_; }
 
