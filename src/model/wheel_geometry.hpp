@@ -32,8 +32,15 @@ struct WheelGeometry {
   /// The base's forward motion [m or m/s] of a motion of the wheels [rad or rad/s, each in
   /// its joint's sign]: the average of the two wheels' rolling, the turn cancelling out.
   /// Linear, so that it maps wheel angles to a travelled distance as well as speeds to a
-  /// velocity; the inverse of velocities() for its forward part.
-  double forward_motion(double left, double right) const { return 0.5 * (left - right) * radius; }
+  /// velocity; the inverse of velocities() for its forward part. The difference is taken in
+  /// the arguments' own type: the velocity balancer reads float observations and subtracted
+  /// them in float when the checked-in policies were trained, and a double subtraction
+  /// changes their returns (by 0.03-0.08 % over 20 s).
+  template <typename Real>
+  double forward_motion(Real left, Real right) const {
+    const Real difference = left - right;
+    return 0.5 * difference * radius;
+  }
 };
 
 }  // namespace upkie_rl
