@@ -78,6 +78,13 @@ VelocityCommand VelocityEnv::command_rate() const {
   return limiter_.rate(target_, servos_->timestep());
 }
 
+void VelocityEnv::write_observation(const Observation& full, std::span<float> observation) const {
+  // The rate only when observed: the hot path of the tasks without it does not compute it.
+  const VelocityCommand rate =
+      task_.config().observe_command_acceleration ? command_rate() : VelocityCommand{};
+  task_.write_observation(full, action_, command(), observation, rate);
+}
+
 BaseVelocity VelocityEnv::measured_velocity() const {
   return task_.measure(*servos_->full_observation());
 }
@@ -101,7 +108,7 @@ void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> obse
   held_target_ = target_;
   action_.fill(0.0f);
   previous_action_.fill(0.0f);
-  task_.write_observation(full, action_, command(), observation, command_rate());
+  write_observation(full, observation);
   if (base_) {
     base_->reset();
     std::copy(observation.begin(), observation.end(), last_observation_.begin());
@@ -127,7 +134,7 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   const StepResult result = task_.evaluate(full, held_command_, action_, previous_action_);
   sampler_.advance(servos_->timestep());
   limiter_.advance(refresh_target(), servos_->timestep());
-  task_.write_observation(full, action_, command(), observation, command_rate());
+  write_observation(full, observation);
   if (base_) std::copy(observation.begin(), observation.end(), last_observation_.begin());
   return result;
 }

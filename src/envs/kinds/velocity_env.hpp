@@ -75,6 +75,9 @@ class VelocityEnv final : public ServosWrapperEnv {
   std::span<const double> reward_terms() const override { return task_.reward().terms(); }
 
  private:
+  /// The task's observation of `full` with the last action, the followed command and,
+  /// when observed, its rate.
+  void write_observation(const Observation& full, std::span<float> observation) const;
   void check_crouch_reach(const VelocityTaskConfig& task,
                           const VelocityCommandRanges& commands) const;
   /// The target of the next observation: the override, or the sampler's command.
