@@ -133,16 +133,18 @@ const Observation& SpineBackend::reset(const ResetState& state) {
   return read_observation_payload(true);
 }
 
-void SpineBackend::regulate() {
+void SpineBackend::regulate(bool action_just_sent) {
   using Clock = std::chrono::steady_clock;
   const auto period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / config_.agent_frequency));
   const auto now = Clock::now();
-  if (!next_action_time_ || *next_action_time_ < now - period) {
-    next_action_time_ = now;  // first action, or late by more than a period: no burst
-  } else {
-    std::this_thread::sleep_until(*next_action_time_);
+  if (!next_action_time_) {
+    // An episode's first action leaves at once; its tick is a period after it left.
+    next_action_time_ = action_just_sent ? now + period : now;
+  } else if (*next_action_time_ < now - period) {
+    next_action_time_ = now;  // late by more than a period: no burst
   }
+  std::this_thread::sleep_until(*next_action_time_);
   *next_action_time_ += period;
 }
 
@@ -151,9 +153,15 @@ const Observation& SpineBackend::step(const ServoAction& action) {
   // never the +inf maximum torque a simulation accepts.
   validate_servo_action(action, ServoActionTarget::kRobot);
   write_servo_action_msgpack(action, buffer_);
-  if (config_.regulate_frequency) regulate();
+  const bool fresh = config_.regulate_frequency && config_.fresh_observation;
+  if (config_.regulate_frequency && !fresh) regulate(false);
   wait_for_spine();
   send(Request::kAction);
+  if (fresh) {
+    regulate(true);
+    wait_for_spine();
+    send(Request::kAction);  // the same action again: its reply is the tick's observation
+  }
   wait_for_spine();
   return read_observation_payload(false);
 }

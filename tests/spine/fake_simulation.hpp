@@ -34,6 +34,7 @@ class FakeSimulation final : public Simulation {
   const Observation& step(const ServoAction& action) override {
     if (throw_on_step) throw SimulationDivergedError("fake divergence");
     actions.push_back(action);
+    action_times.push_back(observation_.time);
     observation_.time += timestep_;
     for (std::size_t i = 0; i < kNumServos; ++i) {
       observation_.servo[i].velocity = action[i].velocity;
@@ -49,6 +50,7 @@ class FakeSimulation final : public Simulation {
 
   std::vector<ResetState> resets;
   std::vector<ServoAction> actions;
+  std::vector<double> action_times;  ///< Simulation time at which each step began.
   bool throw_on_step = false;
 
  private:
