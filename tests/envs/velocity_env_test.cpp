@@ -161,6 +161,29 @@ TEST(VelocityReward, LegSymmetryPenalisesScissoredLegsNotASymmetricCrouch) {
   EXPECT_EQ(unweighted.terms()[VelocityReward::kLegSymmetry], 0.0);
 }
 
+TEST(VelocityReward, HeightErrorPenaltyIsTheAbsoluteErrorWithAHeightCommandOnly) {
+  VelocityRewardWeights weights;
+  weights.w_height_error = 30.0;
+  VelocityReward reward(weights);
+  VelocityRewardInputs inputs;
+  inputs.track_height = true;
+  inputs.command.height = 0.53;
+  inputs.velocity.height = 0.55;  // 2 cm above the command
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kHeightError], -30.0 * 0.02, 1e-12);
+  inputs.velocity.height = 0.51;  // as far below
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kHeightError], -30.0 * 0.02, 1e-12);
+  inputs.track_height = false;
+  reward(inputs);
+  EXPECT_EQ(reward.terms()[VelocityReward::kHeightError], 0.0);
+  // Off by default.
+  VelocityReward unweighted;
+  inputs.track_height = true;
+  unweighted(inputs);
+  EXPECT_EQ(unweighted.terms()[VelocityReward::kHeightError], 0.0);
+}
+
 /// An observation of a base rotated by `rotation`, moving at `velocity` in the world.
 Observation base_state(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& velocity,
                        const Eigen::Vector3d& angular_velocity_in_base) {

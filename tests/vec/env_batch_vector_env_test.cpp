@@ -31,7 +31,7 @@ TEST(EnvBatchVectorEnv, BothKindsForwardToTheirEnvironments) {
     EXPECT_EQ(&venv->observation_space(), &batch->env(0).observation_space());
     EXPECT_EQ(&venv->action_space(), &batch->env(0).action_space());
     EXPECT_EQ(venv->reward_term_names().data(), batch->env(0).reward_term_names().data());
-    EXPECT_EQ(venv->reward_term_names().size(), 7u);  // track_height, leg_symmetry included
+    EXPECT_EQ(venv->reward_term_names().size(), 8u);  // track_height, leg_symmetry, height_error
     for (std::size_t i = 0; i < 3; ++i) {
       EXPECT_EQ(venv->full_observation(i), batch->env(i).full_observation());
     }

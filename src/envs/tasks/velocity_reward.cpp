@@ -37,11 +37,12 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
       weights_.w_upright * std::exp(-(g.x() * g.x() + g.y() * g.y()) / kUprightWidth);
   terms_[kPose] = weights_.w_pose * std::exp(-pose_error / kPoseWidth);
   terms_[kActionRate] = -weights_.w_action_rate * action_change;
+  const double height_error =
+      inputs.track_height ? inputs.command.height - inputs.velocity.height : 0.0;
   terms_[kTrackHeight] =
-      inputs.track_height
-          ? weights_.w_track_height *
-                kernel(inputs.command.height - inputs.velocity.height, weights_.height_sigma)
-          : 0.0;
+      inputs.track_height ? weights_.w_track_height * kernel(height_error, weights_.height_sigma)
+                          : 0.0;
+  terms_[kHeightError] = -weights_.w_height_error * std::abs(height_error);
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;
@@ -69,6 +70,8 @@ void VelocityRewardWeights::declare_options(OptionTable& table) {
                  "width of the base height tracking kernel [m]");
   table.add_real("w_leg_symmetry", &w_leg_symmetry, 0.0, kOptionHuge,
                  "penalty weight of the legs' squared difference from their mirror image");
+  table.add_real("w_height_error", &w_height_error, 0.0, kOptionHuge,
+                 "penalty weight of the absolute base height error [1/m] (with height_command)");
 }
 
 }  // namespace upkie_rl
