@@ -141,8 +141,7 @@ TEST_F(SpineBackendTest, RegulatedAgentActsOnTheObservationOfTheTick) {
   // Measured 0.9 ms: the action leaves within a cycle of the tick's observation. Returning
   // the action's own reply instead (below) measured 17 ms: 19 ms on every step but the
   // first, which leaves at once after the reset.
-  EXPECT_LT(mean_observation_age_at_action(backend, *simulation_, [this] { stop_spine(); }),
-            0.006);
+  EXPECT_LT(mean_observation_age_at_action(backend, *simulation_, [this] { stop_spine(); }), 0.006);
 }
 
 TEST_F(SpineBackendTest, WithoutFreshObservationsActionsApplyAPeriodLate) {
@@ -151,8 +150,7 @@ TEST_F(SpineBackendTest, WithoutFreshObservationsActionsApplyAPeriodLate) {
   config.agent_frequency = 50.0;
   config.fresh_observation = false;
   SpineBackend backend(config);
-  EXPECT_GT(mean_observation_age_at_action(backend, *simulation_, [this] { stop_spine(); }),
-            0.012);
+  EXPECT_GT(mean_observation_age_at_action(backend, *simulation_, [this] { stop_spine(); }), 0.012);
 }
 
 TEST_F(SpineBackendTest, ActionBeforeStartIsAnInvalidRequest) {

@@ -39,9 +39,9 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
   terms_[kActionRate] = -weights_.w_action_rate * action_change;
   const double height_error =
       inputs.track_height ? inputs.command.height - inputs.velocity.height : 0.0;
-  terms_[kTrackHeight] =
-      inputs.track_height ? weights_.w_track_height * kernel(height_error, weights_.height_sigma)
-                          : 0.0;
+  terms_[kTrackHeight] = inputs.track_height
+                             ? weights_.w_track_height * kernel(height_error, weights_.height_sigma)
+                             : 0.0;
   terms_[kHeightError] = -weights_.w_height_error * std::abs(height_error);
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);

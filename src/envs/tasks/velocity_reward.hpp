@@ -79,7 +79,7 @@ class VelocityReward {
   };
   /// Term names, as logged (`episode/reward_<name>`).
   static constexpr std::array<std::string_view, kNumTerms> kTermNames = {
-      "track_forward_velocity", "track_yaw_rate", "upright", "pose", "action_rate",
+      "track_forward_velocity", "track_yaw_rate", "upright",     "pose", "action_rate",
       "track_height",           "leg_symmetry",   "height_error"};
 
   explicit VelocityReward(const VelocityRewardWeights& weights = {}) : weights_(weights) {}
