@@ -133,7 +133,7 @@ const Observation& SpineBackend::reset(const ResetState& state) {
   return read_observation_payload(true);
 }
 
-void SpineBackend::regulate(bool action_just_sent) {
+bool SpineBackend::regulate(bool action_just_sent) {
   using Clock = std::chrono::steady_clock;
   const auto period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / config_.agent_frequency));
@@ -144,8 +144,10 @@ void SpineBackend::regulate(bool action_just_sent) {
   } else if (*next_action_time_ < now - period) {
     next_action_time_ = now;  // late by more than a period: no burst
   }
+  const bool early = now < *next_action_time_;
   std::this_thread::sleep_until(*next_action_time_);
   *next_action_time_ += period;
+  return early;
 }
 
 const Observation& SpineBackend::step(const ServoAction& action) {
@@ -157,8 +159,9 @@ const Observation& SpineBackend::step(const ServoAction& action) {
   if (config_.regulate_frequency && !fresh) regulate(false);
   wait_for_spine();
   send(Request::kAction);
-  if (fresh) {
-    regulate(true);
+  // A loop already late at its tick skips the second request: the action's own reply is
+  // then as fresh, and another spine cycle would only make the loop later.
+  if (fresh && regulate(true)) {
     wait_for_spine();
     send(Request::kAction);  // the same action again: its reply is the tick's observation
   }

@@ -33,7 +33,9 @@ struct SpineBackendConfig {
   /// with; at 50 Hz the from-scratch velocity policy's yaw tracking went from 0.056 to
   /// 0.24-0.33 rad/s and it fell in a standing turn on the real-time MuJoCo spine. The
   /// repeated action changes nothing (spines merge actions); it costs one spine cycle per
-  /// step. Only for a real-time spine: one that advances on request would step twice.
+  /// step, skipped when the loop is already late at the tick (the 200 Hz pendulum runner
+  /// on a loaded 2-core machine otherwise tripped the supervisor's overrun limit in 1 of
+  /// 4 runs). Only for a real-time spine: one that advances on request would step twice.
   bool fresh_observation = true;
   /// How long a request may stay unprocessed before a SpineTimeoutError [s].
   double request_timeout = 0.1;
@@ -94,8 +96,8 @@ class SpineBackend final : public Simulation {
   void send(Request request);
   const Observation& read_observation_payload(bool after_reset);
   /// Sleeps until the next tick of agent_frequency; an episode's first tick is now, or a
-  /// period after an action sent just before.
-  void regulate(bool action_just_sent);
+  /// period after an action sent just before. Returns whether the tick was still ahead.
+  bool regulate(bool action_just_sent);
 
   SpineBackendConfig config_;
   SharedMemory memory_;
