@@ -36,6 +36,8 @@ struct GoalSettings {
                                      "action_lag=0:0.1"};
   double window_spacing = 0.2;
   int max_evaluations = 120;
+  ExcitationSettings excitation;
+  bool check_truth = false;
 };
 
 /// The hidden value of a fitted parameter, NaN when the log's options do not set it.
@@ -51,7 +53,7 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
   const EnvOptions hidden = parse_env_options(goals.hidden);
   const auto path = std::filesystem::temp_directory_path() /
                     ("identify_goals_" + std::to_string(seed) + ".mpack");
-  ExcitationSettings excitation;
+  ExcitationSettings excitation = goals.excitation;
   excitation.duration = goals.duration;
   excitation.seed = seed;
   write_excitation_log(goals.log_env, hidden, excitation, path);
@@ -63,6 +65,30 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
   settings.replay.window_spacing = goals.window_spacing;
   settings.max_evaluations = goals.max_evaluations;
   const IdentificationResult result = identify(log, settings);
+  if (goals.check_truth) {  // the objective at the hidden values, beside the fit's
+    int max_delay = 0;
+    double max_lag = 0.0;
+    ParameterValues truth;
+    for (const ParameterRequest& request : settings.parameters) {
+      if (request.parameter->name == "action_delay") max_delay = static_cast<int>(request.high);
+      if (request.parameter->name == "action_lag") max_lag = request.high;
+      truth.emplace_back(request.parameter,
+                         hidden_value(hidden, std::string(request.parameter->name)));
+    }
+    const LogReplay replay(settings.env_id, settings.options, log, settings.replay, max_delay,
+                           max_lag);
+    std::printf("  rmse at the hidden values %.4f\n", replay.rmse(truth));
+    for (std::size_t i = 0; i < truth.size(); ++i) {  // each parameter moved by -20..+20 %
+      std::printf("    %s:", std::string(truth[i].first->name).c_str());
+      for (const double factor : {0.8, 0.9, 0.95, 1.05, 1.1, 1.2}) {
+        if (truth[i].first->integer) continue;
+        ParameterValues moved = truth;
+        moved[i].second *= factor;
+        std::printf(" x%.2f %.4f", factor, replay.rmse(moved));
+      }
+      std::printf("\n");
+    }
+  }
   std::printf("seed %llu: %s -> %s, %.0f s log, %zu replays, %d evaluations, %.1f s wall\n",
               static_cast<unsigned long long>(seed), goals.log_env.c_str(), goals.fit_env.c_str(),
               log.duration(), result.windows, result.evaluations, result.seconds);
@@ -98,6 +124,14 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-evaluations", goals.max_evaluations, "Per continuous fit")
       ->capture_default_str();
+  app.add_option("--amplitude", goals.excitation.amplitude, "Largest forward command [m/s]")
+      ->capture_default_str();
+  app.add_option("--yaw-amplitude", goals.excitation.yaw_amplitude, "Largest yaw rate [rad/s]")
+      ->capture_default_str();
+  app.add_option("--kick-amplitude", goals.excitation.kick_amplitude,
+                 "Largest step added to the ground velocity [m/s]")
+      ->capture_default_str();
+  app.add_flag("--check-truth", goals.check_truth, "Also print the rmse at the hidden values");
   CLI11_PARSE(app, argc, argv);
   for (const std::uint64_t seed : goals.seeds) upkie_rl::run_seed(goals, seed);
   return 0;

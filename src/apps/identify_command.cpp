@@ -38,6 +38,10 @@ void print_result(const IdentificationResult& result, const RobotLog& log) {
   std::printf("%s: %zu cycles, %.2f s at %.0f Hz; %zu replays of %.3g s, %d evaluations\n",
               log.name.c_str(), log.cycles.size(), log.duration(), 1.0 / log.period(),
               result.windows, result.horizon, result.evaluations);
+  if (result.windows_down > 0) {
+    std::printf("  %zu replays left out: the robot was down (tilted beyond 1 rad) in them\n",
+                result.windows_down);
+  }
   for (const FittedParameter& parameter : result.parameters) {
     const std::string unit = parameter.unit.empty() ? "" : " " + parameter.unit;
     if (parameter.identifiable) {

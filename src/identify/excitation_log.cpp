@@ -1,16 +1,67 @@
 #include "identify/excitation_log.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "base/error.hpp"
+#include "base/number_text.hpp"
+#include "envs/controllers/forward_balance_law.hpp"
+#include "envs/controllers/velocity_balancer.hpp"
 #include "envs/kinds/ground_velocity_commander.hpp"
 #include "envs/registry/env_factory.hpp"
+#include "envs/tasks/balance_termination.hpp"
+#include "envs/tasks/velocity_task.hpp"
 #include "sim/servo_command_fields.hpp"
 #include "spine/spine_log_writer.hpp"
 
 namespace upkie_rl {
+
+namespace {
+
+/// The agent period the velocity task's filter gains are designed for [s].
+constexpr double kVelocityTaskTimestep = 0.02;
+/// A base tilted beyond it has fallen [rad] (the balance tasks' fall_pitch).
+constexpr double kFallTilt = BalanceTermination{}.fall_pitch;
+/// Balance before the log starts [s]: the simulators release the robot above the floor, and
+/// a robot's log starts with it standing on its wheels.
+constexpr double kSettleTime = 0.5;
+
+/// Random commands, each held for a random time.
+class CommandSteps {
+ public:
+  explicit CommandSteps(const ExcitationSettings& settings)
+      : generator_(settings.seed),
+        forward_(-settings.amplitude, settings.amplitude),
+        yaw_(-settings.yaw_amplitude, settings.yaw_amplitude),
+        kick_(-settings.kick_amplitude, settings.kick_amplitude),
+        hold_(settings.hold_min, settings.hold_max) {}
+
+  /// Draws new commands when the current ones have been held long enough.
+  void update(double time) {
+    if (time < next_change_) return;
+    forward_velocity = forward_(generator_);
+    yaw_rate = yaw_(generator_);
+    kick = kick_(generator_);
+    next_change_ = time + hold_(generator_);
+  }
+
+  double forward_velocity = 0.0;
+  double yaw_rate = 0.0;
+  double kick = 0.0;
+
+ private:
+  std::mt19937_64 generator_;
+  std::uniform_real_distribution<double> forward_;
+  std::uniform_real_distribution<double> yaw_;
+  std::uniform_real_distribution<double> kick_;
+  std::uniform_real_distribution<double> hold_;
+  double next_change_ = 0.0;
+};
+
+}  // namespace
 
 void write_excitation_log(const std::string& env_id, const EnvOptions& options,
                           const ExcitationSettings& settings, const std::filesystem::path& path) {
@@ -22,27 +73,29 @@ void write_excitation_log(const std::string& env_id, const EnvOptions& options,
   std::vector<float> flat(env->action_space().size());
   env->reset(settings.seed, observation);
   const Observation* full = env->full_observation();
-  GroundVelocityCommander commander(*RobotModel::default_model(), env->timestep());
+  const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
+  GroundVelocityCommander commander(*model, env->timestep());
   commander.reset(*full);
+  const double timestep = env->timestep();
+  ForwardBalanceLaw balance(
+      settings.balance, timestep,
+      filter_gain_at_rate(VelocityBalancer::kVelocityFilterGain, kVelocityTaskTimestep, timestep),
+      filter_gain_at_rate(VelocityBalancer::kAccelerationFilterGain, kVelocityTaskTimestep,
+                          timestep));
+  CommandSteps commands(settings);
   SpineLogWriter writer(path);
-  std::mt19937_64 generator(settings.seed);
-  std::uniform_real_distribution<double> step(-settings.amplitude, settings.amplitude);
-  std::uniform_real_distribution<double> hold(settings.hold_min, settings.hold_max);
-  double excitation = 0.0;
-  double next_change = 0.5;  // a second of balance first
-  const double start_position = full->wheel_odometry.position;
-  const int steps = static_cast<int>(settings.duration / env->timestep());
+  const int settle_steps = static_cast<int>(std::lround(kSettleTime / timestep));
+  const int steps = settle_steps + static_cast<int>(settings.duration / timestep);
   for (int i = 0; i < steps; ++i) {
-    const double time = i * env->timestep();
-    if (time >= next_change) {
-      excitation = step(generator);
-      next_change = time + hold(generator);
-    }
-    const double ground_velocity = std::clamp(10.0 * full->base_orientation.pitch +
-                                                  (full->wheel_odometry.position - start_position) +
-                                                  0.1 * full->wheel_odometry.velocity + excitation,
-                                              -1.0, 1.0);
-    const ServoAction& command = commander.command(ground_velocity, 0.0);
+    const bool logged = i >= settle_steps;
+    if (logged) commands.update((i - settle_steps) * timestep);
+    balance.set_excitation(commands.kick);
+    const double ground_velocity =
+        balance.ground_velocity({.command = commands.forward_velocity,
+                                 .pitch = full->base_orientation.pitch,
+                                 .pitch_rate = full->base_orientation.angular_velocity.y(),
+                                 .odometry_velocity = full->wheel_odometry.velocity});
+    const ServoAction& command = commander.command(ground_velocity, commands.yaw_rate);
     ServoAction sent{};
     for (std::size_t servo = 0; servo < kNumServos; ++servo) {
       for (std::size_t field = 0; field < kServoCommandFields.size(); ++field) {
@@ -52,9 +105,13 @@ void write_excitation_log(const std::string& env_id, const EnvOptions& options,
         sent[servo].*member = value;  // what the environment receives, to float precision
       }
     }
-    writer.write(*full, sent);
+    if (logged) writer.write(*full, sent);
     env->step(flat, observation);
     full = env->full_observation();
+    if (VelocityTask::tilt(*full) > kFallTilt) {
+      throw Error("write_excitation_log: the simulated robot fell at " + shortest_text(full->time) +
+                  " s of " + env_id + ": lower the amplitudes or lighten its hidden physics");
+    }
   }
   writer.close();
 }

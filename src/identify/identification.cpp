@@ -163,6 +163,35 @@ void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettin
     throw IdentificationError("identify: NLopt failed (" + std::to_string(status) + ")");
 }
 
+/// Points of the range of each parameter that scan_axes tries.
+constexpr int kAxisScanPoints = 8;
+
+/// A parameter whose effect shows only in part of the log (the floor's friction, in the
+/// replays where a tire slips) leaves the objective flat over much of its range, and the
+/// continuous fit stops wherever it entered the flat. So each continuous parameter in turn
+/// is scanned over its whole range with the others at the fit, on a quarter of the replays;
+/// a point that predicts better than the fit becomes the fit's new start. Returns whether
+/// one did.
+bool scan_axes(Fit& fit, std::vector<double>& x) {
+  double best = fit.rmse(x, nullptr, kCoarseStride);
+  std::vector<double> best_x = x;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const ParameterRequest& range = fit.continuous[i];
+    std::vector<double> candidate = x;
+    for (int k = 0; k < kAxisScanPoints; ++k) {
+      candidate[i] = range.low + (range.high - range.low) * (k + 0.5) / kAxisScanPoints;
+      const double cost = fit.rmse(candidate, nullptr, kCoarseStride);
+      if (cost < best) {
+        best = cost;
+        best_x = candidate;
+      }
+    }
+  }
+  const bool moved = best_x != x;
+  x = best_x;
+  return moved;
+}
+
 /// Uncertainties from the errors' Jacobian (forward differences), or why a parameter is not
 /// identifiable.
 void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
@@ -221,7 +250,8 @@ void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
 }
 
 /// The fit's strategy: the actuation's start (a coarse grid of delay and lag, or the delay
-/// scanned), the continuous fit, then the delay again (along the lag's ridge when both are
+/// scanned), the continuous fit, each parameter scanned over its range from there (and the
+/// fit again from a better point), then the delay again (along the lag's ridge when both are
 /// fitted) and the continuous fit again if it moved. Returns why the delay is not
 /// identifiable, or "".
 std::string run_fit(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
@@ -233,6 +263,7 @@ std::string run_fit(Fit& fit, std::vector<double>& x, const IdentificationSettin
   }
   if (!x.empty()) {
     fit_continuous(fit, x, settings);
+    if (scan_axes(fit, x)) fit_continuous(fit, x, settings);
     if (fit.delay != nullptr && fit.lag_index() >= 0) {
       if (scan_delay_along_lag(fit, x)) fit_continuous(fit, x, settings);
       delay_reason = scan_delay(fit, x).second;  // and whether it stands out
@@ -277,6 +308,7 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   }
   IdentificationResult result;
   result.windows = replay.num_windows();
+  result.windows_down = replay.num_windows_down();
   result.horizon = settings.replay.horizon;
   const ParameterValues measured_values = std::exchange(fit.measured, {});
   result.rmse_before = fit.rmse(x);  // the nominal robot
@@ -319,6 +351,7 @@ std::string identification_json(const IdentificationResult& result) {
   json["rmse_after"] = result.rmse_after;
   json["seconds"] = result.seconds;
   json["evaluations"] = result.evaluations;
+  json["windows_down"] = result.windows_down;
   return json.dump();
 }
 

@@ -39,12 +39,13 @@ struct FittedParameter {
 
 struct IdentificationResult {
   std::vector<FittedParameter> parameters;
-  double rmse_before = 0.0;  ///< With the nominal values (normalised errors, no unit).
-  double rmse_after = 0.0;   ///< With the fitted ones.
-  double seconds = 0.0;      ///< Wall time of the fit [s].
-  int evaluations = 0;       ///< Replays of the whole log.
-  std::size_t windows = 0;   ///< Replays per evaluation.
-  double horizon = 0.0;      ///< Of each replay [s].
+  double rmse_before = 0.0;      ///< With the nominal values (normalised errors, no unit).
+  double rmse_after = 0.0;       ///< With the fitted ones.
+  double seconds = 0.0;          ///< Wall time of the fit [s].
+  int evaluations = 0;           ///< Replays of the whole log.
+  std::size_t windows = 0;       ///< Replays per evaluation.
+  std::size_t windows_down = 0;  ///< Replays left out: the robot was down in them.
+  double horizon = 0.0;          ///< Of each replay [s].
 };
 
 /// Fits the requested parameters: the delay (whole steps) by scanning its range, the others

@@ -10,6 +10,8 @@
 #include "base/number_text.hpp"
 #include "envs/kinds/servos_env.hpp"
 #include "envs/registry/env_factory.hpp"
+#include "envs/tasks/balance_termination.hpp"
+#include "envs/tasks/velocity_task.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
 #include "identify/measured_reset_state.hpp"
 #include "sim/servo_command_fields.hpp"
@@ -60,20 +62,36 @@ std::size_t decimation(const RobotLog& log, double timestep, const std::string& 
   return static_cast<std::size_t>(stride);
 }
 
-/// Every `spacing`-th sample from `first` that leaves a whole replay of `horizon` steps in
-/// the log's `num_samples`, at most `max_windows` of them spread evenly over the log.
-std::vector<std::size_t> replay_starts(std::size_t first, std::size_t num_samples,
-                                       std::size_t horizon, std::size_t spacing,
-                                       std::size_t max_windows) {
+/// A base tilted beyond it has fallen [rad] (the balance tasks' fall_pitch): the tires are
+/// off the floor, and replays from the no-slip state would fit a lying robot.
+constexpr double kFallenTilt = BalanceTermination{}.fall_pitch;
+
+/// The replays of a log.
+struct ReplayStarts {
   std::vector<std::size_t> starts;
-  for (std::size_t start = first; start + horizon < num_samples; start += spacing) {
-    starts.push_back(start);
+  std::size_t down = 0;  ///< Replays left out: the robot was down in them.
+};
+
+/// Every `spacing`-th sample from `first` that leaves a whole replay of `horizon` steps in
+/// the log, and in which the robot is up throughout (`up[i]`: how many of the samples before
+/// i have the robot up; one more entry than samples), at most `max_windows` of them spread
+/// evenly over the log.
+ReplayStarts replay_starts(std::size_t first, const std::vector<std::size_t>& up,
+                           std::size_t horizon, std::size_t spacing, std::size_t max_windows) {
+  ReplayStarts replays;
+  for (std::size_t start = first; start + horizon + 1 < up.size(); start += spacing) {
+    if (up[start + horizon + 1] - up[start] == horizon + 1) {
+      replays.starts.push_back(start);
+    } else {
+      ++replays.down;
+    }
   }
-  if (starts.size() <= max_windows) return starts;
+  if (replays.starts.size() <= max_windows) return replays;
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < max_windows; ++i)
-    kept.push_back(starts[i * starts.size() / max_windows]);
-  return kept;
+    kept.push_back(replays.starts[i * replays.starts.size() / max_windows]);
+  replays.starts = std::move(kept);
+  return replays;
 }
 
 void require_signals(const RobotLog& log) {
@@ -131,8 +149,10 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   const RobotModel& model = find_servos_env(*probe).model();
   timestep_ = probe->timestep();
   const std::size_t stride = decimation(log, timestep_, env_id);
+  std::vector<std::size_t> up{0};  // samples with the robot up before each index
   for (std::size_t i = 0; i < log.cycles.size(); i += stride) {
     const LoggedCycle& cycle = log.cycles[i];
+    up.push_back(up.back() + (VelocityTask::tilt(cycle.observation) <= kFallenTilt ? 1 : 0));
     Sample& sample = samples_.emplace_back();
     sample.state = measured_reset_state(model, cycle.observation);
     Observation turned = cycle.observation;  // the state is linear in the pitch rate
@@ -168,8 +188,14 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
       static_cast<std::size_t>(std::ceil(5.0 * std::max(max_lag, fixed_lag_) / timestep_));
   const std::size_t first =
       static_cast<std::size_t>(std::max(max_delay_steps, fixed_delay_)) + lag_warmup_;
-  window_starts_ = replay_starts(first, samples_.size(), static_cast<std::size_t>(horizon_steps_),
-                                 spacing, settings.max_windows);
+  ReplayStarts replays = replay_starts(first, up, static_cast<std::size_t>(horizon_steps_), spacing,
+                                       settings.max_windows);
+  window_starts_ = std::move(replays.starts);
+  windows_down_ = replays.down;
+  if (window_starts_.empty() && windows_down_ > 0) {
+    throw RobotLogError(log.format + " " + log.name + ": the robot is down (its base tilted " +
+                        "beyond 1 rad) in every replay: nothing to identify a standing robot from");
+  }
   if (window_starts_.empty()) {
     throw RobotLogError(log.format + " " + log.name + ": " + shortest_text(log.duration()) +
                         " s is too short for one replay of " + shortest_text(settings.horizon) +

@@ -52,7 +52,8 @@ class LogReplay {
   /// @throws RobotLogError when the log lacks a signal replay needs (servo commands, servo
   ///         measurements, the pitch rate: a record file of a pendulum or velocity task), is
   ///         irregular, or its period does not divide the environment's step (wrong
-  ///         frequency), or is too short for one replay.
+  ///         frequency), or is too short for one replay, or the robot is down in every
+  ///         replay. Replays where the robot is down are left out (num_windows_down).
   /// @throws std::invalid_argument on an unknown id or a bad option.
   LogReplay(const std::string& env_id, const EnvOptions& options, const RobotLog& log,
             const ReplaySettings& settings, int max_delay_steps, double max_lag);
@@ -71,6 +72,9 @@ class LogReplay {
   std::pair<double, double> pitch_rate_bias() const;
 
   std::size_t num_windows() const { return window_starts_.size(); }
+  /// Replays left out because the robot was down (its base tilted beyond 1 rad) in them: a
+  /// robot's log may hold a fall, and a lying robot is not the one to identify.
+  std::size_t num_windows_down() const { return windows_down_; }
   /// The errors of one replay in `residuals`, which lists replay after replay.
   std::size_t residuals_per_window() const {
     return static_cast<std::size_t>(horizon_steps_) * kNumReplaySignals;
@@ -109,6 +113,7 @@ class LogReplay {
   std::vector<Sample> samples_;
   std::array<double, kNumReplaySignals> scales_{};
   std::vector<std::size_t> window_starts_;
+  std::size_t windows_down_ = 0;
   std::size_t lag_warmup_ = 0;
 };
 

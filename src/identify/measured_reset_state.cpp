@@ -8,13 +8,6 @@ namespace upkie_rl {
 
 namespace {
 
-/// The base orientation without its heading (yaw about the world's z axis).
-Eigen::Matrix3d without_yaw(const Eigen::Matrix3d& rotation_base_to_world) {
-  const double yaw = std::atan2(rotation_base_to_world(1, 0), rotation_base_to_world(0, 0));
-  return Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-         rotation_base_to_world;
-}
-
 /// Link poses in the base frame at the measured joint angles.
 std::vector<Eigen::Isometry3d> link_poses(const RobotModel& model, const Observation& observation) {
   std::vector<int> servo_of_joint(model.joints().size(), -1);
@@ -75,8 +68,7 @@ TireContact tire_contact(const RobotModel& model, const std::vector<Eigen::Isome
 }  // namespace
 
 ResetState measured_reset_state(const RobotModel& model, const Observation& observation) {
-  const Eigen::Matrix3d orientation =
-      without_yaw(observation.base_orientation.rotation_base_to_world);
+  const Eigen::Matrix3d& orientation = observation.base_orientation.rotation_base_to_world;
   const std::vector<Eigen::Isometry3d> poses = link_poses(model, observation);
   const Eigen::Vector3d angular_velocity_world =
       orientation * observation.base_orientation.angular_velocity;

