@@ -153,6 +153,27 @@ TEST_F(SpineBackendTest, WithoutFreshObservationsActionsApplyAPeriodLate) {
   EXPECT_GT(mean_observation_age_at_action(backend, *simulation_, [this] { stop_spine(); }), 0.012);
 }
 
+// On a spine that steps once per request, the requests a paced agent sends can be counted:
+// a step on time sends its action twice (the second reply is the tick's observation), a
+// step already late at its tick once (its own reply is as fresh, and a second spine cycle
+// would only make the loop later).
+TEST_F(SpineBackendTest, LateLoopSkipsTheRepeatedRequest) {
+  start_spine(false);
+  SpineBackendConfig config = backend_config(true);  // paced at 200 Hz
+  SpineBackend backend(config);
+  backend.reset(ResetState{});
+  ServoAction action;
+  for (ServoCommand& command : action) command.maximum_torque = 1.0;
+  constexpr int kSteps = 10;
+  for (int i = 0; i < kSteps; ++i) {
+    backend.step(action);
+    std::this_thread::sleep_for(std::chrono::milliseconds(8));  // longer than the 5 ms period
+  }
+  stop_spine();
+  // The first step is on time (its tick is a period after it left), the nine others late.
+  EXPECT_EQ(simulation_->actions.size(), 2u + (kSteps - 1));
+}
+
 TEST_F(SpineBackendTest, ActionBeforeStartIsAnInvalidRequest) {
   start_spine(false);
   SpineBackend backend(backend_config(false));
