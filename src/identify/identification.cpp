@@ -216,8 +216,9 @@ void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
     if (change < kMinimumSensitivity * std::max(r0.norm(), 1e-12) * 100.0 / std::sqrt(double(m))) {
       fitted[i].identifiable = false;
       fitted[i].reason =
-          "changing it over its whole range changes the prediction by under 0.1 %: "
-          "the log does not excite it";
+          "at the fitted value its slope, carried over its whole range, changes the "
+          "prediction by under 0.1 %: the log does not excite it there (an action_lag "
+          "under one step of the environment is no lag at all)";
     }
   }
   // The errors within one replay are strongly correlated (one wrong parameter shifts a whole
