@@ -35,6 +35,7 @@ struct GoalSettings {
                                      "floor_friction=0.1:1.5", "action_delay=0:4",
                                      "action_lag=0:0.1"};
   double window_spacing = 0.2;
+  std::size_t max_windows = ReplaySettings{}.max_windows;
   int max_evaluations = 120;
   ExcitationSettings excitation;
   bool check_truth = false;
@@ -63,6 +64,7 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
   settings.options = parse_env_options(goals.known);
   settings.parameters = parse_parameter_requests(goals.params);
   settings.replay.window_spacing = goals.window_spacing;
+  settings.replay.max_windows = goals.max_windows;
   settings.max_evaluations = goals.max_evaluations;
   const IdentificationResult result = identify(log, settings);
   if (goals.check_truth) {  // the objective at the hidden values, beside the fit's
@@ -121,6 +123,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--param", goals.params, "Parameters fitted")->capture_default_str();
   app.add_option("--window-spacing", goals.window_spacing, "Between replays [s]")
+      ->capture_default_str();
+  app.add_option("--max-windows", goals.max_windows, "Replays per evaluation at most")
       ->capture_default_str();
   app.add_option("--max-evaluations", goals.max_evaluations, "Per continuous fit")
       ->capture_default_str();
