@@ -16,6 +16,7 @@
 #include "envs/core/env_options.hpp"
 #include "envs/records/robot_log.hpp"
 #include "identify/identification.hpp"
+#include "identify/measured_reset_state.hpp"
 
 namespace upkie_rl::apps {
 namespace {
@@ -39,8 +40,8 @@ void print_result(const IdentificationResult& result, const RobotLog& log) {
               log.name.c_str(), log.cycles.size(), log.duration(), 1.0 / log.period(),
               result.windows, result.horizon, result.evaluations);
   if (result.windows_down > 0) {
-    std::printf("  %zu replays left out: the robot was down (tilted beyond 1 rad) in them\n",
-                result.windows_down);
+    std::printf("  %zu replays left out: the robot was down (tilted beyond %g rad) in them\n",
+                result.windows_down, kFallenTilt);
   }
   for (const FittedParameter& parameter : result.parameters) {
     const std::string unit = parameter.unit.empty() ? "" : " " + parameter.unit;

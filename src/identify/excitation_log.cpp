@@ -12,8 +12,7 @@
 #include "envs/controllers/velocity_balancer.hpp"
 #include "envs/kinds/ground_velocity_commander.hpp"
 #include "envs/registry/env_factory.hpp"
-#include "envs/tasks/balance_termination.hpp"
-#include "envs/tasks/velocity_task.hpp"
+#include "identify/measured_reset_state.hpp"
 #include "sim/servo_command_fields.hpp"
 #include "spine/spine_log_writer.hpp"
 
@@ -23,8 +22,6 @@ namespace {
 
 /// The agent period the velocity task's filter gains are designed for [s].
 constexpr double kVelocityTaskTimestep = 0.02;
-/// A base tilted beyond it has fallen [rad] (the balance tasks' fall_pitch).
-constexpr double kFallTilt = BalanceTermination{}.fall_pitch;
 /// Balance before the log starts [s]: the simulators release the robot above the floor, and
 /// a robot's log starts with it standing on its wheels.
 constexpr double kSettleTime = 0.5;
@@ -74,9 +71,9 @@ void write_excitation_log(const std::string& env_id, const EnvOptions& options,
   env->reset(settings.seed, observation);
   const Observation* full = env->full_observation();
   const std::shared_ptr<const RobotModel> model = RobotModel::default_model();
-  GroundVelocityCommander commander(*model, env->timestep());
-  commander.reset(*full);
   const double timestep = env->timestep();
+  GroundVelocityCommander commander(*model, timestep);
+  commander.reset(*full);
   ForwardBalanceLaw balance(
       settings.balance, timestep,
       filter_gain_at_rate(VelocityBalancer::kVelocityFilterGain, kVelocityTaskTimestep, timestep),
@@ -108,7 +105,7 @@ void write_excitation_log(const std::string& env_id, const EnvOptions& options,
     if (logged) writer.write(*full, sent);
     env->step(flat, observation);
     full = env->full_observation();
-    if (VelocityTask::tilt(*full) > kFallTilt) {
+    if (robot_is_down(*full)) {
       throw Error("write_excitation_log: the simulated robot fell at " + shortest_text(full->time) +
                   " s of " + env_id + ": lower the amplitudes or lighten its hidden physics");
     }

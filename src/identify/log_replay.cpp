@@ -10,8 +10,6 @@
 #include "base/number_text.hpp"
 #include "envs/kinds/servos_env.hpp"
 #include "envs/registry/env_factory.hpp"
-#include "envs/tasks/balance_termination.hpp"
-#include "envs/tasks/velocity_task.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
 #include "identify/measured_reset_state.hpp"
 #include "sim/servo_command_fields.hpp"
@@ -61,10 +59,6 @@ std::size_t decimation(const RobotLog& log, double timestep, const std::string& 
   }
   return static_cast<std::size_t>(stride);
 }
-
-/// A base tilted beyond it has fallen [rad] (the balance tasks' fall_pitch): the tires are
-/// off the floor, and replays from the no-slip state would fit a lying robot.
-constexpr double kFallenTilt = BalanceTermination{}.fall_pitch;
 
 /// The replays of a log.
 struct ReplayStarts {
@@ -152,7 +146,7 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   std::vector<std::size_t> up{0};  // samples with the robot up before each index
   for (std::size_t i = 0; i < log.cycles.size(); i += stride) {
     const LoggedCycle& cycle = log.cycles[i];
-    up.push_back(up.back() + (VelocityTask::tilt(cycle.observation) <= kFallenTilt ? 1 : 0));
+    up.push_back(up.back() + (robot_is_down(cycle.observation) ? 0 : 1));
     Sample& sample = samples_.emplace_back();
     sample.state = measured_reset_state(model, cycle.observation);
     Observation turned = cycle.observation;  // the state is linear in the pitch rate
@@ -194,7 +188,8 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   windows_down_ = replays.down;
   if (window_starts_.empty() && windows_down_ > 0) {
     throw RobotLogError(log.format + " " + log.name + ": the robot is down (its base tilted " +
-                        "beyond 1 rad) in every replay: nothing to identify a standing robot from");
+                        "beyond " + shortest_text(kFallenTilt) +
+                        " rad) in every replay: nothing to identify a standing robot from");
   }
   if (window_starts_.empty()) {
     throw RobotLogError(log.format + " " + log.name + ": " + shortest_text(log.duration()) +
