@@ -184,6 +184,28 @@ TEST(VelocityReward, HeightErrorPenaltyIsTheAbsoluteErrorWithAHeightCommandOnly)
   EXPECT_EQ(unweighted.terms()[VelocityReward::kHeightError], 0.0);
 }
 
+TEST(VelocityReward, ForwardErrorPenaltyIsTheSquaredErrorCappedAtOneMetrePerSecond) {
+  VelocityRewardWeights weights;
+  weights.w_forward_velocity_error = 2.0;
+  VelocityReward reward(weights);
+  VelocityRewardInputs inputs;
+  inputs.command.forward_velocity = 0.5;
+  inputs.velocity.forward_velocity = 0.2;  // 0.3 m/s behind the command
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kForwardVelocityError], -2.0 * 0.09, 1e-12);
+  inputs.velocity.forward_velocity = 0.8;  // as far ahead
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kForwardVelocityError], -2.0 * 0.09, 1e-12);
+  // Capped: a robot 3 m/s off costs what one 1 m/s off costs.
+  inputs.velocity.forward_velocity = -2.5;
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kForwardVelocityError], -2.0, 1e-12);
+  // Off by default.
+  VelocityReward unweighted;
+  unweighted(inputs);
+  EXPECT_EQ(unweighted.terms()[VelocityReward::kForwardVelocityError], 0.0);
+}
+
 /// An observation of a base rotated by `rotation`, moving at `velocity` in the world.
 Observation base_state(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& velocity,
                        const Eigen::Vector3d& angular_velocity_in_base) {

@@ -1,6 +1,8 @@
 #include "envs/tasks/velocity_reward.hpp"
 
+#include <algorithm>
 #include <cmath>
+
 #include "envs/core/shared_options.hpp"
 
 namespace upkie_rl {
@@ -43,6 +45,9 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
                              ? weights_.w_track_height * kernel(height_error, weights_.height_sigma)
                              : 0.0;
   terms_[kHeightError] = -weights_.w_height_error * std::abs(height_error);
+  const double capped_forward_error = std::min(std::abs(forward_error), kForwardErrorCap);
+  terms_[kForwardVelocityError] =
+      -weights_.w_forward_velocity_error * capped_forward_error * capped_forward_error;
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;
@@ -72,6 +77,8 @@ void VelocityRewardWeights::declare_options(OptionTable& table) {
                  "penalty weight of the legs' squared difference from their mirror image");
   table.add_real("w_height_error", &w_height_error, 0.0, kOptionHuge,
                  "penalty weight of the absolute base height error [1/m] (with height_command)");
+  table.add_real("w_forward_velocity_error", &w_forward_velocity_error, 0.0, kOptionHuge,
+                 "penalty weight of the squared forward velocity error [s^2/m^2], capped at 1 m/s");
 }
 
 }  // namespace upkie_rl
