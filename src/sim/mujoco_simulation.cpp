@@ -71,8 +71,12 @@ void set_body_mass_properties(mjModel* model, int body, const MassProperties& pr
   }
 }
 
+/// How far an episode without floor bumps sinks them under the floor [m]: out of the
+/// robot's reach (geoms of the world body, the floor included, never collide together).
+constexpr double kBumpSinkDepth = 10.0;
+
 /// Writes `variation` into `varied`, a copy of `nominal`: masses and inertias scaled, the
-/// payload on the base, the tires' friction, and `gravity`.
+/// payload on the base, the tires' friction, `gravity` and the floor's bumps.
 void vary_model(mjModel* varied, const mjModel* nominal, const MujocoRobotIndex& index,
                 const PhysicsVariation& variation, const Eigen::Vector3d& gravity) {
   const auto parent_of = [nominal, &index](int body) {
@@ -102,6 +106,12 @@ void vary_model(mjModel* varied, const mjModel* nominal, const MujocoRobotIndex&
         variation.floor_friction_scale * nominal->geom_friction[3 * tire];
   }
   for (int i = 0; i < 3; ++i) varied->opt.gravity[i] = gravity[i];
+  // An episode without the bumps sinks them under the floor, out of reach and out of view.
+  const double bump_sink = variation.floor_bumps ? 0.0 : kBumpSinkDepth;
+  for (int geom = index.first_bump_geom; geom < index.first_bump_geom + index.num_bump_geoms;
+       ++geom) {
+    varied->geom_pos[3 * geom + 2] = nominal->geom_pos[3 * geom + 2] - bump_sink;
+  }
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ bool PhysicsVariation::changes_model() const {
   for (const double scale : mass_scale) {
     if (scale != 1.0) return true;
   }
-  return floor_friction_scale != 1.0 || tilts_floor() || has_payload();
+  return floor_friction_scale != 1.0 || tilts_floor() || has_payload() || !floor_bumps;
 }
 
 void PhysicsVariation::validate() const {

@@ -62,6 +62,10 @@ struct PhysicsVariation {
   /// forward, y left, z up) [m].
   Eigen::Vector3d payload_offset = Eigen::Vector3d::Zero();
   ImuUncertainty imu;
+  /// Whether the world's floor bumps (PhysicsConfig::bumps) lie on the floor this episode;
+  /// without them the floor is flat. Why: a policy trained for cable covers must also meet
+  /// flat floors, and the bumps are geometry built once per simulation.
+  bool floor_bumps = true;
   /// Seeds the noise drawn during the episode (torques, IMU).
   std::uint64_t noise_seed = 0;
 
@@ -70,7 +74,8 @@ struct PhysicsVariation {
   /// Whether a payload is attached to the base.
   bool has_payload() const { return payload_mass != 0.0; }
 
-  /// Whether the masses, the floor friction or the gravity differ from the nominal model.
+  /// Whether the masses, the floor friction, the gravity or the floor's bumps differ from
+  /// the nominal model.
   bool changes_model() const;
 
   /// @throws std::invalid_argument naming the first value out of its domain (scales must be

@@ -375,6 +375,41 @@ TEST(Perturbations, RandomisedWorldsStayInTheirBoundsAndLeaveTheOtherDrawsAlone)
   }
 }
 
+TEST(Perturbations, BumpShareLaysTheBumpsInThatShareOfEpisodesAndLeavesTheOtherDrawsAlone) {
+  PerturbationSettings always;
+  always.inertia_variation = 0.1;
+  always.slope_variation = 10.0;
+  PerturbationSettings quarter = always;
+  quarter.bump_share = 0.25;
+  EXPECT_TRUE(quarter.any());
+  int with_bumps = 0;
+  int with_bumps_at_curriculum_start = 0;
+  for (std::uint64_t seed = 0; seed < 400; ++seed) {
+    std::mt19937_64 plain_draws(seed);
+    std::mt19937_64 shared_draws(seed);
+    const PhysicsVariation a = always.sample(plain_draws, 1.0);
+    const PhysicsVariation b = quarter.sample(shared_draws, 1.0);
+    EXPECT_TRUE(a.floor_bumps);
+    // Drawn last, in the randomised world's stream: every other draw is the same.
+    EXPECT_EQ(a.mass_scale, b.mass_scale);
+    EXPECT_EQ(a.slope_pitch, b.slope_pitch);
+    EXPECT_EQ(plain_draws(), shared_draws());
+    with_bumps += b.floor_bumps ? 1 : 0;
+    std::mt19937_64 start_draws(seed);
+    with_bumps_at_curriculum_start += quarter.sample(start_draws, 0.0).floor_bumps ? 1 : 0;
+  }
+  // 100 of 400 expected (the binomial's standard deviation is 8.7), at any curriculum scale.
+  EXPECT_GT(with_bumps, 70);
+  EXPECT_LT(with_bumps, 130);
+  EXPECT_EQ(with_bumps_at_curriculum_start, with_bumps);
+  PerturbationSettings never;
+  never.bump_share = 0.0;
+  std::mt19937_64 generator(1);
+  const PhysicsVariation flat = never.sample(generator, 1.0);
+  EXPECT_FALSE(flat.floor_bumps);
+  EXPECT_TRUE(flat.changes_model());
+}
+
 TEST(Perturbations, OnlyPhysicsBackendsOfferPhysicalOnes) {
   EXPECT_THROW(make_env("Upkie-Mock-Pendulum", {{"push_force", "10"}}), std::invalid_argument);
   EXPECT_THROW(make_env("Upkie-Mock-Pendulum", {{"slope_pitch", "5"}}), std::invalid_argument);

@@ -1,6 +1,7 @@
 /// Bumps across the floor (PhysicsConfig::bumps), on Bullet and on MuJoCo: a tire on a bump
 /// is lifted by its height, ahead of and behind the start, up to the field's end; without
-/// bumps nothing changes, bit for bit; bad settings are refused by name.
+/// bumps nothing changes, bit for bit; an episode's variation can leave them out; bad
+/// settings are refused by name.
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -97,6 +98,21 @@ TEST_P(FloorBumpsOnEngine, ATireOnABumpIsLiftedByItsHeight) {
   for (const double x : {0.5, -2.5, 21.0}) {
     EXPECT_NEAR(landed_tire_height(*bumpy, x, contact) - on_floor, 0.0, 1e-4) << "x " << x;
   }
+}
+
+TEST_P(FloorBumpsOnEngine, AnEpisodeWithoutTheBumpsHasAFlatFloorAndTheNextHasThemAgain) {
+  auto bumpy = make(two_centimetre_bumps());
+  bool contact = false;
+  const double on_floor = landed_tire_height(*bumpy, 0.0, contact);
+  PhysicsVariation without_bumps;
+  without_bumps.floor_bumps = false;
+  bumpy->set_variation(without_bumps);
+  for (const double x : {1.0, -1.0, 20.0}) {
+    EXPECT_NEAR(landed_tire_height(*bumpy, x, contact) - on_floor, 0.0, 1e-4) << "x " << x;
+    EXPECT_TRUE(contact) << "x " << x;
+  }
+  bumpy->set_variation(PhysicsVariation{});
+  EXPECT_NEAR(landed_tire_height(*bumpy, 1.0, contact) - on_floor, 0.02, 1e-3);
 }
 
 TEST_P(FloorBumpsOnEngine, HeightZeroIsTheFlatFloorBitForBit) {

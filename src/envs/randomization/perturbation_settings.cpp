@@ -26,7 +26,7 @@ bool PerturbationSettings::any() const {
          floor_friction_variation != 0.0 || slope_pitch != 0.0 || slope_roll != 0.0 ||
          payload_mass != 0.0 || torque_limit_scale != 1.0 || slope_variation != 0.0 ||
          payload_mass_variation != 0.0 || payload_offset_variation != 0.0 ||
-         torque_limit_variation != 0.0 || push.enabled();
+         torque_limit_variation != 0.0 || bump_share != 1.0 || push.enabled();
 }
 
 PhysicsVariation PerturbationSettings::sample(std::mt19937_64& generator, double scale) const {
@@ -75,6 +75,8 @@ void PerturbationSettings::add_randomized_world(PhysicsVariation& variation, dou
   variation.payload_offset.x() += uniform_symmetric(generator, scale * payload_offset_variation);
   variation.payload_offset.y() += uniform_symmetric(generator, scale * payload_offset_variation);
   variation.torque_limit_scale *= 1.0 - scale * torque_limit_variation * uniform_unit(generator);
+  // Drawn last, so that the draws above are the same with or without it.
+  variation.floor_bumps = uniform_unit(generator) < bump_share;
   // Clamped to the domains PhysicsVariation::validate checks (a fixed value plus its
   // variation may reach past them).
   const double max_slope = degrees_to_radians(kMaxSlopeDegrees);
@@ -146,6 +148,9 @@ void PerturbationSettings::declare_options(OptionTable& table) {
                  "payload forward and left offsets each plus U(-it, it), drawn at reset [m]");
   table.add_real("torque_limit_variation", &torque_limit_variation, 0.0, 0.9,
                  "servo torque limits times 1 - U(0, it), drawn at reset");
+  table.add_real("bump_share", &bump_share, 0.0, 1.0,
+                 "share of episodes whose floor has the bumps (bump_height), drawn at reset; "
+                 "the others are flat");
   table.add_real("push_force", &push.force, 0.0, kOptionHuge,
                  "largest push on the base [N], 0 for no pushes");
   table.add_real("push_force_min", &push.force_min, 0.0, kOptionHuge,

@@ -77,6 +77,10 @@ struct PerturbationSettings {
   double payload_offset_variation = 0.0;
   /// Randomised motor weakness: torque limits times 1 - U(0, it) at reset.
   double torque_limit_variation = 0.0;
+  /// Share of the episodes whose floor has the world's bumps (bump_height), drawn at reset;
+  /// the others have a flat floor. Not scaled by the curriculum. Why: a policy trained on
+  /// cable covers in a share of its episodes, without a second kind of environment.
+  double bump_share = 1.0;
   PushSettings push;
 
   /// Whether any setting differs from the nominal robot and world.
@@ -86,7 +90,7 @@ struct PerturbationSettings {
   /// the same number of draws, whatever the settings.
   PhysicsVariation sample(std::mt19937_64& generator, double scale) const;
 
-  /// Adds the randomised slope, payload and motor weakness to `variation`, drawn from a
+  /// Adds the randomised slope, payload, motor weakness and floor bumps to `variation`, drawn from a
   /// stream derived from its noise seed, every bound multiplied by `scale`.
   void add_randomized_world(PhysicsVariation& variation, double scale) const;
 
