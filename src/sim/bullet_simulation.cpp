@@ -351,7 +351,8 @@ const Observation& BulletSimulation::reset(const ResetState& state) {
   world_ = std::make_unique<BulletWorld>();
   configure_solver(world_->world, start_floor_slope(state));
   if (config_.floor) add_ground(*world_, variation().floor_friction_scale);
-  if (config_.bumps.enabled() && variation().floor_bumps) add_bumps(*world_, config_.bumps, variation().floor_friction_scale);
+  if (config_.bumps.enabled() && variation().floor_bumps)
+    add_bumps(*world_, config_.bumps, variation().floor_friction_scale);
   add_robot(*world_, tree_, *model_, variation());
 
   btMultiBody& multibody = *world_->multibody;

@@ -90,8 +90,8 @@ struct PerturbationSettings {
   /// the same number of draws, whatever the settings.
   PhysicsVariation sample(std::mt19937_64& generator, double scale) const;
 
-  /// Adds the randomised slope, payload, motor weakness and floor bumps to `variation`, drawn from a
-  /// stream derived from its noise seed, every bound multiplied by `scale`.
+  /// Adds the randomised slope, payload, motor weakness and floor bumps to `variation`, drawn from
+  /// a stream derived from its noise seed, every bound multiplied by `scale`.
   void add_randomized_world(PhysicsVariation& variation, double scale) const;
 
   /// Declares the options (names as the fields, pushes as push_*) in `table`, and
