@@ -123,7 +123,7 @@ train-robust:
 	    --controller lqr --model robust=$$model --grid push=0:40:5,mass=0.7:1.3:0.1 \
 	    --episodes 10 --output $$run/robustness
 
-# Drive anywhere (docs/environments.md, "Velocity"): trains configs/velocity.yaml on MuJoCo,
+# Drive anywhere (docs/environments.md, "Velocity"): trains configs/velocity.yaml (MuJoCo, a quarter on Bullet),
 # then compares the policy with the classical balancer (lqr) on 20 episodes of 20 s with
 # random commands and pushes up to 20 N on MuJoCo, the policy on Bullet (sim-to-sim), and
 # draws commanded against measured velocities, with a video and a still of it, then runs the

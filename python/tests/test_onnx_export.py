@@ -65,7 +65,8 @@ def velocity_checkpoint(tmp_path_factory):
     subprocess.run(
         [str(cli_path()), "train", "--config", str(CONFIGS / "velocity.yaml"), "--quiet",
          "--set", "ppo.total_timesteps=1024", "--set", "ppo.n_steps=1024",
-         "--set", "ppo.batch_size=512", "--set", "env.num_envs=2", "--set", "env.threads=1",
+         "--set", "ppo.batch_size=512", "--set", "env.num_envs=2", "--set", "env.mix_envs=1",
+         "--set", "env.threads=1",
          "--run-dir", str(run_dir)], check=True, capture_output=True)
     (checkpoint,) = run_dir.glob("model_*.ckpt")
     return checkpoint
@@ -89,7 +90,8 @@ def test_test_data_has_the_pendulum_and_servos_policies():
 def test_the_velocity_policy_is_one(velocity_checkpoint):
     policy = upkie_rl.load_policy(velocity_checkpoint)
     assert policy.env_id == "Upkie-MuJoCo-Velocity"
-    assert policy.observation_space.shape == (20,) and policy.action_space.shape == (6,)
+    # configs/velocity.yaml's observation_history 3: the last three observations of 20.
+    assert policy.observation_space.shape == (60,) and policy.action_space.shape == (6,)
 
 
 def test_one_float_input_with_free_batch_and_one_output(exported):

@@ -44,8 +44,9 @@ std::string train_tiny_velocity_policy(const std::string& tag,
   const std::string configs = std::string(UPKIE_RL_TEST_DATA_DIR) + "/../../configs/";
   std::vector<std::string> args = {UPKIE_RL_CLI_PATH, "train", "--config",
                                    configs + "velocity.yaml"};
-  for (const std::string& setting : {"ppo.total_timesteps=1024", "ppo.n_steps=1024",
-                                     "ppo.batch_size=512", "env.num_envs=2", "env.threads=1"}) {
+  for (const std::string& setting :
+       {"ppo.total_timesteps=1024", "ppo.n_steps=1024", "ppo.batch_size=512", "env.num_envs=2",
+        "env.mix_envs=1", "env.threads=1"}) {
     args.insert(args.end(), {"--set", setting});
   }
   for (const std::string& setting : settings) args.insert(args.end(), {"--set", setting});

@@ -197,11 +197,12 @@ TEST(VelocityCommand, ShortTrainingImprovesTheReturnAndLogsEachTerm) {
   const auto run_dir = temp_file("train");
   std::filesystem::remove_all(run_dir);
   const std::string config = std::string(UPKIE_RL_SOURCE_DIR) + "/configs/velocity.yaml";
-  const auto result = run_cli(
-      "train --quiet --config " + config + " --run-dir " + run_dir.string() +
-      " --set env.num_envs=8 --set env.threads=0 --set ppo.n_steps=2048 --set ppo.batch_size=512"
-      " --set ppo.total_timesteps=81920 --set checkpoint_every=0"
-      " --set env.options.max_episode_steps=200 --set env.options.residual_scale=0.3");
+  const auto result =
+      run_cli("train --quiet --config " + config + " --run-dir " + run_dir.string() +
+              " --set env.num_envs=8 --set env.mix_envs=2 --set env.threads=0 --set "
+              "ppo.n_steps=2048 --set ppo.batch_size=512"
+              " --set ppo.total_timesteps=81920 --set checkpoint_every=0"
+              " --set env.options.max_episode_steps=200 --set env.options.residual_scale=0.3");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const ScalarTable table = read_scalar_csv(run_dir / "progress.csv");
   const std::size_t column = table.index("rollout/ep_rew_mean");
