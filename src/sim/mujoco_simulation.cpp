@@ -3,6 +3,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <stdexcept>
 
 #include "model/robot_model.hpp"
@@ -110,7 +111,8 @@ void vary_model(mjModel* varied, const mjModel* nominal, const MujocoRobotIndex&
   const double bump_sink = variation.floor_bumps ? 0.0 : kBumpSinkDepth;
   for (int geom = index.first_bump_geom; geom < index.first_bump_geom + index.num_bump_geoms;
        ++geom) {
-    varied->geom_pos[3 * geom + 2] = nominal->geom_pos[3 * geom + 2] - bump_sink;
+    const std::ptrdiff_t height = 3 * static_cast<std::ptrdiff_t>(geom) + 2;
+    varied->geom_pos[height] = nominal->geom_pos[height] - bump_sink;
   }
 }
 
