@@ -47,6 +47,15 @@ const FittedParameter& parameter(const IdentificationResult& result, const std::
   throw std::runtime_error("no parameter " + name);
 }
 
+/// The fit of `option` alone over `range` ("LOW:HIGH") on a 10 s MuJoCo log whose hidden
+/// physics set it to `hidden`, with the excitation of `seed`.
+IdentificationResult fit_one_hidden_on_mujoco(const std::string& option, const std::string& hidden,
+                                              const std::string& range, std::uint64_t seed = 0) {
+  constexpr const char* kMujoco = "Upkie-MuJoCo-Servos";
+  const RobotLog log = simulated_log(option + ".mpack", {{option, hidden}}, kMujoco, seed, 10.0);
+  return fit(log, {option + "=" + range}, kMujoco);
+}
+
 TEST(Identification, RecoversMassScaleAndDelayOnBullet) {
   const RobotLog log =
       simulated_log("mass_delay.mpack", {{"mass_scale", "1.3"}, {"action_delay", "2"}});
@@ -59,9 +68,7 @@ TEST(Identification, RecoversMassScaleAndDelayOnBullet) {
 // The floor's friction shows only where a tire slips: 10 s of log (MuJoCo, 7 times faster
 // to replay than Bullet). On 3 s logs of Bullet the fits were 1-20 % off.
 TEST(Identification, RecoversFloorFrictionOnMuJoCo) {
-  const RobotLog log =
-      simulated_log("friction.mpack", {{"floor_friction", "0.6"}}, "Upkie-MuJoCo-Servos", 0, 10.0);
-  const IdentificationResult result = fit(log, {"floor_friction=0.1:1.5"}, "Upkie-MuJoCo-Servos");
+  const IdentificationResult result = fit_one_hidden_on_mujoco("floor_friction", "0.6", "0.1:1.5");
   EXPECT_NEAR(parameter(result, "floor_friction").value, 0.6, 0.06);
   EXPECT_LT(result.rmse_after, result.rmse_before);
 }
@@ -90,10 +97,8 @@ TEST(Identification, RecoversGyroscopeBiasOnBullet) {
 // The wheels' velocity loop shows in the kicks of the excitation: 10 s of log (on 3 s of
 // Bullet the fit barely moved from the nominal gains).
 TEST(Identification, RecoversWheelGainScaleOnMuJoCo) {
-  const RobotLog log = simulated_log("wheel_gain.mpack", {{"wheel_servo_gain_scale", "1.5"}},
-                                     "Upkie-MuJoCo-Servos", 0, 10.0);
   const IdentificationResult result =
-      fit(log, {"wheel_servo_gain_scale=0.5:3"}, "Upkie-MuJoCo-Servos");
+      fit_one_hidden_on_mujoco("wheel_servo_gain_scale", "1.5", "0.5:3");
   EXPECT_NEAR(parameter(result, "wheel_servo_gain_scale").value, 1.5, 0.075);
   EXPECT_LT(result.rmse_after, result.rmse_before);
 }
@@ -101,10 +106,8 @@ TEST(Identification, RecoversWheelGainScaleOnMuJoCo) {
 // The legs are held, and how far they give under the body's weight shows the leg servos'
 // stiffness: measured +0.4 % on seeds 1 and 2.
 TEST(Identification, RecoversLegGainScaleOnMuJoCo) {
-  const RobotLog log = simulated_log("leg_gain.mpack", {{"leg_servo_gain_scale", "0.7"}},
-                                     "Upkie-MuJoCo-Servos", 1, 10.0);
   const IdentificationResult result =
-      fit(log, {"leg_servo_gain_scale=0.3:3"}, "Upkie-MuJoCo-Servos");
+      fit_one_hidden_on_mujoco("leg_servo_gain_scale", "0.7", "0.3:3", 1);
   EXPECT_NEAR(parameter(result, "leg_servo_gain_scale").value, 0.7, 0.035);
   EXPECT_LT(result.rmse_after, 0.5 * result.rmse_before);
 }
