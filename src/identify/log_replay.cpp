@@ -12,7 +12,7 @@
 #include "envs/registry/env_factory.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
 #include "identify/measured_reset_state.hpp"
-#include "sim/servo_command_fields.hpp"
+#include "sim/servo_target_lag.hpp"
 #include "sim/simulation.hpp"
 
 namespace upkie_rl {
@@ -155,12 +155,7 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
         measured_reset_state(model, turned).linear_velocity_base_to_world_in_world -
         sample.state.linear_velocity_base_to_world_in_world;
     sample.signals = replay_signals(cycle.observation);
-    for (std::size_t servo = 0; servo < kNumServos; ++servo) {
-      for (std::size_t field = 0; field < kServoCommandFields.size(); ++field) {
-        sample.command[servo * kServoCommandFields.size() + field] =
-            static_cast<float>(cycle.command[servo].*kServoCommandFields[field].member);
-      }
-    }
+    sample.command = cycle.command;
   }
   // Each signal's standard deviation over the log.
   for (std::size_t k = 0; k < kNumReplaySignals; ++k) {
@@ -240,16 +235,15 @@ LogReplay::Case LogReplay::make_case(const ParameterValues& values) const {
 
 void LogReplay::replay_window(ServosEnv& servos, const Case& replay, std::size_t start,
                               std::span<double> errors) const {
-  std::vector<float> observation(servos.observation_space().size());
-  const double lag = replay.lag;
-  const float alpha = lag > 0.0 ? static_cast<float>(std::min(1.0, timestep_ / lag)) : 1.0f;
-  std::array<float, kNumServos * 6> filtered{};
-  const auto filter = [&](const std::array<float, kNumServos * 6>& target) {
-    for (std::size_t i = 0; i < filtered.size(); ++i) {
-      filtered[i] = std::isnan(target[i]) || std::isnan(filtered[i])
-                        ? target[i]
-                        : filtered[i] + alpha * (target[i] - filtered[i]);
-    }
+  // The environments' actuation law (ActionLag): the delayed command through the filter's
+  // mean over each step.
+  const ServoTargetLag lag = ServoTargetLag::step_mean(replay.lag, timestep_);
+  ServoAction filtered{};
+  ServoAction applied{};
+  const auto actuate = [&](const ServoAction& sent) -> const ServoAction& {
+    if (!lag.any()) return sent;
+    lag.step(sent, filtered, applied);
+    return applied;
   };
   ResetState state = samples_[start].state;  // what the gyroscope measured, less its bias
   state.angular_velocity_base_in_base.y() -= replay.pitch_rate_bias;
@@ -259,16 +253,15 @@ void LogReplay::replay_window(ServosEnv& servos, const Case& replay, std::size_t
   const auto delay = static_cast<std::size_t>(replay.delay);
   const std::size_t warmup = std::min(lag_warmup_, start - delay);
   filtered = samples_[start - delay - warmup].command;
-  for (std::size_t j = start - warmup; j < start; ++j) filter(samples_[j - delay].command);
+  for (std::size_t j = start - warmup; j < start; ++j) actuate(samples_[j - delay].command);
   bool diverged = false;
   for (int step = 0; step < horizon_steps_; ++step) {
     const std::size_t index = start + static_cast<std::size_t>(step);
-    filter(samples_[index - delay].command);
+    const ServoAction& command = actuate(samples_[index - delay].command);
     std::array<double, kNumReplaySignals> predicted{};
     if (!diverged) {
       try {
-        servos.step(filtered, observation);
-        predicted = replay_signals(*servos.full_observation());
+        predicted = replay_signals(servos.step_servos(command));
       } catch (const SimulationDivergedError&) {
         diverged = true;
       }

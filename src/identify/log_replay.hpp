@@ -100,7 +100,7 @@ class LogReplay {
     /// d(state's base linear velocity)/d(measured pitch rate) [m/rad]: removing a gyroscope
     /// bias b from the pitch rate moves the no-slip base velocity by -b times it.
     Eigen::Vector3d velocity_per_pitch_rate = Eigen::Vector3d::Zero();
-    std::array<float, kNumServos * 6> command{};
+    ServoAction command{};  ///< The servo commands sent at this cycle.
     std::array<double, kNumReplaySignals> signals{};
   };
 

@@ -14,15 +14,6 @@ constexpr int kMaximumDelaySteps = 100000;
 /// Largest time constant [s]: a motor that slow could not balance anything.
 constexpr double kMaximumTimeConstant = 10.0;
 
-/// One filter step of `target` towards `sent`; a NaN on either side restarts it at `sent`.
-void follow(double sent, double gain, double& target) {
-  if (std::isnan(sent) || std::isnan(target)) {
-    target = sent;
-    return;
-  }
-  target += gain * (sent - target);
-}
-
 }  // namespace
 
 std::string ServoActionLagSettings::problem() const {
@@ -42,9 +33,7 @@ std::string ServoActionLagSettings::problem() const {
 
 ServoActionLag::ServoActionLag(const ServoActionLagSettings& settings) : settings_(settings) {
   if (const std::string problem = settings.problem(); !problem.empty()) throw SpineError(problem);
-  if (settings.time_constant > 0.0) {
-    filter_gain_ = -std::expm1(-settings.step_duration / settings.time_constant);
-  }
+  lag_ = ServoTargetLag::step_end(settings.time_constant, settings.step_duration);
   queue_.resize(static_cast<std::size_t>(settings.delay_steps));
 }
 
@@ -52,6 +41,7 @@ void ServoActionLag::reset(const ServoAction& initial) {
   std::fill(queue_.begin(), queue_.end(), initial);
   head_ = 0;
   filtered_ = initial;
+  applied_ = initial;
 }
 
 const ServoAction& ServoActionLag::apply(const ServoAction& sent) {
@@ -64,21 +54,9 @@ const ServoAction& ServoActionLag::apply(const ServoAction& sent) {
     head_ = (head_ + 1) % queue_.size();
   }
   // Lag: the targets follow the delayed command; gains and limits are taken as they are.
-  for (std::size_t servo = 0; servo < delayed_.size(); ++servo) {
-    const ServoCommand& command = delayed_[servo];
-    ServoCommand& applied = filtered_[servo];
-    const ServoCommand previous = applied;
-    applied = command;
-    if (filter_gain_ < 1.0) {
-      applied.position = previous.position;
-      applied.velocity = previous.velocity;
-      applied.feedforward_torque = previous.feedforward_torque;
-      follow(command.position, filter_gain_, applied.position);
-      follow(command.velocity, filter_gain_, applied.velocity);
-      follow(command.feedforward_torque, filter_gain_, applied.feedforward_torque);
-    }
-  }
-  return filtered_;
+  if (!lag_.any()) return delayed_;
+  lag_.step(delayed_, filtered_, applied_);
+  return applied_;
 }
 
 }  // namespace upkie_rl

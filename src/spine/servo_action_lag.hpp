@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "sim/servo_command.hpp"
+#include "sim/servo_target_lag.hpp"
 
 namespace upkie_rl {
 
@@ -53,11 +54,12 @@ class ServoActionLag {
 
  private:
   ServoActionLagSettings settings_;
-  double filter_gain_ = 1.0;        ///< 1 - exp(-dt/τ); 1 without lag.
+  ServoTargetLag lag_;              ///< ServoTargetLag::step_end(τ, dt).
   std::vector<ServoAction> queue_;  ///< The last delay_steps commands sent, oldest at head_.
   std::size_t head_ = 0;
   ServoAction delayed_{};   ///< The command leaving the delay this step.
-  ServoAction filtered_{};  ///< The filter's state: the command applied this step.
+  ServoAction filtered_{};  ///< The filter's state.
+  ServoAction applied_{};   ///< The command applied this step: the state's targets.
 };
 
 }  // namespace upkie_rl

@@ -10,10 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "envs/controllers/builtin_controllers.hpp"
+#include "envs/kinds/servos_env.hpp"
 #include "envs/randomization/action_lag.hpp"
 #include "envs/randomization/perturbation_settings.hpp"
 #include "envs/registry/env_factory.hpp"
 #include "envs/registry/registry.hpp"
+#include "envs/wrappers/env_wrapper.hpp"
+#include "sim/servo_command_fields.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -165,34 +169,101 @@ TEST_P(EnginePerturbations, ObservationNoiseStaysInBoundsAndOffTheReward) {
   EXPECT_EQ(result.reward, nominal.rewards[0]);
 }
 
-TEST_P(EnginePerturbations, ActionDelayAppliesEachActionStepsLater) {
-  // A fixed action sequence; with a delay of 3 the env sees 0, 0, 0, a0, a1...
-  const auto sequence = [](const std::vector<float>&, int step) {
-    return 0.3f * std::sin(0.05f * static_cast<float>(step));
+TEST_P(EnginePerturbations, ActionDelayAppliesEachCommandStepsLater) {
+  // Servo commands (the wheels' velocities along a sequence, the rest neutral); with a delay
+  // of 3 the servos apply c0 (the episode's first command, held since before the start),
+  // c0, c0, c0, c1...
+  const auto wheel_velocity = [](int step) {
+    return 3.0f * std::sin(0.05f * static_cast<float>(step + 1));
   };
-  auto delayed = make_env(id(), {{"action_delay", "3"}});
-  const Trace actual = run(*delayed, 1, 60, sequence);
-  auto plain = make_env(id(), {});
-  const Trace expected = run(*plain, 1, 60, [&](const std::vector<float>& o, int step) {
-    return step < 3 ? 0.0f : sequence(o, step - 3);
-  });
-  EXPECT_TRUE(actual == expected);
+  const auto servo_run = [](Env& env, const std::function<float(int)>& velocity) {
+    std::vector<float> observation(env.observation_space().size());
+    std::vector<float> action(env.action_space().size());
+    env.neutral_action(action);
+    env.reset(1, observation);
+    std::vector<std::vector<float>> trace;
+    for (int step = 0; step < 60; ++step) {
+      action[kLeftWheel * kServoCommandFields.size() + 1] = velocity(step);
+      action[kRightWheel * kServoCommandFields.size() + 1] = -velocity(step);
+      env.step(action, observation);
+      trace.push_back(observation);
+    }
+    return trace;
+  };
+  auto delayed = make_env(id("Servos"), {{"action_delay", "3"}});
+  auto plain = make_env(id("Servos"), {});
+  EXPECT_EQ(servo_run(*delayed, wheel_velocity), servo_run(*plain, [&](int step) {
+              return step < 3 ? wheel_velocity(0) : wheel_velocity(step - 3);
+            }));
 }
 
-TEST_P(EnginePerturbations, ActionLagIsTheFirstOrderFilter) {
+TEST_P(EnginePerturbations, ActionLagAppliesTheFiltersMeanOverEachStep) {
+  // The pendulum's action is the ground velocity, which its servos get as wheel velocities
+  // in proportion: the servo-side filter is the same filter on the action.
   const auto sequence = [](const std::vector<float>&, int step) {
     return step < 20 ? 0.5f : -0.2f;
   };
-  auto lagged = make_env(id(), {{"action_lag_min", "0.02"}, {"action_lag_max", "0.02"}});
+  auto lagged = make_env(id(), {{"action_lag_min", "0.01"}, {"action_lag_max", "0.01"}});
   const Trace actual = run(*lagged, 1, 60, sequence);
   auto plain = make_env(id(), {});
-  const float alpha = static_cast<float>(plain->timestep() / 0.02);  // 0.25
-  float filtered = 0.0f;
+  const double dt = plain->timestep();  // 5 ms: the lag is two steps
+  const double state_gain = 1.0 - std::exp(-dt / 0.01);
+  const double applied_gain = 1.0 - (0.01 / dt) * state_gain;
+  double filtered = 0.5;  // the episode's first command
   const Trace expected = run(*plain, 1, 60, [&](const std::vector<float>& o, int step) {
-    filtered = filtered + alpha * (sequence(o, step) - filtered);
-    return filtered;
+    const double gap = sequence(o, step) - filtered;
+    const double applied = filtered + applied_gain * gap;
+    filtered += state_gain * gap;
+    return static_cast<float>(applied);
   });
-  EXPECT_TRUE(actual == expected);
+  ASSERT_EQ(actual.observations.size(), expected.observations.size());
+  double largest = 0.0;
+  for (std::size_t t = 0; t < actual.observations.size(); ++t) {
+    for (std::size_t i = 0; i < actual.observations[t].size(); ++i) {
+      largest = std::max(largest, static_cast<double>(std::abs(actual.observations[t][i] -
+                                                               expected.observations[t][i])));
+    }
+  }
+  EXPECT_LT(largest, 1e-4);  // float rounding of the action on one side only
+  // And it lags: the same run without it differs by far more.
+  const Trace unlagged = run(*plain, 1, 60, sequence);
+  EXPECT_GT(std::abs(unlagged.observations[25][3] - actual.observations[25][3]), 1e-2);
+}
+
+TEST_P(EnginePerturbations, AResidualPolicysBaseControllerPassesTheDelayLikeTheBaseline) {
+  // A zero residual on the base controller is the baseline controller, and the servos'
+  // delay and lag must treat both alike (they lagged the agent's residual only, before).
+  const std::string balancer =
+      "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
+      "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+  const EnvOptions actuation = {
+      {"action_delay", "2"}, {"action_lag_max", "0.03"}, {"action_lag_min", "0.03"}};
+  EnvOptions residual_options = actuation;
+  residual_options.emplace_back("base_controller", balancer);
+  auto residual = make_env(id("Velocity"), residual_options);
+  auto baseline = make_env(id("Velocity"), actuation);
+  std::unique_ptr<Controller> controller = make_builtin_controller(balancer, *baseline);
+  std::vector<float> residual_observation(residual->observation_space().size());
+  std::vector<float> baseline_observation(baseline->observation_space().size());
+  std::vector<float> zero(residual->action_space().size(), 0.0f);
+  std::vector<float> action(baseline->action_space().size(), 0.0f);
+  residual->reset(5, residual_observation);
+  baseline->reset(5, baseline_observation);
+  controller->reset();
+  for (int step = 0; step < 100; ++step) {
+    controller->act(baseline_observation, action);
+    baseline->step(action, baseline_observation);
+    residual->step(zero, residual_observation);
+    ASSERT_EQ(residual->full_observation()->sim_base.position,
+              baseline->full_observation()->sim_base.position)
+        << "step " << step;
+  }
+  // And the delay is felt: without it the robot is elsewhere.
+  auto prompt = make_env(id("Velocity"), {{"base_controller", balancer}});
+  prompt->reset(5, residual_observation);
+  for (int step = 0; step < 100; ++step) prompt->step(zero, residual_observation);
+  EXPECT_NE(prompt->full_observation()->sim_base.position,
+            residual->full_observation()->sim_base.position);
 }
 
 TEST_P(EnginePerturbations, InconsistentSettingsAreRefusedWithTheirNames) {
@@ -442,18 +513,30 @@ TEST(Perturbations, TaskOptionsLeaveTheTrainingsPhysicsStepOut) {
   EXPECT_EQ(task_options("Upkie-MuJoCo-Velocity", trained, "Upkie-Bullet-Velocity"), expected);
 }
 
-TEST(ActionLag, RejectsNonFiniteActionsAtOnceNamingThem) {
-  ActionLagSettings settings;
-  settings.delay_steps = 5;
-  ActionLag env(make_env("Upkie-Mock-Pendulum"), settings);
-  std::vector<float> observation(4);
-  env.reset(0, observation);
-  std::vector<float> action = {std::nanf("")};
+/// Every servo at wheel-like velocity `velocity` and leg-like position `position`.
+ServoAction servo_command(double velocity, double position = 0.0) {
+  ServoAction action{};
+  for (ServoCommand& servo : action) {
+    servo.velocity = velocity;
+    servo.position = position;
+  }
+  return action;
+}
+
+TEST(ActionLag, RefusesANonFiniteCommandWhenSentNotWhenItLeavesTheDelay) {
+  auto env = make_env("Upkie-Mock-Servos", {{"action_delay", "5"}});
+  Env* inner = env.get();
+  while (auto* wrapper = dynamic_cast<EnvWrapper*>(inner)) inner = &wrapper->inner();
+  auto& servos = dynamic_cast<ServosEnv&>(*inner);
+  std::vector<float> observation(env->observation_space().size());
+  env->reset(0, observation);
+  ServoAction command = servo_command(0.0);
+  command[kLeftWheel].velocity = std::nan("");
   try {
-    env.step(action, observation);
-    FAIL() << "a NaN action passed";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("ground_velocity"), std::string::npos);
+    servos.step_servos(command);
+    FAIL() << "a NaN velocity passed";
+  } catch (const InvalidCommandError& error) {
+    EXPECT_NE(std::string(error.what()).find("left_wheel"), std::string::npos);
   }
 }
 
@@ -461,27 +544,62 @@ TEST(ActionLag, DrawsTheDelayPerEpisodeAndActsAsThatFixedDelay) {
   ActionLagSettings settings;
   settings.delay_steps = 1;
   settings.delay_steps_max = 3;
-  ActionLag drawn(make_env("Upkie-Mock-Pendulum"), settings);
-  std::vector<float> observation(4);
-  std::vector<float> fixed_observation(4);
+  ActionLag drawn(settings, 0.02);
   std::set<int> delays;
   for (std::uint64_t seed = 0; seed < 40; ++seed) {
-    drawn.reset(seed, observation);
+    drawn.reset(seed, 1.0);
     ASSERT_GE(drawn.delay(), 1);
     ASSERT_LE(drawn.delay(), 3);
     delays.insert(drawn.delay());
-    ActionLagSettings fixed_settings;
-    fixed_settings.delay_steps = drawn.delay();
-    ActionLag fixed(make_env("Upkie-Mock-Pendulum"), fixed_settings);
-    fixed.reset(seed, fixed_observation);
     for (int step = 0; step < 8; ++step) {
-      const std::vector<float> action = {0.1f * static_cast<float>(step)};
-      drawn.step(action, observation);
-      fixed.step(action, fixed_observation);
-      ASSERT_EQ(observation, fixed_observation) << "seed " << seed << ", step " << step;
+      // The command sent `delay` steps ago, or the episode's first before it.
+      const int sent_at = std::max(0, step - drawn.delay());
+      const double applied = drawn.apply(servo_command(0.1 * step))[kRightKnee].velocity;
+      ASSERT_EQ(applied, 0.1 * sent_at) << "seed " << seed << ", step " << step;
     }
   }
   EXPECT_EQ(delays, (std::set<int>{1, 2, 3}));
+}
+
+TEST(ActionLag, TheStepsMeanMatchesFilteringAtEveryMillisecond) {
+  // A 10 ms lag at 50 Hz: the former per-step law (dt/τ clipped at 1) applied no lag at
+  // all; the mean over the step is what a servo filtering continuously applies on average.
+  ActionLagSettings settings;
+  settings.time_constant_min = settings.time_constant_max = 0.01;
+  ActionLag lag(settings, 0.02);
+  lag.reset(0, 1.0);
+  lag.apply(servo_command(0.0));
+  ServoAction state = servo_command(0.0);
+  ServoAction applied_fine{};
+  const ServoTargetLag fine = ServoTargetLag::step_end(0.01, 0.001);
+  for (int step = 1; step <= 5; ++step) {
+    double mean = 0.0;
+    for (int ms = 0; ms < 20; ++ms) {
+      fine.step(servo_command(1.0, 0.3), state, applied_fine);
+      mean += applied_fine[kLeftWheel].velocity / 20.0;
+    }
+    const ServoAction& applied = lag.apply(servo_command(1.0, 0.3));
+    EXPECT_NEAR(applied[kLeftWheel].velocity, mean, 0.03) << "step " << step;
+    if (step == 1) {
+      EXPECT_LT(applied[kLeftWheel].velocity, 0.65);  // half a step behind, not at 1
+      EXPECT_GT(applied[kLeftWheel].velocity, 0.5);
+    }
+  }
+}
+
+TEST(ActionLag, ANanPositionPassesAndGainsAreNotFiltered) {
+  ActionLagSettings settings;
+  settings.time_constant_min = settings.time_constant_max = 0.05;
+  ActionLag lag(settings, 0.02);
+  lag.reset(0, 1.0);
+  ServoAction first = servo_command(0.0, std::nan(""));
+  lag.apply(first);
+  ServoAction next = servo_command(1.0, 0.4);
+  next[kRightHip].kp_scale = 0.5;
+  const ServoAction& applied = lag.apply(next);
+  EXPECT_EQ(applied[kLeftWheel].position, 0.4);  // from no position loop: the target at once
+  EXPECT_LT(applied[kLeftWheel].velocity, 0.5);  // filtered
+  EXPECT_EQ(applied[kRightHip].kp_scale, 0.5);   // as sent
 }
 
 TEST(ActionLag, RefusesADelayMaximumOutOfRangeNamingIt) {

@@ -67,7 +67,7 @@ constexpr std::uint64_t kPerturbationStream = 1;
 ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
                      std::shared_ptr<const RobotModel> model,
                      const InitRandomization& init_randomization, int physics_steps_per_step,
-                     const PerturbationSettings& perturbations)
+                     const PerturbationSettings& perturbations, const ActionLagSettings& action_lag)
     : simulation_(std::move(simulation)),
       model_(std::move(model)),
       init_randomization_(init_randomization),
@@ -81,6 +81,7 @@ ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
         "ServosEnv: perturbations need a physics backend (Bullet or MuJoCo)");
   }
   perturbations_.validate();
+  if (action_lag.any()) action_lag_.emplace(action_lag, simulation_->agent_timestep());
   for (std::size_t i = 0; i < kNumServos; ++i) {
     const JointLimits& limits = model_->servo_limits(i);
     BoxSpace action;
@@ -112,6 +113,7 @@ void ServosEnv::start_perturbations(std::optional<std::uint64_t> seed) {
     physics_->set_variation(perturbations_.sample(perturbation_generator_, randomization_scale_));
     pushes_.reset(perturbations_.push, randomization_scale_, perturbation_generator_());
   }
+  if (action_lag_) action_lag_->reset(seed, randomization_scale_);
 }
 
 const Observation& ServosEnv::reset_servos(std::optional<std::uint64_t> seed) {
@@ -178,7 +180,10 @@ const Observation& ServosEnv::step_servos(const ServoAction& action) {
     if (hand_push && last.time >= hand_push_end_) hand_push_end_ = 0.0;
     physics_->set_base_force(force);
   }
-  return simulation_->step(clamped_buffer_);
+  if (!action_lag_) return simulation_->step(clamped_buffer_);
+  // Refused when sent, not `delay` steps later when it would reach the servos.
+  validate_servo_action(clamped_buffer_);
+  return simulation_->step(action_lag_->apply(clamped_buffer_));
 }
 
 ServoAction neutral_servo_action(const RobotModel& model) {

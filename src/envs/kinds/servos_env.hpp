@@ -4,9 +4,11 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include "envs/core/env.hpp"
+#include "envs/randomization/action_lag.hpp"
 #include "envs/randomization/init_randomization.hpp"
 #include "envs/randomization/perturbation_settings.hpp"
 #include "envs/randomization/push_schedule.hpp"
@@ -42,11 +44,14 @@ class ServosEnv final : public Env {
   /// @param init_randomization Ranges of the initial state drawn at each reset.
   /// @param physics_steps_per_step Physics steps the backend runs per step (reporting only).
   /// @param perturbations Physical perturbations drawn at each reset (physics backends).
-  /// @throws std::invalid_argument on a null argument, inconsistent perturbations, or
-  ///         perturbations with a backend that is not a PhysicsSimulation.
+  /// @param action_lag Delay and lag between the commands sent and those applied (any
+  ///        backend; see ActionLag).
+  /// @throws std::invalid_argument on a null argument, inconsistent perturbations or lag
+  ///         settings, or perturbations with a backend that is not a PhysicsSimulation.
   ServosEnv(std::unique_ptr<Simulation> simulation, std::shared_ptr<const RobotModel> model,
             const InitRandomization& init_randomization = {}, int physics_steps_per_step = 0,
-            const PerturbationSettings& perturbations = {});
+            const PerturbationSettings& perturbations = {},
+            const ActionLagSettings& action_lag = {});
 
   /// Starts an episode; a seed re-seeds the generators the initial state and the
   /// perturbations are drawn from (two streams: the initial states do not depend on
@@ -57,8 +62,10 @@ class ServosEnv final : public Env {
   /// @throws std::invalid_argument when `state` is not finite.
   const Observation& reset_servos_to(const ResetState& state, std::optional<std::uint64_t> seed);
 
-  /// Clamps `action` to the bounds and holds it for one step, pushes included.
-  /// @throws InvalidCommandError on a NaN velocity, torque or gain, or an infinite position.
+  /// Clamps `action` to the bounds and holds it for one step, through the actuation's delay
+  /// and lag (ActionLag), pushes included.
+  /// @throws InvalidCommandError on a NaN velocity, torque or gain, or an infinite position,
+  ///         when it is sent (not when it leaves the delay).
   const Observation& step_servos(const ServoAction& action);
 
   /// Pushes the base by hand (a browser's push in `upkie-rl drive`): `force_in_world` [N]
@@ -66,6 +73,9 @@ class ServosEnv final : public Env {
   /// scheduled pushes. Returns false (nothing happens) on a backend without physics.
   /// @throws std::invalid_argument on a non-finite force or a duration not in (0, 10] s.
   bool push_base(const Eigen::Vector3d& force_in_world, double duration);
+
+  /// The actuation's delay and lag, or null without them.
+  const ActionLag* action_lag() const { return action_lag_ ? &*action_lag_ : nullptr; }
 
   /// The clamped version of `action` (what step_servos sends).
   void clamp_servo_action(const ServoAction& action, ServoAction& clamped) const;
@@ -107,6 +117,7 @@ class ServosEnv final : public Env {
   std::mt19937_64 generator_{0};
   std::mt19937_64 perturbation_generator_{0};
   PushSchedule pushes_;
+  std::optional<ActionLag> action_lag_;  ///< Set when its settings delay or lag anything.
   Eigen::Vector3d hand_push_force_ = Eigen::Vector3d::Zero();  ///< Of push_base [N].
   double hand_push_end_ = 0.0;  ///< Simulated time the hand push ends [s].
   DictSpace action_dict_space_;

@@ -26,7 +26,8 @@ namespace upkie_rl {
 /// spec): the servo action is clamp(base + residual_scale·a) with `base` the built-in
 /// controller's action for the last observation and `a` the agent's, so that a policy
 /// learns corrections to a controller that already balances and drives. The base sees the
-/// task's observation before the wrappers' noise and acts without their lag.
+/// task's observation before the wrappers' noise; its share of the command passes the
+/// servos' delay and lag (ActionLag) with the policy's, as on the robot.
 class VelocityEnv final : public ServosWrapperEnv {
  public:
   /// @throws std::invalid_argument on a null servos environment, bad command ranges or a

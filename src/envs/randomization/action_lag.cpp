@@ -49,73 +49,47 @@ void ActionLagSettings::declare_options(OptionTable& table) {
   table.add_rule([this] { return problem(); });
 }
 
-ActionLag::ActionLag(std::unique_ptr<Env> env, const ActionLagSettings& settings)
-    : EnvWrapper(std::move(env), "ActionLag"), settings_(settings) {
+ActionLag::ActionLag(const ActionLagSettings& settings, double step_duration)
+    : settings_(settings), step_duration_(step_duration) {
   settings_.validate();
-  const std::size_t size = env_->action_space().size();
-  neutral_.resize(size);
-  env_->neutral_action(neutral_);
-  filtered_ = neutral_;
-  delayed_ = neutral_;
-  queue_.reserve(size * static_cast<std::size_t>(settings.largest_delay()));
+  if (!(std::isfinite(step_duration) && step_duration > 0.0)) {
+    throw std::invalid_argument("ActionLag: the step must be positive, got " +
+                                std::to_string(step_duration) + " s");
+  }
+  // The largest delay the randomisation scale (at most 1) can draw.
+  queue_.reserve(static_cast<std::size_t>(settings.largest_delay()));
 }
 
-void ActionLag::reset(std::optional<std::uint64_t> seed, std::span<float> observation) {
+void ActionLag::reset(std::optional<std::uint64_t> seed, double randomization_scale) {
   if (seed) generator_.seed(derive_seed(*seed, kActionLagStream));
-  time_constant_ = scale_ * uniform_between(generator_, settings_.time_constant_min,
-                                            settings_.time_constant_max);
+  time_constant_ = randomization_scale * uniform_between(generator_, settings_.time_constant_min,
+                                                         settings_.time_constant_max);
   const int drawn_delay =
       settings_.largest_delay() > settings_.delay_steps
           ? uniform_integer(generator_, settings_.delay_steps, settings_.largest_delay())
           : settings_.delay_steps;
-  delay_ = static_cast<int>(std::lround(scale_ * drawn_delay));
-  queue_.clear();
-  for (int i = 0; i < delay_; ++i) queue_.insert(queue_.end(), neutral_.begin(), neutral_.end());
-  head_ = 0;
-  filtered_ = neutral_;
-  env_->reset(seed, observation);
+  delay_ = static_cast<int>(std::lround(randomization_scale * drawn_delay));
+  lag_ = ServoTargetLag::step_mean(time_constant_, step_duration_);
+  started_ = false;
 }
 
-StepResult ActionLag::step(std::span<const float> action, std::span<float> observation) {
-  const std::size_t size = neutral_.size();
-  if (action.size() != size) {
-    throw std::invalid_argument("ActionLag: action has " + std::to_string(action.size()) +
-                                " components, expected " + std::to_string(size));
+const ServoAction& ActionLag::apply(const ServoAction& sent) {
+  if (!started_) {
+    // The episode's first command fills the delay line and the filter.
+    queue_.assign(static_cast<std::size_t>(delay_), sent);
+    head_ = 0;
+    filtered_ = sent;
+    started_ = true;
   }
-  // Checked now, not when the action leaves the delay line. NaN is legal where the neutral
-  // action has it (servo positions).
-  for (std::size_t i = 0; i < size; ++i) {
-    if (!std::isfinite(action[i]) && !(std::isnan(action[i]) && std::isnan(neutral_[i]))) {
-      throw std::invalid_argument("action component " + action_space().names[i] + " is " +
-                                  (std::isnan(action[i]) ? "NaN" : "infinite"));
-    }
+  delayed_ = sent;
+  if (!queue_.empty()) {
+    delayed_ = queue_[head_];
+    queue_[head_] = sent;
+    head_ = (head_ + 1) % queue_.size();
   }
-  const float* input = action.data();
-  if (delay_ > 0) {
-    float* slot = queue_.data() + head_ * size;
-    std::copy(slot, slot + size, delayed_.begin());
-    std::copy(action.begin(), action.end(), slot);
-    head_ = (head_ + 1) % static_cast<std::size_t>(delay_);
-    input = delayed_.data();
-  }
-  if (time_constant_ > 0.0) {
-    const float alpha = static_cast<float>(std::min(1.0, timestep() / time_constant_));
-    for (std::size_t i = 0; i < size; ++i) {
-      const float target = input[i];
-      float& filtered = filtered_[i];
-      filtered = std::isnan(target) || std::isnan(filtered)
-                     ? target
-                     : filtered + alpha * (target - filtered);
-    }
-    input = filtered_.data();
-  }
-  return env_->step(std::span<const float>(input, size), observation);
-}
-
-void ActionLag::set_randomization_scale(double scale) {
-  check_randomization_scale(scale);
-  env_->set_randomization_scale(scale);
-  scale_ = scale;
+  if (!lag_.any()) return delayed_;
+  lag_.step(delayed_, filtered_, applied_);
+  return applied_;
 }
 
 }  // namespace upkie_rl

@@ -1,14 +1,18 @@
 #pragma once
 /// @file
-/// ActionLag: pure delay and first-order lag between the agent's action and the one the
-/// environment applies (the actuation of a real robot; ppo_balancer's sim-to-real wrapper).
+/// ActionLag: pure delay and first-order lag between the servo commands an environment sends
+/// and the ones its servos apply (the actuation of a real robot; ppo_balancer's sim-to-real
+/// wrapper).
 
+#include <cstdint>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "base/option_table.hpp"
-#include "envs/wrappers/env_wrapper.hpp"
+#include "sim/servo_command.hpp"
+#include "sim/servo_target_lag.hpp"
 
 namespace upkie_rl {
 
@@ -39,36 +43,52 @@ struct ActionLagSettings {
   void declare_options(OptionTable& table);
 };
 
-/// The action applied at step t is the agent's action of step t - delay (the neutral
-/// action before the episode's first), filtered by y ← y + (dt/τ)(u − y) per component,
-/// starting from the neutral action; a NaN component (a servo's "no position loop") passes
-/// unfiltered. The delay is drawn per episode when delay_steps_max is above delay_steps.
-/// Randomisation scaling multiplies τ's range and the delay (rounded).
-class ActionLag final : public EnvWrapper {
+/// The actuation between the servo commands of an environment and the ones its servos
+/// apply: the command applied at step t is the one sent at step t − delay (the episode's
+/// first command before it: the robot was already holding it when the episode began),
+/// through a first-order lag of time constant τ on its targets (position, velocity,
+/// feedforward torque; ServoTargetLag::step_mean, the filter's mean over the agent step).
+/// τ and the delay are drawn at each reset (the delay when delay_steps_max is above
+/// delay_steps); the randomisation scale multiplies τ's range and the delay (rounded).
+///
+/// Why on the servo commands, inside ServosEnv, and not on the agent's action: a task's
+/// action becomes servo commands through the task's own law, and in residual mode through
+/// the base controller; on the robot the whole command is late, the base's share included.
+/// Lagging the agent's action left the velocity task's base controller unlagged, so a
+/// residual policy met no latency where the classical baseline did (docs/reality.md).
+/// Nothing is allocated after construction.
+class ActionLag {
  public:
-  /// @throws std::invalid_argument on a null env or settings out of their domain.
-  ActionLag(std::unique_ptr<Env> env, const ActionLagSettings& settings);
+  /// @param step_duration The agent step the commands are held for [s].
+  /// @throws std::invalid_argument on settings out of their domain or a step not > 0.
+  ActionLag(const ActionLagSettings& settings, double step_duration);
+
+  /// Starts an episode: draws τ and the delay (a seed re-seeds their generator), scaled by
+  /// `randomization_scale`.
+  void reset(std::optional<std::uint64_t> seed, double randomization_scale);
+
+  /// The command to apply this step, given the one sent this step (checked finite by the
+  /// caller). The reference stays valid until the next call.
+  const ServoAction& apply(const ServoAction& sent);
 
   /// The time constant of the current episode [s] (0 without lag).
   double time_constant() const { return time_constant_; }
   /// The delay of the current episode [steps].
   int delay() const { return delay_; }
 
-  void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
-  StepResult step(std::span<const float> action, std::span<float> observation) override;
-  void set_randomization_scale(double scale) override;
-
  private:
   ActionLagSettings settings_;
-  double scale_ = 1.0;
+  double step_duration_;
   std::mt19937_64 generator_{0};
   double time_constant_ = 0.0;
   int delay_ = 0;
-  std::vector<float> neutral_;
-  std::vector<float> queue_;  ///< Ring of the last delay_ actions, oldest at head_.
+  ServoTargetLag lag_;
+  bool started_ = false;            ///< Whether the episode's first command has come.
+  std::vector<ServoAction> queue_;  ///< The last delay_ commands sent, oldest at head_.
   std::size_t head_ = 0;
-  std::vector<float> delayed_;   ///< The action leaving the delay line.
-  std::vector<float> filtered_;  ///< State of the first-order filter.
+  ServoAction delayed_{};   ///< The command leaving the delay line.
+  ServoAction filtered_{};  ///< State of the first-order filter.
+  ServoAction applied_{};   ///< The command applied this step.
 };
 
 }  // namespace upkie_rl

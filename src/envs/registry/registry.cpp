@@ -216,7 +216,7 @@ std::unique_ptr<Env> assemble_env(const EnvId& id, const EnvSettings& settings,
                                   int physics_steps_per_step) {
   auto servos = std::make_unique<ServosEnv>(std::move(simulation), RobotModel::default_model(),
                                             settings.init_rand, physics_steps_per_step,
-                                            settings.perturbations);
+                                            settings.perturbations, settings.action_lag);
   std::unique_ptr<Env> env;
   switch (id.kind) {
     case Kind::kServos:
@@ -234,9 +234,6 @@ std::unique_ptr<Env> assemble_env(const EnvId& id, const EnvSettings& settings,
     case Kind::kVelocity:
       env = std::make_unique<VelocityEnv>(std::move(servos), settings.velocity, settings.commands);
       break;
-  }
-  if (settings.action_lag.any()) {
-    env = std::make_unique<ActionLag>(std::move(env), settings.action_lag);
   }
   if (settings.observation_noise > 0.0) {
     env = std::make_unique<ObservationNoise>(std::move(env), settings.observation_noise);
