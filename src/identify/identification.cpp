@@ -217,8 +217,7 @@ void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
       fitted[i].identifiable = false;
       fitted[i].reason =
           "at the fitted value its slope, carried over its whole range, changes the "
-          "prediction by under 0.1 %: the log does not excite it there (an action_lag "
-          "under one step of the environment is no lag at all)";
+          "prediction by under 0.1 %: the log does not excite it there";
     }
   }
   // The errors within one replay are strongly correlated (one wrong parameter shifts a whole

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <string>
@@ -14,6 +15,7 @@
 #include "envs/kinds/servos_env.hpp"
 #include "envs/randomization/action_lag.hpp"
 #include "envs/randomization/perturbation_settings.hpp"
+#include "envs/randomization/residual_lag.hpp"
 #include "envs/registry/env_factory.hpp"
 #include "envs/registry/registry.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
@@ -600,6 +602,55 @@ TEST(ActionLag, ANanPositionPassesAndGainsAreNotFiltered) {
   EXPECT_EQ(applied[kLeftWheel].position, 0.4);  // from no position loop: the target at once
   EXPECT_LT(applied[kLeftWheel].velocity, 0.5);  // filtered
   EXPECT_EQ(applied[kRightHip].kp_scale, 0.5);   // as sent
+}
+
+TEST(ResidualLag, DrawsItsTimeConstantPerEpisodeAndFiltersFromZero) {
+  ResidualLag lag(0.08, 0.02, 2);
+  std::set<double> drawn;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    lag.reset(seed, 1.0);
+    ASSERT_GE(lag.time_constant(), 0.0);
+    ASSERT_LE(lag.time_constant(), 0.08);
+    drawn.insert(lag.time_constant());
+  }
+  EXPECT_EQ(drawn.size(), 20u);
+  lag.reset(3, 0.5);  // the curriculum halves the range
+  EXPECT_LE(lag.time_constant(), 0.04);
+  const ServoTargetLag law = ServoTargetLag::step_mean(lag.time_constant(), 0.02);
+  std::array<float, 2> action = {1.0f, -0.5f};
+  lag.apply(action);
+  EXPECT_NEAR(action[0], law.applied_gain, 1e-6);  // from 0 toward 1
+  EXPECT_NEAR(action[1], -0.5 * law.applied_gain, 1e-6);
+  EXPECT_LT(action[0], 1.0f);
+}
+
+TEST_P(EnginePerturbations, TheResidualLagLagsThePolicysShareNotTheBase) {
+  const std::string balancer =
+      "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
+      "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+  const auto base_position = [&](const EnvOptions& options, float residual) {
+    auto env = make_env(id("Velocity"), options);
+    std::vector<float> observation(env->observation_space().size());
+    std::vector<float> action(env->action_space().size(), residual);
+    env->reset(2, observation);
+    for (int step = 0; step < 50; ++step) env->step(action, observation);
+    return env->full_observation()->sim_base.position;
+  };
+  const EnvOptions plain = {{"base_controller", balancer}, {"residual_scale", "0.3"}};
+  EnvOptions lagged = plain;
+  lagged.emplace_back("residual_lag_max", "0.08");
+  // A zero residual: the base alone acts, unlagged, the same either way.
+  EXPECT_EQ(base_position(plain, 0.0f), base_position(lagged, 0.0f));
+  // A residual: lagged, it moves the robot otherwise.
+  EXPECT_NE(base_position(plain, 0.5f), base_position(lagged, 0.5f));
+  // Without a base there is no residual to lag.
+  EXPECT_THROW(make_env(id("Velocity"), {{"residual_lag_max", "0.08"}}), std::invalid_argument);
+}
+
+TEST(ResidualLag, StaysInTrainingEvaluationsDropIt) {
+  const EnvOptions trained = {{"residual_lag_max", "0.08"}, {"residual_scale", "0.3"}};
+  const EnvOptions expected = {{"residual_scale", "0.3"}};
+  EXPECT_EQ(task_options("Upkie-MuJoCo-Velocity", trained, "Upkie-MuJoCo-Velocity"), expected);
 }
 
 TEST(ActionLag, RefusesADelayMaximumOutOfRangeNamingIt) {

@@ -50,6 +50,10 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
       throw std::invalid_argument(std::string("base_controller: ") + error.what());
     }
   }
+  if (task.residual_lag_max > 0.0) {
+    if (!base_) throw std::invalid_argument("residual_lag_max needs a base_controller");
+    residual_lag_.emplace(task.residual_lag_max, servos_->timestep(), action_.size());
+  }
 }
 
 void VelocityEnv::set_command_override(const std::optional<VelocityCommand>& command) {
@@ -91,6 +95,7 @@ BaseVelocity VelocityEnv::measured_velocity() const {
 
 void VelocityEnv::set_randomization_scale(double scale) {
   ServosWrapperEnv::set_randomization_scale(scale);
+  randomization_scale_ = scale;
   sampler_.set_scale(sampler_.ranges().curriculum_scale(scale));
 }
 
@@ -113,11 +118,13 @@ void VelocityEnv::reset(std::optional<std::uint64_t> seed, std::span<float> obse
     base_->reset();
     std::copy(observation.begin(), observation.end(), last_observation_.begin());
   }
+  if (residual_lag_) residual_lag_->reset(seed, randomization_scale_);
 }
 
 StepResult VelocityEnv::step(std::span<const float> action, std::span<float> observation) {
   previous_action_ = action_;
   clamp_to_space(action_space_, action, action_);
+  if (residual_lag_) residual_lag_->apply(action_);
   if (base_) {
     base_->act(std::span<const float>(last_observation_).first(task_.observation_size()),
                base_action_);

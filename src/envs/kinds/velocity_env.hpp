@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "envs/controllers/controller.hpp"
+#include "envs/randomization/residual_lag.hpp"
 #include "envs/tasks/velocity_command_limiter.hpp"
 #include "envs/tasks/velocity_command_sampler.hpp"
 #include "envs/tasks/velocity_task.hpp"
@@ -93,7 +94,9 @@ class VelocityEnv final : public ServosWrapperEnv {
   VelocityCommand held_target_;
   std::array<float, VelocityTask::kActionSize> action_{};
   std::array<float, VelocityTask::kActionSize> previous_action_{};
-  std::unique_ptr<Controller> base_;  ///< Residual mode's controller, or null.
+  std::unique_ptr<Controller> base_;         ///< Residual mode's controller, or null.
+  std::optional<ResidualLag> residual_lag_;  ///< Residual mode's regulariser, or none.
+  double randomization_scale_ = 1.0;
   std::array<float, VelocityTask::kMaxObservationSize> last_observation_{};
   std::array<float, VelocityTask::kActionSize> base_action_{};
   ServoAction servo_action_{};

@@ -133,6 +133,11 @@ void declare_kind_options(Kind kind, EnvSettings& settings, OptionTable& table) 
     case Kind::kVelocity:
       settings.commands.declare_options(table);
       settings.velocity.declare_options(table);
+      declare_randomization(table, [&] {
+        table.add_real("residual_lag_max", &settings.velocity.residual_lag_max, 0.0, 1.0,
+                       "residual mode, training: the agent's action lagged by a time constant "
+                       "in U(0, it) per episode [s] (a regulariser; the base is not lagged)");
+      });
       break;
   }
 }

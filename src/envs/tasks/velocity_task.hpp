@@ -56,6 +56,9 @@ struct VelocityTaskConfig {
   /// is added to residual_scale times the agent's; empty for none.
   std::string base_controller;
   double residual_scale = 1.0;
+  /// Residual mode, training only: the agent's action passes a lag of time constant drawn
+  /// in U(0, it) per episode [s], 0 for none (ResidualLag; a randomisation option).
+  double residual_lag_max = 0.0;
   VelocityRewardWeights reward;
 
   /// Declares the options of the fields, by their names, then the reward's.
