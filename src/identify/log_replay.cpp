@@ -12,6 +12,7 @@
 #include "envs/registry/env_factory.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
 #include "identify/measured_reset_state.hpp"
+#include "sim/servo_command_fields.hpp"
 #include "sim/servo_target_lag.hpp"
 #include "sim/simulation.hpp"
 
@@ -60,6 +61,18 @@ std::size_t decimation(const RobotLog& log, double timestep, const std::string& 
   return static_cast<std::size_t>(stride);
 }
 
+/// Whether two commands differ, a NaN position equal to a NaN position.
+bool commands_differ(const ServoAction& a, const ServoAction& b) {
+  for (std::size_t servo = 0; servo < kNumServos; ++servo) {
+    for (const ServoCommandField& field : kServoCommandFields) {
+      const double x = a[servo].*field.member;
+      const double y = b[servo].*field.member;
+      if (x != y && !(std::isnan(x) && std::isnan(y))) return true;
+    }
+  }
+  return false;
+}
+
 /// The replays of a log.
 struct ReplayStarts {
   std::vector<std::size_t> starts;
@@ -103,6 +116,15 @@ void require_signals(const RobotLog& log) {
 
 }  // namespace
 
+std::size_t agent_phase(const RobotLog& log, std::size_t stride) {
+  std::vector<std::size_t> changes(stride, 0);
+  for (std::size_t i = 1; i < log.cycles.size(); ++i) {
+    if (commands_differ(log.cycles[i].command, log.cycles[i - 1].command)) ++changes[i % stride];
+  }
+  const auto most = std::max_element(changes.begin(), changes.end());
+  return *most == 0 ? 0 : static_cast<std::size_t>(most - changes.begin());
+}
+
 LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const RobotLog& log,
                      const ReplaySettings& settings, int max_delay_steps, double max_lag)
     : env_id_(env_id) {
@@ -144,7 +166,7 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   timestep_ = probe->timestep();
   const std::size_t stride = decimation(log, timestep_, env_id);
   std::vector<std::size_t> up{0};  // samples with the robot up before each index
-  for (std::size_t i = 0; i < log.cycles.size(); i += stride) {
+  for (std::size_t i = agent_phase(log, stride); i < log.cycles.size(); i += stride) {
     const LoggedCycle& cycle = log.cycles[i];
     up.push_back(up.back() + (robot_is_down(cycle.observation) ? 0 : 1));
     Sample& sample = samples_.emplace_back();

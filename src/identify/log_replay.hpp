@@ -39,6 +39,17 @@ inline constexpr std::size_t kReplayWorkers = 2;
 /// A value of each fitted parameter, in the order of the requests.
 using ParameterValues = std::vector<std::pair<const IdentifiedParameter*, double>>;
 
+/// The cycle, modulo `stride`, at which the agent's commands take effect in `log` (the most
+/// common one where they change), 0 when they never change: where LogReplay samples a log
+/// recorded faster than the environment steps.
+///
+/// Why: a spine logs every 1 ms cycle, an agent writes once per step, at a phase of the
+/// step the spine does not choose (the sim2real demo's runner: 5-6 ms into each 20 ms).
+/// Sampling at phase 0 paired each observation with the command of the step before, which
+/// shifted the fitted actuation by the phase: the demo's 20 ms delay and 10 ms lag fitted as
+/// no delay and a 12 ms lag, and as one step and 7.9 ms sampled at the agent's phase.
+std::size_t agent_phase(const RobotLog& log, std::size_t stride);
+
 /// Replays a log on one environment id: from each window's first logged cycle (its measured
 /// state, measured_reset_state) the simulation takes the logged servo commands, through the
 /// actuation delay and lag of the parameters, for `horizon` seconds; the error is each

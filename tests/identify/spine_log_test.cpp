@@ -10,6 +10,7 @@
 #include "common/temp_files.hpp"
 #include "envs/records/robot_log.hpp"
 #include "identify/excitation_log.hpp"
+#include "identify/log_replay.hpp"
 #include "spine/spine_log_reader.hpp"
 #include "spine/spine_log_writer.hpp"
 
@@ -54,6 +55,29 @@ std::string spine_log_refusal(const std::string& bytes) {
     return error.what();
   }
   return "";
+}
+
+/// A 1 kHz log whose commands change at `phase` ms into each 20 ms step (positions NaN,
+/// as a wheel's "no position loop").
+RobotLog log_written_at_phase(std::size_t phase) {
+  RobotLog log;
+  for (std::size_t i = 0; i < 400; ++i) {
+    LoggedCycle& cycle = log.cycles.emplace_back();
+    cycle.time = 1e-3 * static_cast<double>(i);
+    const std::size_t step = (i + 20 - phase) / 20;  // the step whose command is in force
+    for (ServoCommand& servo : cycle.command) servo.velocity = 0.1 * static_cast<double>(step);
+  }
+  return log;
+}
+
+TEST(AgentPhase, IsTheCycleOfEachStepWhereTheCommandsChange) {
+  EXPECT_EQ(agent_phase(log_written_at_phase(5), 20), 5u);
+  EXPECT_EQ(agent_phase(log_written_at_phase(0), 20), 0u);
+  EXPECT_EQ(agent_phase(log_written_at_phase(17), 20), 17u);
+  // Commands that never change (NaN positions included) leave the phase at 0.
+  RobotLog still = log_written_at_phase(5);
+  for (LoggedCycle& cycle : still.cycles) cycle.command = still.cycles.front().command;
+  EXPECT_EQ(agent_phase(still, 20), 0u);
 }
 
 TEST(SpineLog, WrittenCyclesReadBack) {
