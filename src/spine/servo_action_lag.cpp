@@ -34,28 +34,21 @@ std::string ServoActionLagSettings::problem() const {
 ServoActionLag::ServoActionLag(const ServoActionLagSettings& settings) : settings_(settings) {
   if (const std::string problem = settings.problem(); !problem.empty()) throw SpineError(problem);
   lag_ = ServoTargetLag::step_end(settings.time_constant, settings.step_duration);
-  queue_.resize(static_cast<std::size_t>(settings.delay_steps));
+  delay_line_ = ServoDelayLine(static_cast<std::size_t>(settings.delay_steps));
 }
 
 void ServoActionLag::reset(const ServoAction& initial) {
-  std::fill(queue_.begin(), queue_.end(), initial);
-  head_ = 0;
+  delay_line_.reset(static_cast<std::size_t>(settings_.delay_steps), initial);
   filtered_ = initial;
   applied_ = initial;
 }
 
 const ServoAction& ServoActionLag::apply(const ServoAction& sent) {
-  // Delay: the command sent delay_steps ago leaves the queue, this one enters it.
-  if (queue_.empty()) {
-    delayed_ = sent;
-  } else {
-    delayed_ = queue_[head_];
-    queue_[head_] = sent;
-    head_ = (head_ + 1) % queue_.size();
-  }
+  // Delay: the command sent delay_steps ago leaves the line, this one enters it.
+  const ServoAction& delayed = delay_line_.push(sent);
   // Lag: the targets follow the delayed command; gains and limits are taken as they are.
-  if (!lag_.any()) return delayed_;
-  lag_.step(delayed_, filtered_, applied_);
+  if (!lag_.any()) return delayed;
+  lag_.step(delayed, filtered_, applied_);
   return applied_;
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "sim/servo_command.hpp"
+#include "sim/servo_delay_line.hpp"
 #include "sim/servo_target_lag.hpp"
 
 namespace upkie_rl {
@@ -54,12 +55,10 @@ class ServoActionLag {
 
  private:
   ServoActionLagSettings settings_;
-  ServoTargetLag lag_;              ///< ServoTargetLag::step_end(τ, dt).
-  std::vector<ServoAction> queue_;  ///< The last delay_steps commands sent, oldest at head_.
-  std::size_t head_ = 0;
-  ServoAction delayed_{};   ///< The command leaving the delay this step.
-  ServoAction filtered_{};  ///< The filter's state.
-  ServoAction applied_{};   ///< The command applied this step: the state's targets.
+  ServoTargetLag lag_;         ///< ServoTargetLag::step_end(τ, dt).
+  ServoDelayLine delay_line_;  ///< The last delay_steps commands sent.
+  ServoAction filtered_{};     ///< The filter's state.
+  ServoAction applied_{};      ///< The command applied this step: the state's targets.
 };
 
 }  // namespace upkie_rl

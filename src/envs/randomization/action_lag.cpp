@@ -57,7 +57,7 @@ ActionLag::ActionLag(const ActionLagSettings& settings, double step_duration)
                                 std::to_string(step_duration) + " s");
   }
   // The largest delay the randomisation scale (at most 1) can draw.
-  queue_.reserve(static_cast<std::size_t>(settings.largest_delay()));
+  delay_line_ = ServoDelayLine(static_cast<std::size_t>(settings.largest_delay()));
 }
 
 void ActionLag::reset(std::optional<std::uint64_t> seed, double randomization_scale) {
@@ -76,19 +76,13 @@ void ActionLag::reset(std::optional<std::uint64_t> seed, double randomization_sc
 const ServoAction& ActionLag::apply(const ServoAction& sent) {
   if (!started_) {
     // The episode's first command fills the delay line and the filter.
-    queue_.assign(static_cast<std::size_t>(delay_), sent);
-    head_ = 0;
+    delay_line_.reset(static_cast<std::size_t>(delay_), sent);
     filtered_ = sent;
     started_ = true;
   }
-  delayed_ = sent;
-  if (!queue_.empty()) {
-    delayed_ = queue_[head_];
-    queue_[head_] = sent;
-    head_ = (head_ + 1) % queue_.size();
-  }
-  if (!lag_.any()) return delayed_;
-  lag_.step(delayed_, filtered_, applied_);
+  const ServoAction& delayed = delay_line_.push(sent);
+  if (!lag_.any()) return delayed;
+  lag_.step(delayed, filtered_, applied_);
   return applied_;
 }
 

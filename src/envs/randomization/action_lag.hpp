@@ -12,6 +12,7 @@
 
 #include "base/option_table.hpp"
 #include "sim/servo_command.hpp"
+#include "sim/servo_delay_line.hpp"
 #include "sim/servo_target_lag.hpp"
 
 namespace upkie_rl {
@@ -83,12 +84,10 @@ class ActionLag {
   double time_constant_ = 0.0;
   int delay_ = 0;
   ServoTargetLag lag_;
-  bool started_ = false;            ///< Whether the episode's first command has come.
-  std::vector<ServoAction> queue_;  ///< The last delay_ commands sent, oldest at head_.
-  std::size_t head_ = 0;
-  ServoAction delayed_{};   ///< The command leaving the delay line.
-  ServoAction filtered_{};  ///< State of the first-order filter.
-  ServoAction applied_{};   ///< The command applied this step.
+  bool started_ = false;       ///< Whether the episode's first command has come.
+  ServoDelayLine delay_line_;  ///< The last delay_ commands sent.
+  ServoAction filtered_{};     ///< State of the first-order filter.
+  ServoAction applied_{};      ///< The command applied this step.
 };
 
 }  // namespace upkie_rl
