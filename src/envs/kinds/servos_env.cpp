@@ -67,12 +67,12 @@ constexpr std::uint64_t kPerturbationStream = 1;
 ServosEnv::ServosEnv(std::unique_ptr<Simulation> simulation,
                      std::shared_ptr<const RobotModel> model,
                      const InitRandomization& init_randomization, int physics_steps_per_step,
-                     const PerturbationSettings& perturbations, const ActionLagSettings& action_lag)
+                     PerturbationSettings perturbations, const ActionLagSettings& action_lag)
     : simulation_(std::move(simulation)),
       model_(std::move(model)),
       init_randomization_(init_randomization),
       physics_steps_per_step_(physics_steps_per_step),
-      perturbations_(perturbations) {
+      perturbations_(std::move(perturbations)) {
   if (!simulation_) throw std::invalid_argument("ServosEnv: the simulation is null");
   if (!model_) throw std::invalid_argument("ServosEnv: the robot model is null");
   physics_ = dynamic_cast<PhysicsSimulation*>(simulation_.get());

@@ -50,8 +50,7 @@ class ServosEnv final : public Env {
   ///         settings, or perturbations with a backend that is not a PhysicsSimulation.
   ServosEnv(std::unique_ptr<Simulation> simulation, std::shared_ptr<const RobotModel> model,
             const InitRandomization& init_randomization = {}, int physics_steps_per_step = 0,
-            const PerturbationSettings& perturbations = {},
-            const ActionLagSettings& action_lag = {});
+            PerturbationSettings perturbations = {}, const ActionLagSettings& action_lag = {});
 
   /// Starts an episode; a seed re-seeds the generators the initial state and the
   /// perturbations are drawn from (two streams: the initial states do not depend on
