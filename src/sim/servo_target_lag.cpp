@@ -16,18 +16,6 @@ void check_step(double time_constant, double duration) {
   }
 }
 
-/// One target: the state closes state_gain of the gap, the applied value applied_gain.
-void follow(double commanded, const ServoTargetLag& lag, double& state, double& applied) {
-  if (std::isnan(commanded) || std::isnan(state)) {
-    state = commanded;
-    applied = commanded;
-    return;
-  }
-  const double gap = commanded - state;
-  applied = state + lag.applied_gain * gap;
-  state += lag.state_gain * gap;
-}
-
 }  // namespace
 
 ServoTargetLag ServoTargetLag::step_end(double time_constant, double duration) {
@@ -45,6 +33,17 @@ ServoTargetLag ServoTargetLag::step_mean(double time_constant, double duration) 
   return {gain, 1.0 - ratio * gain};
 }
 
+void ServoTargetLag::step_target(double commanded, double& state, double& applied) const {
+  if (std::isnan(commanded) || std::isnan(state)) {
+    state = commanded;
+    applied = commanded;
+    return;
+  }
+  const double gap = commanded - state;
+  applied = state + applied_gain * gap;
+  state += state_gain * gap;
+}
+
 void ServoTargetLag::step(const ServoAction& command, ServoAction& state,
                           ServoAction& applied) const {
   for (std::size_t servo = 0; servo < command.size(); ++servo) {
@@ -53,9 +52,9 @@ void ServoTargetLag::step(const ServoAction& command, ServoAction& state,
     double position = 0.0;
     double velocity = 0.0;
     double torque = 0.0;
-    follow(sent.position, *this, filter.position, position);
-    follow(sent.velocity, *this, filter.velocity, velocity);
-    follow(sent.feedforward_torque, *this, filter.feedforward_torque, torque);
+    step_target(sent.position, filter.position, position);
+    step_target(sent.velocity, filter.velocity, velocity);
+    step_target(sent.feedforward_torque, filter.feedforward_torque, torque);
     ServoCommand& out = applied[servo];
     out = sent;
     out.position = position;

@@ -33,6 +33,10 @@ struct ServoTargetLag {
   /// Whether this lags at all (τ > 0).
   bool any() const { return state_gain < 1.0; }
 
+  /// One step of one target held at `commanded`: `state` closes state_gain of the gap,
+  /// `applied` becomes the value to apply; a NaN on either side restarts at `commanded`.
+  void step_target(double commanded, double& state, double& applied) const;
+
   /// One step with `command` held: `state`'s targets move towards the command's, and
   /// `applied` becomes the command with the targets to apply. Gains and torque limits pass
   /// as commanded. A NaN target on either side ("no position loop") restarts the filter at

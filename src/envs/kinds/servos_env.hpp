@@ -73,9 +73,6 @@ class ServosEnv final : public Env {
   /// @throws std::invalid_argument on a non-finite force or a duration not in (0, 10] s.
   bool push_base(const Eigen::Vector3d& force_in_world, double duration);
 
-  /// The actuation's delay and lag, or null without them.
-  const ActionLag* action_lag() const { return action_lag_ ? &*action_lag_ : nullptr; }
-
   /// The clamped version of `action` (what step_servos sends).
   void clamp_servo_action(const ServoAction& action, ServoAction& clamped) const;
 

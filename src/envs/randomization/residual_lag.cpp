@@ -35,9 +35,9 @@ void ResidualLag::reset(std::optional<std::uint64_t> seed, double randomization_
 void ResidualLag::apply(std::span<float> action) {
   if (!lag_.any()) return;
   for (std::size_t i = 0; i < action.size() && i < state_.size(); ++i) {
-    const double gap = action[i] - state_[i];
-    action[i] = static_cast<float>(state_[i] + lag_.applied_gain * gap);
-    state_[i] += lag_.state_gain * gap;
+    double applied = 0.0;
+    lag_.step_target(action[i], state_[i], applied);
+    action[i] = static_cast<float>(applied);
   }
 }
 
