@@ -605,7 +605,7 @@ TEST(ActionLag, ANanPositionPassesAndGainsAreNotFiltered) {
 }
 
 TEST(ResidualLag, DrawsItsTimeConstantPerEpisodeAndFiltersFromZero) {
-  ResidualLag lag(0.08, 0.02, 2);
+  ResidualLag lag(0.0, 0.08, 0.02, 2);
   std::set<double> drawn;
   for (std::uint64_t seed = 0; seed < 20; ++seed) {
     lag.reset(seed, 1.0);
@@ -643,13 +643,47 @@ TEST_P(EnginePerturbations, TheResidualLagLagsThePolicysShareNotTheBase) {
   EXPECT_EQ(base_position(plain, 0.0f), base_position(lagged, 0.0f));
   // A residual: lagged, it moves the robot otherwise.
   EXPECT_NE(base_position(plain, 0.5f), base_position(lagged, 0.5f));
+  // The nominal filter acts on the residual alone too, evaluations included.
+  EnvOptions filtered = plain;
+  filtered.emplace_back("residual_filter", "0.04");
+  EXPECT_EQ(base_position(plain, 0.0f), base_position(filtered, 0.0f));
+  EXPECT_NE(base_position(plain, 0.5f), base_position(filtered, 0.5f));
   // Without a base there is no residual to lag.
   EXPECT_THROW(make_env(id("Velocity"), {{"residual_lag_max", "0.08"}}), std::invalid_argument);
+  EXPECT_THROW(make_env(id("Velocity"), {{"residual_filter", "0.04"}}), std::invalid_argument);
 }
 
-TEST(ResidualLag, StaysInTrainingEvaluationsDropIt) {
-  const EnvOptions trained = {{"residual_lag_max", "0.08"}, {"residual_scale", "0.3"}};
-  const EnvOptions expected = {{"residual_scale", "0.3"}};
+TEST(ResidualLag, WithoutADrawFiltersWithTheNominalTimeConstant) {
+  ResidualLag lag(0.04, 0.0, 0.02, 1);
+  for (std::uint64_t seed = 0; seed < 5; ++seed) {
+    lag.reset(seed, 1.0);
+    EXPECT_EQ(lag.time_constant(), 0.04);
+  }
+  const ServoTargetLag law = ServoTargetLag::step_mean(0.04, 0.02);
+  std::array<float, 1> action = {1.0f};
+  lag.apply(action);
+  EXPECT_NEAR(action[0], law.applied_gain, 1e-6);
+  EXPECT_LT(action[0], 0.7f);  // a 40 ms filter at 50 Hz passes well under a step's worth
+}
+
+TEST(ResidualLag, RefusesANegativeOrNonFiniteTimeConstantNamingTheOption) {
+  const auto message = [](double nominal, double draw) {
+    try {
+      ResidualLag(nominal, draw, 0.02, 1);
+    } catch (const std::invalid_argument& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(-0.01, 0.0).find("residual_filter"), std::string::npos);
+  EXPECT_NE(message(0.0, std::nan("")).find("residual_lag_max"), std::string::npos);
+}
+
+TEST(ResidualLag, TheDrawStaysInTrainingTheFilterEverywhere) {
+  const EnvOptions trained = {{"residual_lag_max", "0.08"},
+                              {"residual_filter", "0.04"},
+                              {"residual_scale", "0.3"}};
+  const EnvOptions expected = {{"residual_filter", "0.04"}, {"residual_scale", "0.3"}};
   EXPECT_EQ(task_options("Upkie-MuJoCo-Velocity", trained, "Upkie-MuJoCo-Velocity"), expected);
 }
 

@@ -50,9 +50,14 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
       throw std::invalid_argument(std::string("base_controller: ") + error.what());
     }
   }
-  if (task.residual_lag_max > 0.0) {
-    if (!base_) throw std::invalid_argument("residual_lag_max needs a base_controller");
-    residual_lag_.emplace(task.residual_lag_max, servos_->timestep(), action_.size());
+  if (task.residual_filter > 0.0 || task.residual_lag_max > 0.0) {
+    if (!base_) {
+      throw std::invalid_argument(
+          std::string(task.residual_filter > 0.0 ? "residual_filter" : "residual_lag_max") +
+          " needs a base_controller");
+    }
+    residual_lag_.emplace(task.residual_filter, task.residual_lag_max, servos_->timestep(),
+                          action_.size());
   }
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/number_text.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
@@ -15,20 +16,31 @@ constexpr std::uint64_t kResidualLagStream = 13;
 
 }  // namespace
 
-ResidualLag::ResidualLag(double max_time_constant, double step_duration, std::size_t size)
-    : max_time_constant_(max_time_constant), step_duration_(step_duration), state_(size, 0.0) {
-  if (!(std::isfinite(max_time_constant) && max_time_constant > 0.0 &&
-        std::isfinite(step_duration) && step_duration > 0.0)) {
-    throw std::invalid_argument("residual_lag_max: need a time constant > 0 and a step > 0, got " +
-                                std::to_string(max_time_constant) + " and " +
-                                std::to_string(step_duration) + " s");
-  }
+ResidualLag::ResidualLag(double time_constant, double max_draw, double step_duration,
+                         std::size_t size)
+    : nominal_time_constant_(time_constant),
+      max_draw_(max_draw),
+      step_duration_(step_duration),
+      state_(size, 0.0) {
+  const auto refuse = [](const std::string& name, double value, const char* need) {
+    throw std::invalid_argument(name + ": need " + need + ", got " + shortest_text(value));
+  };
+  if (!(std::isfinite(time_constant) && time_constant >= 0.0))
+    refuse("residual_filter", time_constant, "a time constant >= 0 [s]");
+  if (!(std::isfinite(max_draw) && max_draw >= 0.0))
+    refuse("residual_lag_max", max_draw, "a time constant >= 0 [s]");
+  if (!(std::isfinite(step_duration) && step_duration > 0.0))
+    refuse("residual_filter", step_duration, "an agent step > 0 [s]");
+  time_constant_ = nominal_time_constant_;
+  lag_ = ServoTargetLag::step_mean(time_constant_, step_duration_);
 }
 
 void ResidualLag::reset(std::optional<std::uint64_t> seed, double randomization_scale) {
   if (seed) generator_.seed(derive_seed(*seed, kResidualLagStream));
-  time_constant_ = randomization_scale * uniform_between(generator_, 0.0, max_time_constant_);
-  lag_ = ServoTargetLag::step_mean(time_constant_, step_duration_);
+  if (max_draw_ > 0.0) {
+    time_constant_ = randomization_scale * uniform_between(generator_, 0.0, max_draw_);
+    lag_ = ServoTargetLag::step_mean(time_constant_, step_duration_);
+  }
   std::fill(state_.begin(), state_.end(), 0.0);
 }
 

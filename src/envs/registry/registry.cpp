@@ -135,8 +135,9 @@ void declare_kind_options(Kind kind, EnvSettings& settings, OptionTable& table) 
       settings.velocity.declare_options(table);
       declare_randomization(table, [&] {
         table.add_real("residual_lag_max", &settings.velocity.residual_lag_max, 0.0, 1.0,
-                       "residual mode, training: the agent's action lagged by a time constant "
-                       "in U(0, it) per episode [s] (a regulariser; the base is not lagged)");
+                       "residual mode, training: the agent's action filtered with a time "
+                       "constant drawn in U(0, it) per episode [s] in place of residual_filter "
+                       "(a regulariser; the base is not lagged)");
       });
       break;
   }

@@ -230,6 +230,9 @@ void VelocityTaskConfig::declare_options(OptionTable& table) {
                  "lqr`) whose action is added to residual_scale times the agent's");
   table.add_real("residual_scale", &residual_scale, 0.0, 1.0,
                  "residual mode: weight of the agent's action");
+  table.add_real("residual_filter", &residual_filter, 0.0, 1.0,
+                 "residual mode: time constant of a first-order filter on the agent's action "
+                 "[s], kept wherever the policy runs; 0 for none");
   reward.declare_options(table);
 }
 

@@ -56,8 +56,14 @@ struct VelocityTaskConfig {
   /// is added to residual_scale times the agent's; empty for none.
   std::string base_controller;
   double residual_scale = 1.0;
+  /// Residual mode: the agent's action passes a first-order filter of this time constant
+  /// [s] wherever the policy runs (training, evaluations, the spine, the robot), 0 for none
+  /// (ResidualLag). Part of the policy, like residual_scale: a policy trained with its
+  /// corrections filtered chatters without the filter.
+  double residual_filter = 0.0;
   /// Residual mode, training only: the agent's action passes a lag of time constant drawn
-  /// in U(0, it) per episode [s], 0 for none (ResidualLag; a randomisation option).
+  /// in U(0, it) per episode [s] in place of residual_filter, 0 for none (ResidualLag; a
+  /// randomisation option, which evaluations drop: they filter with residual_filter).
   double residual_lag_max = 0.0;
   VelocityRewardWeights reward;
 
