@@ -10,13 +10,15 @@
 /// a model of the robot, but the policies trained that way tracked 28-32 % better than the
 /// baseline on the reality suite; the same lag on the whole command, or 0-20 ms of it,
 /// gave 1-19 % (docs/reality.md). The residual's lag makes the policy's corrections work
-/// when they come smoothed, which keeps them smooth. The draw stays in training
-/// (a randomisation option); until the evening of 2026-11-29 evaluations and the robot then
-/// ran the policy unfiltered, and its corrections chattered at the agent's Nyquist rate
-/// (25 Hz): 43-80 % of the yaw error's power on two seeds of three, a wheel-differential
-/// action changing 7-25 times as much per step as the baseline's. With the filter kept
-/// (residual_filter, the draw's mean), the README evaluation's yaw error fell from
-/// 0.222-0.336 to 0.17-0.18 rad/s (docs/reality.md).
+/// when they come smoothed; it does not make them smooth without it. Until the night of
+/// 2026-11-29 the draw was all there was, a randomisation option, so evaluations and the
+/// robot ran the policy unfiltered: its corrections chattered at the agent's Nyquist rate
+/// (25 Hz; 23-80 % of the yaw error's power on three seeds, the wheel-differential action
+/// changing 7-25 times as much per step as the baseline's). With a 20 ms filter kept
+/// (residual_filter), the README evaluation's yaw error fell from 0.206-0.336 to
+/// 0.165-0.193 rad/s and the suite's tracking from 8-32 % to 33-38 % better than the
+/// baseline's on the same three policies (docs/reality.md). It lives beside the
+/// randomisation because its draw is one.
 
 #include <cstdint>
 #include <optional>
