@@ -651,6 +651,17 @@ TEST_P(EnginePerturbations, TheResidualLagLagsThePolicysShareNotTheBase) {
   // Without a base there is no residual to lag.
   EXPECT_THROW(make_env(id("Velocity"), {{"residual_lag_max", "0.08"}}), std::invalid_argument);
   EXPECT_THROW(make_env(id("Velocity"), {{"residual_filter", "0.04"}}), std::invalid_argument);
+  // A deployed filter the training's draw never reached is refused, naming both.
+  EnvOptions outside = plain;
+  outside.emplace_back("residual_filter", "0.1");
+  outside.emplace_back("residual_lag_max", "0.08");
+  try {
+    make_env(id("Velocity"), outside);
+    ADD_FAILURE() << "a filter outside the drawn range was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("residual_filter 0.1"), std::string::npos);
+    EXPECT_NE(std::string(error.what()).find("residual_lag_max"), std::string::npos);
+  }
 }
 
 TEST(ResidualLag, WithoutADrawFiltersWithTheNominalTimeConstant) {
@@ -680,9 +691,8 @@ TEST(ResidualLag, RefusesANegativeOrNonFiniteTimeConstantNamingTheOption) {
 }
 
 TEST(ResidualLag, TheDrawStaysInTrainingTheFilterEverywhere) {
-  const EnvOptions trained = {{"residual_lag_max", "0.08"},
-                              {"residual_filter", "0.04"},
-                              {"residual_scale", "0.3"}};
+  const EnvOptions trained = {
+      {"residual_lag_max", "0.08"}, {"residual_filter", "0.04"}, {"residual_scale", "0.3"}};
   const EnvOptions expected = {{"residual_filter", "0.04"}, {"residual_scale", "0.3"}};
   EXPECT_EQ(task_options("Upkie-MuJoCo-Velocity", trained, "Upkie-MuJoCo-Velocity"), expected);
 }
