@@ -4,7 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "base/number_text.hpp"
 #include "envs/controllers/builtin_controllers.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
 #include "sim/random_draws.hpp"
@@ -56,16 +55,6 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
       throw std::invalid_argument(
           std::string(task.residual_filter > 0.0 ? "residual_filter" : "residual_lag_max") +
           " needs a base_controller");
-    }
-    // A policy is deployed with residual_filter: a training that draws the time constant
-    // must have drawn that one too.
-    if (task.residual_lag_max > 0.0 && task.residual_filter > task.residual_lag_max) {
-      throw std::invalid_argument(
-          "residual_filter " + shortest_text(task.residual_filter) +
-          " s is outside the time constants residual_lag_max draws in training, [0, " +
-          shortest_text(task.residual_lag_max) +
-          "] s: the policy would run with a filter it "
-          "never trained with");
     }
     residual_lag_.emplace(task.residual_filter, task.residual_lag_max, servos_->timestep(),
                           action_.size());

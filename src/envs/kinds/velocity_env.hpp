@@ -95,8 +95,8 @@ class VelocityEnv final : public ServosWrapperEnv {
   std::array<float, VelocityTask::kActionSize> action_{};
   std::array<float, VelocityTask::kActionSize> previous_action_{};
   std::unique_ptr<Controller> base_;  ///< Residual mode's controller, or null.
-  std::optional<ResidualLag>
-      residual_lag_;  ///< Residual mode: the filter on the agent's action, or none.
+  /// Residual mode: the filter on the agent's action, or none.
+  std::optional<ResidualLag> residual_lag_;
   double randomization_scale_ = 1.0;
   std::array<float, VelocityTask::kMaxObservationSize> last_observation_{};
   std::array<float, VelocityTask::kActionSize> base_action_{};

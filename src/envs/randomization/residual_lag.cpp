@@ -18,10 +18,7 @@ constexpr std::uint64_t kResidualLagStream = 13;
 
 ResidualLag::ResidualLag(double time_constant, double max_draw, double step_duration,
                          std::size_t size)
-    : nominal_time_constant_(time_constant),
-      max_draw_(max_draw),
-      step_duration_(step_duration),
-      state_(size, 0.0) {
+    : max_draw_(max_draw), step_duration_(step_duration), state_(size, 0.0) {
   const auto refuse = [](const std::string& name, double value, const char* need) {
     throw std::invalid_argument(name + ": need " + need + ", got " + shortest_text(value));
   };
@@ -31,7 +28,16 @@ ResidualLag::ResidualLag(double time_constant, double max_draw, double step_dura
     refuse("residual_lag_max", max_draw, "a time constant >= 0 [s]");
   if (!(std::isfinite(step_duration) && step_duration > 0.0))
     refuse("residual_filter", step_duration, "an agent step > 0 [s]");
-  time_constant_ = nominal_time_constant_;
+  // A policy is deployed with the nominal time constant: a training that draws one must
+  // have drawn that one too.
+  if (max_draw > 0.0 && time_constant > max_draw) {
+    throw std::invalid_argument(
+        "residual_filter " + shortest_text(time_constant) +
+        " s is outside the time constants residual_lag_max draws in training, [0, " +
+        shortest_text(max_draw) + "] s: the policy would run with a filter it never trained with");
+  }
+  // Without a draw, the nominal time constant holds for every episode (reset keeps it).
+  time_constant_ = time_constant;
   lag_ = ServoTargetLag::step_mean(time_constant_, step_duration_);
 }
 

@@ -42,7 +42,7 @@ class ResidualLag {
   /// @param step_duration The agent step [s], > 0.
   /// @param size Components of the action.
   /// @throws std::invalid_argument on a value that is not finite, a negative time constant,
-  ///         or a step that is not positive.
+  ///         a step that is not positive, or a nominal τ above a draw's largest.
   ResidualLag(double time_constant, double max_draw, double step_duration, std::size_t size);
 
   /// Starts an episode: draws τ if a draw is set (a seed re-seeds its generator), and zeroes
@@ -55,7 +55,6 @@ class ResidualLag {
   double time_constant() const { return time_constant_; }
 
  private:
-  double nominal_time_constant_;
   double max_draw_;
   double step_duration_;
   std::mt19937_64 generator_{0};
