@@ -227,6 +227,43 @@ TEST(HeightCommandEnv, TrackingTermLoggedOnlyWithAHeightCommand) {
   }
 }
 
+TEST(HeightCommandEnv, LegActionsAboutTheCrouchStartFromTheCommandedCrouch) {
+  const auto model = RobotModel::default_model();
+  VelocityTaskConfig about;
+  about.leg_action_about_crouch = true;
+  about.leg_action_scale = 0.5;
+  const VelocityTask task(*model, about, /*height_command=*/true);
+  const VelocityCommand crouched{0.3, 0.0, 0.535};
+  const std::array<double, 4> pose = task.legs().crouch_pose(0.535).leg_angles();
+  ASSERT_LT(pose[1], -0.5) << "a real crouch: the knee bends";
+  const Observation measured{};
+  ServoAction commands{};
+  Act action{};
+  action[kLeftKnee] = 0.2f;
+  task.servo_action(action, measured, crouched, commands);
+  for (std::size_t k = 0; k < VelocityTask::kLegJoints.size(); ++k) {
+    const std::size_t joint = VelocityTask::kLegJoints[k];
+    const double offset = joint == kLeftKnee ? 0.5 * 0.2 : 0.0;
+    EXPECT_NEAR(commands[joint].position, pose[k] + offset, 1e-6) << kServoNames[joint];
+  }
+  // Without a height command, or without the option, the origin is straight legs.
+  const VelocityTask no_height(*model, about, /*height_command=*/false);
+  no_height.servo_action(action, measured, crouched, commands);
+  EXPECT_NEAR(commands[kLeftKnee].position, 0.1, 1e-6);
+  EXPECT_NEAR(commands[kRightHip].position, 0.0, 1e-12);
+  VelocityTaskConfig straight = about;
+  straight.leg_action_about_crouch = false;
+  VelocityTask(*model, straight, true).servo_action(action, measured, crouched, commands);
+  EXPECT_NEAR(commands[kLeftKnee].position, 0.1, 1e-6);
+  // The deepest crouch needs no action about it: a small scale is then accepted.
+  EXPECT_THROW(make_env("Upkie-Mock-Velocity", {{"leg_action_scale", "0.5"}}),
+               std::invalid_argument);
+  EXPECT_NO_THROW(make_env("Upkie-Mock-Velocity", {{"leg_action_scale", "0.5"},
+                                                   {"leg_action_about_crouch", "true"}}));
+  EXPECT_THROW(make_env("Upkie-Mock-Velocity", {{"leg_action_about_crouch", "maybe"}}),
+               std::invalid_argument);
+}
+
 /// Runs the classical baseline on `id` holding a crouch to `height` for 5 s; returns the
 /// ground-truth base height of the last 2 s (mean) and the tracking.
 struct CrouchResult {
@@ -236,8 +273,9 @@ struct CrouchResult {
   bool fell = false;
 };
 
-CrouchResult crouch_with_baseline(const std::string& id, double height) {
-  auto env = make_env(id);
+CrouchResult crouch_with_baseline(const std::string& id, double height,
+                                  const EnvOptions& options = {}) {
+  auto env = make_env(id, options);
   VelocityEnv& velocity = *find_velocity_env(*env);
   auto baseline = make_builtin_controller(kMujocoBaseline, *env);
   velocity.set_command_override(VelocityCommand{0.0, 0.0, height});
@@ -294,6 +332,17 @@ TEST(HeightCommandBaseline, CommandedCrouchLowersTheBaseOnMujoco) {
 
 TEST(HeightCommandBaseline, CommandedCrouchLowersTheBaseOnBullet) {
   expect_crouch("Upkie-Bullet-Velocity");
+}
+
+TEST(HeightCommandBaseline, SameCrouchWithLegActionsAboutTheCrouch) {
+  // The baseline takes the task's action origin off: the same servo targets, the same run.
+  const double asked = VelocityCommandRanges{}.min_height;
+  const CrouchResult straight = crouch_with_baseline("Upkie-MuJoCo-Velocity", asked);
+  const CrouchResult about = crouch_with_baseline("Upkie-MuJoCo-Velocity", asked,
+                                                  {{"leg_action_about_crouch", "true"}});
+  ASSERT_FALSE(about.fell);
+  EXPECT_NEAR(about.mean_base_z, straight.mean_base_z, 1e-5);
+  EXPECT_NEAR(about.tracking.rms_height(), straight.tracking.rms_height(), 1e-5);
 }
 
 }  // namespace

@@ -51,6 +51,7 @@ VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& 
   wheels_ = model.wheel_geometry();
   wheel_velocity_scale_ = velocity.task().config().wheel_velocity_scale;
   leg_action_scale_ = velocity.task().config().leg_action_scale;
+  leg_action_about_crouch_ = velocity.task().config().leg_action_about_crouch;
   height_command_ = velocity.task().height_command();
   timestep_ = env.timestep();
   touchdown_steps_ = static_cast<int>(std::lround(kTouchdownTime / timestep_));
@@ -66,6 +67,7 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   if (steps_since_reset_ < touchdown_steps_) {
     ++steps_since_reset_;
     std::fill(action.begin(), action.end(), 0.0f);
+    if (height_command_) write_leg_actions(observation, {}, action);  // straight legs
     return;
   }
   const double odometry =
@@ -91,14 +93,16 @@ void VelocityBalancer::act(std::span<const float> observation, std::span<float> 
   const WheelVelocities wheels = wheels_.velocities(ground_velocity, yaw_rate);
   action[kLeftWheel] = normalized(wheels.left);
   action[kRightWheel] = normalized(wheels.right);
-  if (height_command_) {
-    if (observation.size() <= VelocityTask::kHeightCommandIndex) {
-      throw std::invalid_argument("velocity balancer: an observation of " +
-                                  std::to_string(observation.size()) +
-                                  " components has no height command, which its env has");
-    }
-    crouch(observation, action);
+  if (height_command_) crouch(observation, action);
+}
+
+double VelocityBalancer::commanded_height(std::span<const float> observation) {
+  if (observation.size() <= VelocityTask::kHeightCommandIndex) {
+    throw std::invalid_argument("velocity balancer: an observation of " +
+                                std::to_string(observation.size()) +
+                                " components has no height command, which its env has");
   }
+  return observation[VelocityTask::kHeightCommandIndex];
 }
 
 void VelocityBalancer::crouch(std::span<const float> observation, std::span<float> action) const {
@@ -107,16 +111,23 @@ void VelocityBalancer::crouch(std::span<const float> observation, std::span<floa
   const double lean = std::max(0.0, velocity_task_pitch(observation));
   const double lowest =
       legs_.height_at_shin_tilt(std::max(0.0, kCrouchShinTilt - kCrouchLeanGain * lean));
-  const double height =
-      std::max(static_cast<double>(observation[VelocityTask::kHeightCommandIndex]), lowest);
-  const CrouchPose pose = legs_.crouch_pose(height);
-  const auto normalized = [this](double angle) {
-    return static_cast<float>(std::clamp(angle / leg_action_scale_, -1.0, 1.0));
-  };
-  action[kLeftHip] = normalized(pose.hip);
-  action[kLeftKnee] = normalized(pose.knee);
-  action[kRightHip] = normalized(-pose.hip);  // the right leg mirrors the left
-  action[kRightKnee] = normalized(-pose.knee);
+  const double height = std::max(commanded_height(observation), lowest);
+  write_leg_actions(observation, legs_.crouch_pose(height).leg_angles(), action);
+}
+
+void VelocityBalancer::write_leg_actions(std::span<const float> observation,
+                                         const std::array<double, 4>& angles,
+                                         std::span<float> action) const {
+  // The task's action origin (leg_action_about_crouch: the commanded crouch) is taken off,
+  // so that the servo targets are the same either way.
+  std::array<double, 4> origin{};
+  if (leg_action_about_crouch_) {
+    origin = legs_.crouch_pose(commanded_height(observation)).leg_angles();
+  }
+  for (std::size_t k = 0; k < VelocityTask::kLegJoints.size(); ++k) {
+    action[VelocityTask::kLegJoints[k]] =
+        static_cast<float>(std::clamp((angles[k] - origin[k]) / leg_action_scale_, -1.0, 1.0));
+  }
 }
 
 }  // namespace upkie_rl

@@ -87,11 +87,18 @@ class VelocityBalancer final : public Controller {
  private:
   /// Writes the leg actions of the crouch pose of the observation's height command.
   void crouch(std::span<const float> observation, std::span<float> action) const;
+  /// Writes the leg actions that give the joint angles `angles` (kLegJoints order) under
+  /// the task's action origin.
+  void write_leg_actions(std::span<const float> observation, const std::array<double, 4>& angles,
+                         std::span<float> action) const;
+  /// The observation's height command [m]; refuses an observation without one.
+  static double commanded_height(std::span<const float> observation);
 
   ForwardBalanceLaw forward_;
   WheelGeometry wheels_;
   double wheel_velocity_scale_;  ///< rad/s at action 1
   double leg_action_scale_;      ///< rad at action 1
+  bool leg_action_about_crouch_ = false;  ///< Leg actions about the commanded crouch.
   bool height_command_ = false;  ///< Whether the env commands a height (crouch by IK).
   LegKinematics legs_;
   double timestep_;

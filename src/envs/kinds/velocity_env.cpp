@@ -21,7 +21,8 @@ constexpr std::uint64_t kCommandStream = 7;
 /// neither the baseline nor a policy could reach it.
 void VelocityEnv::check_crouch_reach(const VelocityTaskConfig& task,
                                      const VelocityCommandRanges& commands) const {
-  if (!commands.height_command) return;
+  // About the crouch, an action of zero holds every commanded height.
+  if (!commands.height_command || task.leg_action_about_crouch) return;
   const CrouchPose deepest = task_.legs().crouch_pose(commands.min_height);
   const double largest = std::max(std::abs(deepest.hip), std::abs(deepest.knee));
   if (largest > task.leg_action_scale) {

@@ -23,6 +23,10 @@ inline constexpr double kMaxShinTilt = 0.38;
 struct CrouchPose {
   double hip = 0.0;
   double knee = 0.0;
+
+  /// The pose's joint angles in the order left hip, left knee, right hip, right knee: the
+  /// right leg mirrors the left (its joints turn the other way).
+  std::array<double, 4> leg_angles() const { return {hip, knee, -hip, -knee}; }
 };
 
 /// Lengths of the legs in their sagittal plane, read from the robot description with all

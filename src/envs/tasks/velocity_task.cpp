@@ -64,6 +64,7 @@ BoxSpace VelocityTask::make_action_space() {
 void VelocityTask::servo_action(std::span<const float> action, const Observation& measured,
                                 const VelocityCommand& command_followed,
                                 ServoAction& commands) const {
+  const std::array<double, kNumServos> leg_origin = leg_action_origin(command_followed);
   std::array<double, kNumServos> wheel_start{};
   if (config_.wheel_command_feedforward) {
     const WheelVelocities followed =
@@ -84,9 +85,9 @@ void VelocityTask::servo_action(std::span<const float> action, const Observation
       command.kp_scale = 0.0;
       command.kd_scale = config_.wheel_kd_scale;
     } else {
-      // Default pose: 0; within the joint limits (a wide leg_action_scale spans more).
-      command.position =
-          std::clamp(config_.leg_action_scale * action[i], lower_limit_[i], upper_limit_[i]);
+      // Within the joint limits (a wide leg_action_scale spans more).
+      command.position = std::clamp(leg_origin[i] + config_.leg_action_scale * action[i],
+                                    lower_limit_[i], upper_limit_[i]);
       command.velocity = 0.0;
       command.kp_scale = config_.leg_kp_scale;
       command.kd_scale = config_.leg_kd_scale;
@@ -127,13 +128,23 @@ BaseVelocity VelocityTask::measure(const Observation& full) const {
   return measured;
 }
 
+std::array<double, 4> VelocityTask::leg_reference(const VelocityCommand& command) const {
+  if (!height_command_) return {};  // straight legs
+  return legs_.crouch_pose(command.height).leg_angles();
+}
+
+std::array<double, kNumServos> VelocityTask::leg_action_origin(
+    const VelocityCommand& command) const {
+  std::array<double, kNumServos> origin{};
+  if (!config_.leg_action_about_crouch) return origin;
+  const std::array<double, 4> reference = leg_reference(command);
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) origin[kLegJoints[k]] = reference[k];
+  return origin;
+}
+
 std::array<double, 4> VelocityTask::leg_deviation(const Observation& full,
                                                   const VelocityCommand& command) const {
-  std::array<double, 4> reference{};  // straight legs
-  if (height_command_) {
-    const CrouchPose crouch = legs_.crouch_pose(command.height);
-    reference = {crouch.hip, crouch.knee, -crouch.hip, -crouch.knee};  // the right mirrors
-  }
+  const std::array<double, 4> reference = leg_reference(command);
   std::array<double, 4> deviation{};
   for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
     deviation[k] = full.servo[kLegJoints[k]].position - reference[k];
@@ -210,6 +221,10 @@ void VelocityTaskConfig::declare_options(OptionTable& table) {
                  "hip and knee target offset from the default pose at action 1 [rad] (1.0: the "
                  "default crouch and room around it; 0.5 before the height command)");
   table.set_recorded_default("leg_action_scale", "0.5");
+  table.add_choice("leg_action_about_crouch", &leg_action_about_crouch,
+                   {{"true", true}, {"false", false}},
+                   "hip and knee targets are offsets from the crouch pose of the followed "
+                   "height command (its inverse kinematics) rather than from straight legs");
   table.add_choice("observe_command_acceleration", &observe_command_acceleration,
                    {{"true", true}, {"false", false}},
                    "append the followed command's forward and yaw accelerations over the "
