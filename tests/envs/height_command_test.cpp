@@ -258,8 +258,8 @@ TEST(HeightCommandEnv, LegActionsAboutTheCrouchStartFromTheCommandedCrouch) {
   // The deepest crouch needs no action about it: a small scale is then accepted.
   EXPECT_THROW(make_env("Upkie-Mock-Velocity", {{"leg_action_scale", "0.5"}}),
                std::invalid_argument);
-  EXPECT_NO_THROW(make_env("Upkie-Mock-Velocity", {{"leg_action_scale", "0.5"},
-                                                   {"leg_action_about_crouch", "true"}}));
+  EXPECT_NO_THROW(make_env("Upkie-Mock-Velocity",
+                           {{"leg_action_scale", "0.5"}, {"leg_action_about_crouch", "true"}}));
   EXPECT_THROW(make_env("Upkie-Mock-Velocity", {{"leg_action_about_crouch", "maybe"}}),
                std::invalid_argument);
 }
@@ -338,8 +338,8 @@ TEST(HeightCommandBaseline, SameCrouchWithLegActionsAboutTheCrouch) {
   // The baseline takes the task's action origin off: the same servo targets, the same run.
   const double asked = VelocityCommandRanges{}.min_height;
   const CrouchResult straight = crouch_with_baseline("Upkie-MuJoCo-Velocity", asked);
-  const CrouchResult about = crouch_with_baseline("Upkie-MuJoCo-Velocity", asked,
-                                                  {{"leg_action_about_crouch", "true"}});
+  const CrouchResult about =
+      crouch_with_baseline("Upkie-MuJoCo-Velocity", asked, {{"leg_action_about_crouch", "true"}});
   ASSERT_FALSE(about.fell);
   EXPECT_NEAR(about.mean_base_z, straight.mean_base_z, 1e-5);
   EXPECT_NEAR(about.tracking.rms_height(), straight.tracking.rms_height(), 1e-5);

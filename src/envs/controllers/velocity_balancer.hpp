@@ -96,10 +96,10 @@ class VelocityBalancer final : public Controller {
 
   ForwardBalanceLaw forward_;
   WheelGeometry wheels_;
-  double wheel_velocity_scale_;  ///< rad/s at action 1
-  double leg_action_scale_;      ///< rad at action 1
+  double wheel_velocity_scale_;           ///< rad/s at action 1
+  double leg_action_scale_;               ///< rad at action 1
   bool leg_action_about_crouch_ = false;  ///< Leg actions about the commanded crouch.
-  bool height_command_ = false;  ///< Whether the env commands a height (crouch by IK).
+  bool height_command_ = false;           ///< Whether the env commands a height (crouch by IK).
   LegKinematics legs_;
   double timestep_;
   int touchdown_steps_;  ///< kTouchdownTime in agent steps
