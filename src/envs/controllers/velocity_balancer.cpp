@@ -120,10 +120,10 @@ void VelocityBalancer::write_leg_actions(std::span<const float> observation,
                                          std::span<float> action) const {
   // The task's action origin (leg_action_about_crouch: the commanded crouch) is taken off,
   // so that the servo targets are the same either way.
-  std::array<double, 4> origin{};
-  if (leg_action_about_crouch_) {
-    origin = legs_.crouch_pose(commanded_height(observation)).leg_angles();
-  }
+  const std::array<double, 4> origin =
+      leg_action_about_crouch_
+          ? leg_action_origin_angles(legs_, true, commanded_height(observation))
+          : std::array<double, 4>{};
   for (std::size_t k = 0; k < VelocityTask::kLegJoints.size(); ++k) {
     action[VelocityTask::kLegJoints[k]] =
         static_cast<float>(std::clamp((angles[k] - origin[k]) / leg_action_scale_, -1.0, 1.0));

@@ -133,12 +133,19 @@ std::array<double, 4> VelocityTask::leg_reference(const VelocityCommand& command
   return legs_.crouch_pose(command.height).leg_angles();
 }
 
+std::array<double, 4> leg_action_origin_angles(const LegKinematics& legs, bool about_crouch,
+                                               double height) {
+  if (!about_crouch) return {};  // straight legs
+  return legs.crouch_pose(height).leg_angles();
+}
+
 std::array<double, kNumServos> VelocityTask::leg_action_origin(
     const VelocityCommand& command) const {
   std::array<double, kNumServos> origin{};
-  if (!config_.leg_action_about_crouch) return origin;
-  const std::array<double, 4> reference = leg_reference(command);
-  for (std::size_t k = 0; k < kLegJoints.size(); ++k) origin[kLegJoints[k]] = reference[k];
+  if (!height_command_) return origin;  // straight legs
+  const std::array<double, 4> angles =
+      leg_action_origin_angles(legs_, config_.leg_action_about_crouch, command.height);
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) origin[kLegJoints[k]] = angles[k];
   return origin;
 }
 

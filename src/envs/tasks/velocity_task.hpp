@@ -81,6 +81,13 @@ struct VelocityTaskConfig {
   void declare_options(OptionTable& table);
 };
 
+/// Origin of the hip and knee targets (kLegJoints order) [rad] for a commanded base height
+/// `height` [m]: its crouch pose when `about_crouch` (VelocityTaskConfig::
+/// leg_action_about_crouch), straight legs (0) otherwise. The task's actions and the
+/// balancer's both start from it.
+std::array<double, 4> leg_action_origin_angles(const LegKinematics& legs, bool about_crouch,
+                                               double height);
+
 /// Why an episode of the velocity task ended.
 enum class VelocityTermination { kNone = 0, kTilt, kContact };
 
