@@ -29,6 +29,7 @@ class EnvBatchVectorEnv : public VectorEnv {
   std::span<const std::string_view> reward_term_names() const final {
     return batch_.env(0).reward_term_names();
   }
+  const MirrorSymmetry* mirror_symmetry() const final { return batch_.env(0).mirror_symmetry(); }
   const Observation* full_observation(std::size_t i) const final {
     return batch_.env(i).full_observation();
   }

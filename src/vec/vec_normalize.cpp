@@ -29,6 +29,25 @@ VecNormalize::VecNormalize(std::unique_ptr<VectorEnv> venv, const NormalizeConfi
   step_.final_observations.assign(n * observation_size_, 0.0f);
 }
 
+void VecNormalize::set_statistics_mirror(const SignedPermutation& mirror) {
+  if (mirror.size() != observation_size_) {
+    throw std::invalid_argument("VecNormalize: a mirror of " + std::to_string(mirror.size()) +
+                                " components for observations of " +
+                                std::to_string(observation_size_));
+  }
+  statistics_mirror_ = mirror;
+  mirrored_observations_.assign(raw_observations_.size(), 0.0f);
+}
+
+void VecNormalize::update_observation_statistics() {
+  if (!training_ || !config_.observations) return;
+  observation_rms_.update(raw_observations_);
+  if (statistics_mirror_) {
+    statistics_mirror_->apply(raw_observations_, mirrored_observations_);
+    observation_rms_.update(mirrored_observations_);
+  }
+}
+
 void VecNormalize::normalize_observations(std::span<const float> raw,
                                           std::span<float> normalized) const {
   if (raw.size() != normalized.size() || raw.size() % observation_size_ != 0) {
@@ -53,7 +72,7 @@ std::span<const float> VecNormalize::reset(std::optional<std::uint64_t> seed) {
   const std::span<const float> raw = venv_->reset(seed);
   std::copy(raw.begin(), raw.end(), raw_observations_.begin());
   std::fill(returns_.begin(), returns_.end(), 0.0);
-  if (training_ && config_.observations) observation_rms_.update(raw_observations_);
+  update_observation_statistics();
   normalize_observations(raw_observations_, observations_);
   return observations_;
 }
@@ -70,7 +89,7 @@ const VectorStep& VecNormalize::step(std::span<const float> actions) {
   step_.episode_reward_terms = inner.episode_reward_terms;
   step_.rewards = inner.rewards;
 
-  if (training_ && config_.observations) observation_rms_.update(raw_observations_);
+  update_observation_statistics();
   normalize_observations(raw_observations_, step_.observations);
   for (std::size_t i = 0; i < n; ++i) {
     if (!inner.terminated[i] && !inner.truncated[i]) continue;

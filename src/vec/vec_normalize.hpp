@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -31,6 +32,14 @@ class VecNormalize final : public VectorEnv {
   /// false: statistics frozen, rewards not normalised (evaluation).
   void set_training(bool training) { training_ = training; }
   bool training() const { return training_; }
+
+  /// From now on, each batch of observations that updates the statistics updates them with
+  /// its mirror image too (`mirror` of the observation vector), so that they are
+  /// mirror-symmetric (mean = mirror(mean), variances swapped alike) from symmetric ones
+  /// (the initial ones): then normalising commutes with mirroring, and a mirrored normalised
+  /// observation is the normalised mirrored one (ppo.mirror_augmentation trains on those).
+  /// @throws std::invalid_argument when the mirror's size is not the observation size.
+  void set_statistics_mirror(const SignedPermutation& mirror);
 
   /// Normalises observations with the current statistics (no update); `raw` and
   /// `normalized` have the same size, a multiple of the observation size; may alias.
@@ -71,8 +80,13 @@ class VecNormalize final : public VectorEnv {
   std::span<const std::string_view> reward_term_names() const override {
     return venv_->reward_term_names();
   }
+  const MirrorSymmetry* mirror_symmetry() const override { return venv_->mirror_symmetry(); }
 
  private:
+  /// Updates the observations' statistics with raw_observations_ (and their mirror image)
+  /// while training.
+  void update_observation_statistics();
+
   std::unique_ptr<VectorEnv> venv_;
   NormalizeConfig config_;
   bool training_ = true;
@@ -87,6 +101,8 @@ class VecNormalize final : public VectorEnv {
   std::vector<float> raw_rewards_;
   std::vector<float> observations_;  // Normalised reset output.
   VectorStep step_;
+  std::optional<SignedPermutation> statistics_mirror_;
+  std::vector<float> mirrored_observations_;  // The mirror of raw_observations_.
 };
 
 }  // namespace upkie_rl

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "envs/spaces/box_space.hpp"
+#include "envs/spaces/mirror_symmetry.hpp"
 #include "sim/observation.hpp"
 
 namespace upkie_rl {
@@ -62,6 +63,9 @@ class VectorEnv {
   /// The environments' Env::reward_term_names() (empty when they do not break the reward
   /// down).
   virtual std::span<const std::string_view> reward_term_names() const { return {}; }
+
+  /// The environments' Env::mirror_symmetry() (nullptr when they declare none).
+  virtual const MirrorSymmetry* mirror_symmetry() const { return nullptr; }
 
   /// Env::set_randomization_scale on every environment (between steps, never during one);
   /// vector envs of environments without randomisation ignore it.

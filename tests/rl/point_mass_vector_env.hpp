@@ -2,10 +2,12 @@
 /// @file
 /// A tiny vector environment for testing PPO without physics: n point masses on a line.
 /// Observation [x], action [u] in [-1, 1], x ← x + 0.1·u; reward 1 − x²; terminated when
-/// |x| > 1.5, truncated after `max_steps` steps. A good policy drives x to 0.
+/// |x| > 1.5, truncated after `max_steps` steps. A good policy drives x to 0. Episodes start
+/// at x drawn in [reset_low, 1]. Its mirror (x -> -x, u -> -u) is declared on request.
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <span>
 #include <vector>
@@ -16,8 +18,10 @@ namespace upkie_rl::testing {
 
 class PointMassVectorEnv final : public VectorEnv {
  public:
-  explicit PointMassVectorEnv(std::size_t num_envs, std::int64_t max_steps = 50)
+  explicit PointMassVectorEnv(std::size_t num_envs, std::int64_t max_steps = 50,
+                              double reset_low = -1.0)
       : max_steps_(max_steps),
+        reset_low_(reset_low),
         x_(num_envs),
         steps_(num_envs),
         returns_(num_envs),
@@ -74,15 +78,24 @@ class PointMassVectorEnv final : public VectorEnv {
 
   std::int64_t total_steps() const { return total_steps_; }
 
+  /// Declares the mirror x -> -x, u -> -u (mirror_symmetry()).
+  void declare_mirror() {
+    mirror_ = MirrorSymmetry{SignedPermutation({0}, {true}, "observation"),
+                             SignedPermutation({0}, {true}, "action")};
+  }
+  const MirrorSymmetry* mirror_symmetry() const override { return mirror_ ? &*mirror_ : nullptr; }
+
  private:
   void reset_one(std::size_t i) {
-    x_[i] = std::uniform_real_distribution<double>(-1.0, 1.0)(generators_[i]);
+    x_[i] = std::uniform_real_distribution<double>(reset_low_, 1.0)(generators_[i]);
     steps_[i] = 0;
     returns_[i] = 0.0;
     result_.observations[i] = static_cast<float>(x_[i]);
   }
 
   std::int64_t max_steps_;
+  double reset_low_;
+  std::optional<MirrorSymmetry> mirror_;
   BoxSpace observation_space_;
   BoxSpace action_space_;
   std::vector<double> x_;

@@ -5,28 +5,14 @@
 #include <cmath>
 #include <utility>
 
+#include "rl/point_mass_config.hpp"
 #include "rl/point_mass_vector_env.hpp"
 
 namespace upkie_rl {
 namespace {
 
+using testing::point_mass_config;
 using testing::PointMassVectorEnv;
-
-TrainingConfig point_mass_config(std::int64_t num_envs = 4) {
-  TrainingConfig config;
-  config.env_id = "point-mass";
-  config.num_envs = num_envs;
-  config.policy.actor_hidden_sizes = {32, 32};
-  config.policy.critic_hidden_sizes = {32, 32};
-  config.ppo.total_timesteps = 40'000;
-  config.ppo.n_steps = 512;
-  config.ppo.batch_size = 64;
-  config.ppo.n_epochs = 5;
-  config.ppo.learning_rate_initial = 1e-3;
-  config.ppo.learning_rate_final = 3e-4;
-  config.seed = 3;
-  return config;
-}
 
 // Mean return over `episodes` episodes of the deterministic policy, or of uniformly random
 // actions when `policy` is null.

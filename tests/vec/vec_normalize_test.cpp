@@ -127,3 +127,41 @@ TEST(VecNormalize, StateRoundTripAndNamedErrors) {
 
 }  // namespace
 }  // namespace upkie_rl
+
+namespace upkie_rl {
+namespace {
+
+// With a mirror, the statistics are those of each batch and its image: symmetric, so that
+// normalising a mirrored observation gives the mirror of the normalised one.
+TEST(VecNormalize, MirroredStatisticsAreSymmetric) {
+  auto venv = make_normalized();
+  EXPECT_THROW(venv->set_statistics_mirror(SignedPermutation({1, 0}, {true, true}, "test")),
+               std::invalid_argument);
+  const SignedPermutation mirror({1, 0, 2}, {true, true, false}, "observation");
+  venv->set_statistics_mirror(mirror);
+  auto plain = make_normalized();
+  venv->reset(0);
+  plain->reset(0);
+  const std::array<float, 2> actions{1.0f, 3.0f};
+  for (int step = 0; step < 4; ++step) {
+    venv->step(actions);
+    plain->step(actions);
+  }
+  const RunningMeanStd& statistics = venv->observation_statistics();
+  EXPECT_NE(plain->observation_statistics().mean()[0], -plain->observation_statistics().mean()[1]);
+  EXPECT_NEAR(statistics.mean()[0], -statistics.mean()[1], 1e-12);
+  EXPECT_NEAR(statistics.var()[0], statistics.var()[1], 1e-12);
+  // A component the mirror keeps has the same mean but for the initial count's weight.
+  EXPECT_NEAR(statistics.mean()[2], plain->observation_statistics().mean()[2], 1e-4);
+  const std::array<float, 3> raw{0.5f, 2.0f, 4.0f};
+  std::array<float, 3> image{}, normalized{}, normalized_image{}, image_of_normalized{};
+  mirror.apply(raw, image);
+  venv->normalize_observations(image, normalized_image);
+  venv->normalize_observations(raw, normalized);
+  mirror.apply(normalized, image_of_normalized);
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(normalized_image[k], image_of_normalized[k], 1e-6);
+}
+
+}  // namespace
+}  // namespace upkie_rl

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "envs/spaces/box_space.hpp"
+#include "envs/spaces/mirror_symmetry.hpp"
 #include "sim/observation.hpp"
 
 namespace upkie_rl {
@@ -80,6 +81,11 @@ class Env {
   virtual std::span<const std::string_view> reward_term_names() const { return {}; }
   /// The terms of the last step's reward, in the order of reward_term_names().
   virtual std::span<const double> reward_terms() const { return {}; }
+
+  /// How observations and actions map under the robot's left-right mirror, when the
+  /// environment declares it (its task is left-right symmetric); nullptr otherwise.
+  /// Training with ppo.mirror_augmentation needs it.
+  virtual const MirrorSymmetry* mirror_symmetry() const { return nullptr; }
 
   /// Duration of one step [s].
   virtual double timestep() const = 0;

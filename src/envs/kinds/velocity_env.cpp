@@ -44,6 +44,7 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
                                                             task.observe_command_acceleration);
   check_crouch_reach(task, commands);
   action_space_ = VelocityTask::make_action_space();
+  mirror_ = VelocityTask::make_mirror_symmetry(observation_space_, action_space_);
   if (!task.base_controller.empty()) {
     try {
       base_ = make_builtin_controller(task.base_controller, *this);

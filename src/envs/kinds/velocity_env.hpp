@@ -75,6 +75,10 @@ class VelocityEnv final : public ServosWrapperEnv {
     return VelocityReward::kTermNames;
   }
   std::span<const double> reward_terms() const override { return task_.reward().terms(); }
+  /// VelocityTask::make_mirror_symmetry of the spaces. With a base_controller the action
+  /// is a residual, whose mirror is the same map when the controller is itself symmetric
+  /// (the velocity balancer is: its wheels' yaw term changes sign with the yaw rate).
+  const MirrorSymmetry* mirror_symmetry() const override { return &mirror_; }
 
  private:
   /// The task's observation of `full` with the last action, the followed command and,
@@ -101,6 +105,7 @@ class VelocityEnv final : public ServosWrapperEnv {
   std::array<float, VelocityTask::kMaxObservationSize> last_observation_{};
   std::array<float, VelocityTask::kActionSize> base_action_{};
   ServoAction servo_action_{};
+  MirrorSymmetry mirror_;
 };
 
 /// The VelocityEnv inside `env`'s wrappers (TimeLimit, noise, lag), or nullptr.

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 #include "envs/core/shared_options.hpp"
 
 namespace upkie_rl {
@@ -59,6 +61,43 @@ BoxSpace VelocityTask::make_action_space() {
   BoxSpace space;
   for (const std::string_view joint : kServoNames) space.add(std::string(joint), -1.0f, 1.0f);
   return space;
+}
+
+namespace {
+
+/// Components that change sign under the left-right mirror, besides the servos'.
+constexpr std::array<std::string_view, 5> kMirrorNegated = {
+    "gravity.y", "gyro.x", "gyro.z", "command.yaw_rate", "command.yaw_acceleration"};
+
+/// The mirror of `space` by its names (VelocityTask::make_mirror_symmetry).
+SignedPermutation mirror_by_names(const BoxSpace& space, const std::string& what) {
+  std::vector<std::size_t> source(space.size());
+  std::vector<bool> negate(space.size(), false);
+  for (std::size_t i = 0; i < space.size(); ++i) {
+    const std::string& name = space.names[i];
+    source[i] = i;
+    std::string twin = name;
+    if (const auto left = name.find("left_"); left != std::string::npos) {
+      twin.replace(left, 5, "right_");
+    } else if (const auto right = name.find("right_"); right != std::string::npos) {
+      twin.replace(right, 6, "left_");
+    }
+    if (twin != name) {
+      source[i] = space.index_of(twin);
+      negate[i] = true;
+    } else {
+      negate[i] =
+          std::find(kMirrorNegated.begin(), kMirrorNegated.end(), name) != kMirrorNegated.end();
+    }
+  }
+  return SignedPermutation(std::move(source), std::move(negate), what);
+}
+
+}  // namespace
+
+MirrorSymmetry VelocityTask::make_mirror_symmetry(const BoxSpace& observation,
+                                                  const BoxSpace& action) {
+  return {mirror_by_names(observation, "observation"), mirror_by_names(action, "action")};
 }
 
 void VelocityTask::servo_action(std::span<const float> action, const Observation& measured,

@@ -12,6 +12,7 @@
 
 #include "envs/core/env.hpp"
 #include "envs/spaces/box_space.hpp"
+#include "envs/spaces/mirror_symmetry.hpp"
 #include "envs/tasks/leg_kinematics.hpp"
 #include "envs/tasks/velocity_command.hpp"
 #include "envs/tasks/velocity_reward.hpp"
@@ -147,6 +148,13 @@ class VelocityTask {
   /// accelerations when `command_acceleration`.
   static BoxSpace make_observation_space(bool height_command, bool command_acceleration = false);
   static BoxSpace make_action_space();
+  /// The left-right mirror (y -> -y) of these spaces, by their component names: each left
+  /// servo's component swaps with its right twin's, negated (the right joints' angles and
+  /// velocities mirror the left's); gravity's y, the gyroscope's x and z (a pseudovector)
+  /// and the yaw command and its acceleration change sign; the rest (pitch, forward
+  /// velocity, height) is unchanged. tests/envs/mirror_symmetry_test.cpp checks it against
+  /// the physics: a mirrored action from a symmetric start gives the mirrored observations.
+  static MirrorSymmetry make_mirror_symmetry(const BoxSpace& observation, const BoxSpace& action);
 
   /// The servo commands of the normalised action `action` (already clamped to [-1, 1]);
   /// `measured` is the last observation, whose wheel velocities a relative wheel action

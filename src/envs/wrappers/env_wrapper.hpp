@@ -32,6 +32,7 @@ class EnvWrapper : public Env {
     return env_->reward_term_names();
   }
   std::span<const double> reward_terms() const override { return env_->reward_terms(); }
+  const MirrorSymmetry* mirror_symmetry() const override { return env_->mirror_symmetry(); }
   double timestep() const override { return env_->timestep(); }
   int physics_steps_per_step() const override { return env_->physics_steps_per_step(); }
 

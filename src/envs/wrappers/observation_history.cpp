@@ -33,6 +33,10 @@ ObservationHistory::ObservationHistory(std::unique_ptr<Env> env, int length)
   space_ = stacked_space(inner, length_);
   history_.assign(space_.size(), 0.0f);
   latest_.assign(inner.size(), 0.0f);
+  if (const MirrorSymmetry* mirror = env_->mirror_symmetry()) {
+    mirror_ = MirrorSymmetry{mirror->observation.repeated(static_cast<std::size_t>(length_)),
+                             mirror->action};
+  }
 }
 
 void ObservationHistory::check_size(std::span<float> observation) const {

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "envs/wrappers/env_wrapper.hpp"
@@ -33,6 +34,8 @@ class ObservationHistory final : public EnvWrapper {
   int length() const { return length_; }
 
   const BoxSpace& observation_space() const override { return space_; }
+  /// The inner environment's mirror on each observation of the history.
+  const MirrorSymmetry* mirror_symmetry() const override { return mirror_ ? &*mirror_ : nullptr; }
   void reset(std::optional<std::uint64_t> seed, std::span<float> observation) override;
   StepResult step(std::span<const float> action, std::span<float> observation) override;
 
@@ -44,6 +47,7 @@ class ObservationHistory final : public EnvWrapper {
   BoxSpace space_;
   std::vector<float> history_;  // length_ observations, newest first.
   std::vector<float> latest_;   // The inner environment's last observation.
+  std::optional<MirrorSymmetry> mirror_;
 };
 
 }  // namespace upkie_rl

@@ -27,6 +27,10 @@ double seconds_since(Clock::time_point start) {
 // Checked before the policy and the rollout buffer are allocated.
 const TrainingConfig& validated(const TrainingConfig& config, const VectorEnv& env) {
   config.validate();
+  if (config.ppo.mirror_augmentation && env.mirror_symmetry() == nullptr) {
+    throw std::invalid_argument("config key 'ppo.mirror_augmentation': " + config.env_id +
+                                " declares no left-right mirror of its observations and actions");
+  }
   config.check_allocations(static_cast<std::int64_t>(env.observation_space().size()),
                            static_cast<std::int64_t>(env.action_space().size()));
   return config;
@@ -95,8 +99,11 @@ Ppo::Ppo(VectorEnv& env, const TrainingConfig& config)
   permutation_.resize(static_cast<std::size_t>(buffer_.size()));
   // At most one episode ends per environment and step: no allocation during rollouts.
   ended_episodes_.reserve(static_cast<std::size_t>(2 * num_envs_ * buffer_.num_steps()));
+  // With mirror augmentation, each minibatch holds its samples and their images.
+  const std::int64_t copies = config_.ppo.mirror_augmentation ? 2 : 1;
+  if (config_.ppo.mirror_augmentation) mirrored_.emplace(*env.mirror_symmetry(), buffer_.size());
   if (upkie_rl::uses_hand_gradient(config_)) {
-    gradient_.emplace(*policy_, std::min(config_.ppo.batch_size, buffer_.size()),
+    gradient_.emplace(*policy_, copies * std::min(config_.ppo.batch_size, buffer_.size()),
                       PpoGradientKernel::kFastest, config_.ppo.update_threads);
   }
 }
@@ -145,6 +152,7 @@ void Ppo::collect_rollout() {
   inference_.run_critic(last_observations_);
   std::copy(inference_.values().begin(), inference_.values().end(), last_values_.begin());
   buffer_.compute_returns_and_advantages(last_values_, config_.ppo.gamma, config_.ppo.gae_lambda);
+  if (mirrored_) mirrored_->fill(buffer_, *policy_);
   gather_ended_episodes();
   ++iterations_;
   timings_.update_seconds += seconds_since(start);
@@ -255,13 +263,16 @@ PpoUpdateStatistics Ppo::update() {
   std::int64_t minibatches = 0;
   for (std::int64_t epoch = 0; epoch < ppo.n_epochs; ++epoch) {
     shuffle(permutation_, rng_);
-    const PpoMinibatch shuffled = shuffled_rollout(buffer_, permutation_);
+    const PpoMinibatch shuffled =
+        mirrored_ ? mirrored_->paired_shuffle(buffer_, permutation_, ppo.batch_size)
+                  : shuffled_rollout(buffer_, permutation_);
     const PpoMinibatchView shuffled_view = view_minibatch(shuffled);
+    const std::int64_t copies = mirrored_ ? 2 : 1;  // samples and their images
     for (std::int64_t begin = 0; begin < size; begin += ppo.batch_size) {
       const std::int64_t length = std::min(ppo.batch_size, size - begin);
       // compute_ppo_loss(...).total.backward(), hand-written or by autograd: either
       // overwrites the flat gradients.
-      const PpoMinibatchView minibatch = shuffled_view.rows(begin, length);
+      const PpoMinibatchView minibatch = shuffled_view.rows(copies * begin, copies * length);
       const PpoLossStatistics loss = gradient_ ? gradient_->compute(minibatch, *policy_, ppo)
                                                : autograd_ppo_gradient(minibatch, *policy_, ppo);
       // DD-PPO: the gradient of the minibatch of every rank together.

@@ -18,6 +18,7 @@
 #include "rl/ppo/actor_critic.hpp"
 #include "rl/ppo/flat_adam.hpp"
 #include "rl/ppo/linear_schedule.hpp"
+#include "rl/ppo/mirrored_rollout.hpp"
 #include "rl/ppo/ppo_gradient.hpp"
 #include "rl/ppo/rollout_buffer.hpp"
 #include "rl/runs/training_config.hpp"
@@ -137,6 +138,8 @@ class Ppo {
   /// Loss and gradient of a minibatch, buffers sized once; empty when the config trains
   /// with autograd (uses_hand_gradient).
   std::optional<PpoGradient> gradient_;
+  /// The images of the rollout's samples, with ppo.mirror_augmentation; empty otherwise.
+  std::optional<MirroredRollout> mirrored_;
   EpisodeStatistics episodes_;
   RewardTermStatistics reward_terms_;
   PpoTimings timings_;

@@ -276,6 +276,8 @@ void PpoConfig::declare_options(OptionTable& table, const std::int64_t& num_envs
   table.add_integer<I>("ppo.update_threads", &update_threads, 1, kMaxUpdateThreads,
                        "threads of the hand-written gradient (2: the critic's part beside the "
                        "actor's, the same results)");
+  table.add_boolean("ppo.mirror_augmentation", &mirror_augmentation,
+                    "train on each sample and its left-right mirror image");
 }
 
 void TrainingConfig::validate() const {

@@ -74,6 +74,10 @@ struct PpoConfig {
   /// companion running the critic's part beside the actor's). 2 by default: the results
   /// are the same bit for bit, sooner when a core is free. Unused by autograd.
   std::int64_t update_threads = 2;
+  /// Not SB3's: trains on each sample and its left-right mirror image (the environment's
+  /// Env::mirror_symmetry), which makes the policy mirror-symmetric
+  /// (rl/ppo/mirrored_rollout.hpp). Each minibatch is twice ppo.batch_size.
+  bool mirror_augmentation = false;
 
   /// Declares the keys ppo.*; n_steps and batch_size are checked against `num_envs`, the
   /// gradient against `activation` (both bound, read when the table checks).

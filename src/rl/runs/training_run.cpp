@@ -258,6 +258,12 @@ void TrainingRun::make_learner() {
       config_.env_options, static_cast<std::size_t>(config_.num_envs),
       static_cast<std::size_t>(config_.env_threads));
   auto normalize = std::make_unique<VecNormalize>(std::move(inner), config_.normalize);
+  // Mirrored normalised observations are the normalised mirrored ones only when the
+  // statistics are symmetric (Ppo refuses the option when there is no mirror).
+  if (const MirrorSymmetry* mirror = normalize->mirror_symmetry();
+      config_.ppo.mirror_augmentation && mirror != nullptr) {
+    normalize->set_statistics_mirror(mirror->observation);
+  }
   normalize_ = normalize.get();
   env_ = std::move(normalize);
   ppo_ = std::make_unique<Ppo>(*env_, config_);

@@ -1,0 +1,72 @@
+#include "rl/ppo/mirrored_rollout.hpp"
+
+#include <algorithm>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+namespace upkie_rl {
+
+namespace {
+
+std::span<float> values_of(torch::Tensor& tensor) {
+  return {tensor.data_ptr<float>(), static_cast<std::size_t>(tensor.numel())};
+}
+
+std::span<const float> values_of(const torch::Tensor& tensor) {
+  return {tensor.data_ptr<float>(), static_cast<std::size_t>(tensor.numel())};
+}
+
+}  // namespace
+
+MirroredRollout::MirroredRollout(const MirrorSymmetry& mirror, std::int64_t size)
+    : mirror_(mirror),
+      observations_(torch::zeros({size, static_cast<std::int64_t>(mirror.observation.size())})),
+      actions_(torch::zeros({size, static_cast<std::int64_t>(mirror.action.size())})),
+      log_probs_(torch::zeros({size})),
+      values_(torch::zeros({size})),
+      paired_index_(static_cast<std::size_t>(2 * size)) {}
+
+void MirroredRollout::fill(const RolloutBuffer& buffer, const ActorCritic& policy) {
+  if (buffer.size() != observations_.size(0) ||
+      buffer.flat_observations().size(1) != observations_.size(1) ||
+      buffer.flat_actions().size(1) != actions_.size(1)) {
+    throw std::invalid_argument("MirroredRollout: a rollout of " + std::to_string(buffer.size()) +
+                                " samples does not match the mirror's sizes");
+  }
+  // Stage 1: the images of the observations and actions.
+  mirror_.observation.apply(values_of(buffer.flat_observations().contiguous()),
+                            values_of(observations_));
+  mirror_.action.apply(values_of(buffer.flat_actions().contiguous()), values_of(actions_));
+  // Stage 2: their log π_old and V_old, under the policy that collected the rollout.
+  torch::NoGradGuard no_grad;
+  const ActionEvaluation evaluation = policy.evaluate_actions(observations_, actions_);
+  log_probs_.copy_(evaluation.log_prob);
+  values_.copy_(evaluation.values);
+}
+
+PpoMinibatch MirroredRollout::paired_shuffle(const RolloutBuffer& buffer,
+                                             const std::vector<std::int64_t>& permutation,
+                                             std::int64_t batch_size) {
+  const auto size = static_cast<std::int64_t>(permutation.size());
+  std::size_t row = 0;
+  for (std::int64_t begin = 0; begin < size; begin += batch_size) {
+    const std::int64_t end = std::min(size, begin + batch_size);
+    for (std::int64_t i = begin; i < end; ++i) paired_index_[row++] = permutation[i];
+    for (std::int64_t i = begin; i < end; ++i) paired_index_[row++] = size + permutation[i];
+  }
+  const torch::Tensor index = torch::from_blob(paired_index_.data(), {2 * size}, torch::kInt64);
+  const auto paired = [&index](const torch::Tensor& original, const torch::Tensor& image) {
+    return torch::cat({original, image}).index_select(0, index);
+  };
+  const torch::Tensor advantages = buffer.flat_advantages();
+  const torch::Tensor returns = buffer.flat_returns();
+  return {paired(buffer.flat_observations(), observations_),
+          paired(buffer.flat_actions(), actions_),
+          paired(buffer.flat_log_probs(), log_probs_),
+          paired(buffer.flat_values(), values_),
+          paired(advantages, advantages),
+          paired(returns, returns)};
+}
+
+}  // namespace upkie_rl

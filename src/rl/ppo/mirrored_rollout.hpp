@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// MirroredRollout: the mirror image of each sample of a rollout, and minibatches that
+/// pair each sample with its image (ppo.mirror_augmentation).
+///
+/// Why: a left-right symmetric robot and task make the mirror image of every transition an
+/// equally likely one, with the same advantage and return; training on both makes the
+/// policy mirror-symmetric without a hand-written term in the loss (symmetry-based data
+/// augmentation, as Mittal et al. 2024 do for legged robots in RSL-RL). Unlike RSL-RL,
+/// which gives an image the log-probability of its original, the image's log π_old and
+/// V_old are those of the policy that collected the rollout, evaluated on the image before
+/// the update: the ratio of the clipped objective is then the true one for every sample.
+///
+/// Cost (8 M steps of configs/velocity_scratch.yaml, this 2-core machine): each update
+/// passes over twice the samples (the same number of minibatches, each twice as large),
+/// and the images' evaluation is one batched forward pass of both networks per rollout.
+
+#include <torch/torch.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "envs/spaces/mirror_symmetry.hpp"
+#include "rl/ppo/actor_critic.hpp"
+#include "rl/ppo/ppo_loss.hpp"
+#include "rl/ppo/rollout_buffer.hpp"
+
+namespace upkie_rl {
+
+class MirroredRollout {
+ public:
+  /// Storage for the images of a rollout of `size` samples of these spaces' mirror.
+  MirroredRollout(const MirrorSymmetry& mirror, std::int64_t size);
+
+  /// Writes the image of every sample of `buffer` (its advantages and returns computed):
+  /// mirrored observations (normalised: the normaliser's statistics must be symmetric,
+  /// VecNormalize::set_statistics_mirror) and actions, and their log π and V under
+  /// `policy`, which must be the one that collected the rollout.
+  void fill(const RolloutBuffer& buffer, const ActorCritic& policy);
+
+  /// The rollout and its images in the order of `permutation` (of the buffer's samples),
+  /// by minibatches of `batch_size`: the minibatch of samples [begin, begin + n) of the
+  /// permutation becomes rows [2·begin, 2·begin + 2n), those samples then their images.
+  PpoMinibatch paired_shuffle(const RolloutBuffer& buffer,
+                              const std::vector<std::int64_t>& permutation,
+                              std::int64_t batch_size);
+
+ private:
+  MirrorSymmetry mirror_;
+  torch::Tensor observations_;              // size x observation_size
+  torch::Tensor actions_;                   // size x action_size
+  torch::Tensor log_probs_;                 // size
+  torch::Tensor values_;                    // size
+  std::vector<std::int64_t> paired_index_;  // 2·size rows of [buffer; images]
+};
+
+}  // namespace upkie_rl
