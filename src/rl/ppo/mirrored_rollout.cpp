@@ -23,7 +23,6 @@ MirroredRollout::MirroredRollout(const MirrorSymmetry& mirror, std::int64_t size
     : mirror_(mirror),
       observations_(torch::zeros({size, static_cast<std::int64_t>(mirror.observation.size())})),
       actions_(torch::zeros({size, static_cast<std::int64_t>(mirror.action.size())})),
-      log_probs_(torch::zeros({size})),
       values_(torch::zeros({size})),
       paired_index_(static_cast<std::size_t>(2 * size)) {}
 
@@ -38,11 +37,10 @@ void MirroredRollout::fill(const RolloutBuffer& buffer, const ActorCritic& polic
   mirror_.observation.apply(values_of(buffer.flat_observations().contiguous()),
                             values_of(observations_));
   mirror_.action.apply(values_of(buffer.flat_actions().contiguous()), values_of(actions_));
-  // Stage 2: their log π_old and V_old, under the policy that collected the rollout.
+  // Stage 2: their V_old, under the policy that collected the rollout (their log π_old is
+  // the originals': the header says why).
   torch::NoGradGuard no_grad;
-  const ActionEvaluation evaluation = policy.evaluate_actions(observations_, actions_);
-  log_probs_.copy_(evaluation.log_prob);
-  values_.copy_(evaluation.values);
+  values_.copy_(policy.value(observations_));
 }
 
 PpoMinibatch MirroredRollout::paired_shuffle(const RolloutBuffer& buffer,
@@ -63,7 +61,7 @@ PpoMinibatch MirroredRollout::paired_shuffle(const RolloutBuffer& buffer,
   const torch::Tensor returns = buffer.flat_returns();
   return {paired(buffer.flat_observations(), observations_),
           paired(buffer.flat_actions(), actions_),
-          paired(buffer.flat_log_probs(), log_probs_),
+          paired(buffer.flat_log_probs(), buffer.flat_log_probs()),
           paired(buffer.flat_values(), values_),
           paired(advantages, advantages),
           paired(returns, returns)};

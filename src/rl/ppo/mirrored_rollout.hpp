@@ -6,10 +6,15 @@
 /// Why: a left-right symmetric robot and task make the mirror image of every transition an
 /// equally likely one, with the same advantage and return; training on both makes the
 /// policy mirror-symmetric without a hand-written term in the loss (symmetry-based data
-/// augmentation, as Mittal et al. 2024 do for legged robots in RSL-RL). Unlike RSL-RL,
-/// which gives an image the log-probability of its original, the image's log π_old and
-/// V_old are those of the policy that collected the rollout, evaluated on the image before
-/// the update: the ratio of the clipped objective is then the true one for every sample.
+/// augmentation, as Mittal et al. 2024 do for legged robots in RSL-RL).
+///
+/// An image is a sample of the mirrored behaviour policy, whose density at the image is the
+/// original's: its log π_old is the original's, and PPO's ratio π(Ma|Ms) / π_old(a|s) is the
+/// importance weight of an off-policy sample. The first version evaluated π_old at the image
+/// instead (π_old(Ma|Ms)), which is tiny where the policy is not yet symmetric (the action's
+/// std falls to 0.06-0.09): the ratios grew without bound (approx_kl 0.8 at 1.8 M steps of
+/// configs/velocity_scratch.yaml, 2.6e8 at 2.3 M, then NaN actions). V_old of an image is
+/// the critic's at the image, for value clipping; its return is the original's.
 ///
 /// Cost (8 M steps of configs/velocity_scratch.yaml, this 2-core machine): each update
 /// passes over twice the samples (the same number of minibatches, each twice as large),
@@ -34,8 +39,8 @@ class MirroredRollout {
 
   /// Writes the image of every sample of `buffer` (its advantages and returns computed):
   /// mirrored observations (normalised: the normaliser's statistics must be symmetric,
-  /// VecNormalize::set_statistics_mirror) and actions, and their log π and V under
-  /// `policy`, which must be the one that collected the rollout.
+  /// VecNormalize::set_statistics_mirror) and actions, and their V under `policy`, which
+  /// must be the one that collected the rollout.
   void fill(const RolloutBuffer& buffer, const ActorCritic& policy);
 
   /// The rollout and its images in the order of `permutation` (of the buffer's samples),
@@ -49,7 +54,6 @@ class MirroredRollout {
   MirrorSymmetry mirror_;
   torch::Tensor observations_;              // size x observation_size
   torch::Tensor actions_;                   // size x action_size
-  torch::Tensor log_probs_;                 // size
   torch::Tensor values_;                    // size
   std::vector<std::int64_t> paired_index_;  // 2·size rows of [buffer; images]
 };
