@@ -72,7 +72,7 @@ TEST(MirrorAugmentation, ThePairedLossHasNoBiasGradientAtAnOddPolicy) {
   images.fill(ppo.buffer(), policy);
   std::vector<std::int64_t> permutation(static_cast<std::size_t>(ppo.buffer().size()));
   std::iota(permutation.begin(), permutation.end(), 0);
-  const PpoMinibatch paired = images.paired_shuffle(ppo.buffer(), permutation, 64);
+  const PpoMinibatch paired = images.paired_shuffle(permutation, 64);
   const PpoMinibatchView view = view_minibatch(paired);
   PpoGradient gradient(policy, 128, PpoGradientKernel::kFastest, 1);
   const auto bias_and_weight_gradients = [&policy] {
@@ -139,7 +139,7 @@ TEST(MirroredRollout, PairsEachMinibatchWithItsImages) {
   MirroredRollout images(mirror, buffer.size());
   images.fill(buffer, policy);
   const std::vector<std::int64_t> permutation = {3, 1, 0, 2};
-  const PpoMinibatch paired = images.paired_shuffle(buffer, permutation, 3);
+  const PpoMinibatch paired = images.paired_shuffle(permutation, 3);
   ASSERT_EQ(paired.observations.size(0), 8);
   // Minibatch 1: samples 3, 1, 0, then their images; minibatch 2: sample 2, its image.
   const std::vector<std::int64_t> sample = {3, 1, 0, 3, 1, 0, 2, 2};

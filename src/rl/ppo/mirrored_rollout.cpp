@@ -41,10 +41,17 @@ void MirroredRollout::fill(const RolloutBuffer& buffer, const ActorCritic& polic
   // the originals': the header says why).
   torch::NoGradGuard no_grad;
   values_.copy_(policy.value(observations_));
+  // Stage 3: the rollout and its images in one set of tensors, which every epoch's
+  // paired_shuffle selects rows of.
+  combined_ = {torch::cat({buffer.flat_observations(), observations_}),
+               torch::cat({buffer.flat_actions(), actions_}),
+               torch::cat({buffer.flat_log_probs(), buffer.flat_log_probs()}),
+               torch::cat({buffer.flat_values(), values_}),
+               torch::cat({buffer.flat_advantages(), buffer.flat_advantages()}),
+               torch::cat({buffer.flat_returns(), buffer.flat_returns()})};
 }
 
-PpoMinibatch MirroredRollout::paired_shuffle(const RolloutBuffer& buffer,
-                                             const std::vector<std::int64_t>& permutation,
+PpoMinibatch MirroredRollout::paired_shuffle(const std::vector<std::int64_t>& permutation,
                                              std::int64_t batch_size) {
   const auto size = static_cast<std::int64_t>(permutation.size());
   std::size_t row = 0;
@@ -54,17 +61,10 @@ PpoMinibatch MirroredRollout::paired_shuffle(const RolloutBuffer& buffer,
     for (std::int64_t i = begin; i < end; ++i) paired_index_[row++] = size + permutation[i];
   }
   const torch::Tensor index = torch::from_blob(paired_index_.data(), {2 * size}, torch::kInt64);
-  const auto paired = [&index](const torch::Tensor& original, const torch::Tensor& image) {
-    return torch::cat({original, image}).index_select(0, index);
-  };
-  const torch::Tensor advantages = buffer.flat_advantages();
-  const torch::Tensor returns = buffer.flat_returns();
-  return {paired(buffer.flat_observations(), observations_),
-          paired(buffer.flat_actions(), actions_),
-          paired(buffer.flat_log_probs(), buffer.flat_log_probs()),
-          paired(buffer.flat_values(), values_),
-          paired(advantages, advantages),
-          paired(returns, returns)};
+  return {
+      combined_.observations.index_select(0, index), combined_.actions.index_select(0, index),
+      combined_.old_log_prob.index_select(0, index), combined_.old_values.index_select(0, index),
+      combined_.advantages.index_select(0, index),   combined_.returns.index_select(0, index)};
 }
 
 }  // namespace upkie_rl

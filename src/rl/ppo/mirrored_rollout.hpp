@@ -44,11 +44,11 @@ class MirroredRollout {
   /// must be the one that collected the rollout.
   void fill(const RolloutBuffer& buffer, const ActorCritic& policy);
 
-  /// The rollout and its images in the order of `permutation` (of the buffer's samples),
+  /// The last fill()'s rollout and its images in the order of `permutation` (of the
+  /// buffer's samples),
   /// by minibatches of `batch_size`: the minibatch of samples [begin, begin + n) of the
   /// permutation becomes rows [2·begin, 2·begin + 2n), those samples then their images.
-  PpoMinibatch paired_shuffle(const RolloutBuffer& buffer,
-                              const std::vector<std::int64_t>& permutation,
+  PpoMinibatch paired_shuffle(const std::vector<std::int64_t>& permutation,
                               std::int64_t batch_size);
 
  private:
@@ -56,6 +56,7 @@ class MirroredRollout {
   torch::Tensor observations_;              // size x observation_size
   torch::Tensor actions_;                   // size x action_size
   torch::Tensor values_;                    // size
+  PpoMinibatch combined_;                   // [rollout; images], made once per fill()
   std::vector<std::int64_t> paired_index_;  // 2·size rows of [buffer; images]
 };
 

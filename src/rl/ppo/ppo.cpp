@@ -263,9 +263,9 @@ PpoUpdateStatistics Ppo::update() {
   std::int64_t minibatches = 0;
   for (std::int64_t epoch = 0; epoch < ppo.n_epochs; ++epoch) {
     shuffle(permutation_, rng_);
-    const PpoMinibatch shuffled =
-        mirrored_ ? mirrored_->paired_shuffle(buffer_, permutation_, ppo.batch_size)
-                  : shuffled_rollout(buffer_, permutation_);
+    const PpoMinibatch shuffled = mirrored_
+                                      ? mirrored_->paired_shuffle(permutation_, ppo.batch_size)
+                                      : shuffled_rollout(buffer_, permutation_);
     const PpoMinibatchView shuffled_view = view_minibatch(shuffled);
     const std::int64_t copies = mirrored_ ? 2 : 1;  // samples and their images
     for (std::int64_t begin = 0; begin < size; begin += ppo.batch_size) {
