@@ -167,7 +167,11 @@ sim2real-demo: build
 # The whole robot from scratch (configs/velocity_scratch.yaml, no classical controller
 # underneath): trains, evaluates beside the classical baseline on MuJoCo and alone on Bullet at
 # the reference 1 ms (sim-to-sim), plots and films the scripted commands.
-SCRATCH_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000
+# The built-in baseline takes only these options (a model carries the task options it was
+# trained with): the yaw ramp of configs/velocity_scratch.yaml is repeated here so that the
+# two follow the same commands.
+SCRATCH_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000 \
+  --env-option command_max_yaw_acceleration=3
 train-scratch: SCRATCH_RUN := runs/velocity-scratch-$(shell date +%Y%m%d-%H%M%S)
 train-scratch:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity_scratch.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
