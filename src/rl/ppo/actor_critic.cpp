@@ -6,6 +6,7 @@
 
 #include "policy/diagonal_gaussian.hpp"
 #include "rl/ppo/tensor_activation.hpp"
+#include "rl/ppo/tensor_span.hpp"
 
 namespace upkie_rl {
 
@@ -166,13 +167,11 @@ void PolicyInference::run(std::span<const float> observations) {
 }
 
 std::span<const float> PolicyInference::means() const {
-  const torch::Tensor& out = actor_outputs_.back();
-  return {out.data_ptr<float>(), static_cast<std::size_t>(out.numel())};
+  return tensor_values(actor_outputs_.back());
 }
 
 std::span<const float> PolicyInference::values() const {
-  const torch::Tensor& out = critic_outputs_.back();
-  return {out.data_ptr<float>(), static_cast<std::size_t>(out.numel())};
+  return tensor_values(critic_outputs_.back());
 }
 
 }  // namespace upkie_rl

@@ -5,19 +5,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "rl/ppo/tensor_span.hpp"
+
 namespace upkie_rl {
-
-namespace {
-
-std::span<float> values_of(torch::Tensor& tensor) {
-  return {tensor.data_ptr<float>(), static_cast<std::size_t>(tensor.numel())};
-}
-
-std::span<const float> values_of(const torch::Tensor& tensor) {
-  return {tensor.data_ptr<float>(), static_cast<std::size_t>(tensor.numel())};
-}
-
-}  // namespace
 
 MirroredRollout::MirroredRollout(const MirrorSymmetry& mirror, std::int64_t size)
     : mirror_(mirror),
@@ -34,9 +24,9 @@ void MirroredRollout::fill(const RolloutBuffer& buffer, const ActorCritic& polic
                                 " samples does not match the mirror's sizes");
   }
   // Stage 1: the images of the observations and actions.
-  mirror_.observation.apply(values_of(buffer.flat_observations().contiguous()),
-                            values_of(observations_));
-  mirror_.action.apply(values_of(buffer.flat_actions().contiguous()), values_of(actions_));
+  mirror_.observation.apply(tensor_values(buffer.flat_observations().contiguous()),
+                            tensor_values(observations_));
+  mirror_.action.apply(tensor_values(buffer.flat_actions().contiguous()), tensor_values(actions_));
   // Stage 2: their V_old, under the policy that collected the rollout (their log π_old is
   // the originals': the header says why).
   torch::NoGradGuard no_grad;

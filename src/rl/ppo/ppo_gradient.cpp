@@ -11,6 +11,7 @@
 #include "rl/ppo/dense_layer_backward_avx2.hpp"
 #include "rl/ppo/hand_gradient_activations.hpp"
 #include "rl/ppo/matrix_kernels_avx2.hpp"
+#include "rl/ppo/tensor_span.hpp"
 
 namespace upkie_rl {
 
@@ -28,7 +29,7 @@ std::span<const float> tensor_span(const torch::Tensor& tensor, const char* name
     throw std::invalid_argument(std::string("PPO minibatch: '") + name +
                                 "' must be a contiguous float32 CPU tensor");
   }
-  return {tensor.data_ptr<float>(), static_cast<std::size_t>(tensor.numel())};
+  return tensor_values(tensor);
 }
 
 void check_span(std::span<const float> span, std::int64_t expected, const char* name) {

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rl/ppo/tensor_span.hpp"
+
 namespace upkie_rl {
 
 void compute_gae(std::span<const float> rewards, std::span<const float> values,
@@ -48,8 +50,9 @@ RolloutBuffer::RolloutBuffer(std::int64_t num_steps, std::int64_t num_envs,
 
 void RolloutBuffer::compute_returns_and_advantages(std::span<const float> last_values, double gamma,
                                                    double lambda) {
-  compute_gae(all(rewards_), all(values_), all(dones_), last_values, num_steps_, num_envs_, gamma,
-              lambda, all(advantages_), all(returns_));
+  compute_gae(tensor_values(rewards_), tensor_values(values_), tensor_values(dones_), last_values,
+              num_steps_, num_envs_, gamma, lambda, tensor_values(advantages_),
+              tensor_values(returns_));
 }
 
 }  // namespace upkie_rl

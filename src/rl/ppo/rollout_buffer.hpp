@@ -54,9 +54,6 @@ class RolloutBuffer {
   float* row(torch::Tensor& tensor, std::int64_t t) {
     return tensor.data_ptr<float>() + t * (tensor.numel() / num_steps_);
   }
-  static std::span<float> all(torch::Tensor& tensor) {
-    return {tensor.data_ptr<float>(), static_cast<std::size_t>(tensor.numel())};
-  }
 
   std::int64_t num_steps_;
   std::int64_t num_envs_;
