@@ -33,12 +33,9 @@ void MirroredRollout::fill(const RolloutBuffer& buffer, const ActorCritic& polic
   values_.copy_(policy.value(observations_));
   // Stage 3: the rollout and its images in one set of tensors, which every epoch's
   // paired_shuffle selects rows of.
-  combined_ = {torch::cat({buffer.flat_observations(), observations_}),
-               torch::cat({buffer.flat_actions(), actions_}),
-               torch::cat({buffer.flat_log_probs(), buffer.flat_log_probs()}),
-               torch::cat({buffer.flat_values(), values_}),
-               torch::cat({buffer.flat_advantages(), buffer.flat_advantages()}),
-               torch::cat({buffer.flat_returns(), buffer.flat_returns()})};
+  const PpoMinibatch rollout = buffer.flat();
+  combined_ = concatenate_rows(rollout, {observations_, actions_, rollout.old_log_prob, values_,
+                                         rollout.advantages, rollout.returns});
 }
 
 PpoMinibatch MirroredRollout::paired_shuffle(const std::vector<std::int64_t>& permutation,
@@ -51,10 +48,7 @@ PpoMinibatch MirroredRollout::paired_shuffle(const std::vector<std::int64_t>& pe
     for (std::int64_t i = begin; i < end; ++i) paired_index_[row++] = size + permutation[i];
   }
   const torch::Tensor index = torch::from_blob(paired_index_.data(), {2 * size}, torch::kInt64);
-  return {
-      combined_.observations.index_select(0, index), combined_.actions.index_select(0, index),
-      combined_.old_log_prob.index_select(0, index), combined_.old_values.index_select(0, index),
-      combined_.advantages.index_select(0, index),   combined_.returns.index_select(0, index)};
+  return select_rows(combined_, index);
 }
 
 }  // namespace upkie_rl

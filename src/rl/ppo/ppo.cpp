@@ -57,12 +57,7 @@ void shuffle(std::vector<std::int64_t>& permutation, std::mt19937_64& rng) {
 PpoMinibatch shuffled_rollout(const RolloutBuffer& buffer, std::vector<std::int64_t>& permutation) {
   const torch::Tensor index = torch::from_blob(
       permutation.data(), {static_cast<std::int64_t>(permutation.size())}, torch::kInt64);
-  return {buffer.flat_observations().index_select(0, index),
-          buffer.flat_actions().index_select(0, index),
-          buffer.flat_log_probs().index_select(0, index),
-          buffer.flat_values().index_select(0, index),
-          buffer.flat_advantages().index_select(0, index),
-          buffer.flat_returns().index_select(0, index)};
+  return select_rows(buffer.flat(), index);
 }
 
 }  // namespace

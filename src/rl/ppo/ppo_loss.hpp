@@ -6,19 +6,10 @@
 #include <torch/torch.h>
 
 #include "rl/ppo/actor_critic.hpp"
+#include "rl/ppo/ppo_minibatch.hpp"
 #include "rl/runs/training_config.hpp"
 
 namespace upkie_rl {
-
-/// One minibatch of the rollout, as stored when it was collected.
-struct PpoMinibatch {
-  torch::Tensor observations;  ///< batch x observation_size (normalised).
-  torch::Tensor actions;       ///< batch x action_size (unclipped samples).
-  torch::Tensor old_log_prob;  ///< batch.
-  torch::Tensor old_values;    ///< batch: V at collection time.
-  torch::Tensor advantages;    ///< batch: GAE advantages (not normalised).
-  torch::Tensor returns;       ///< batch: value targets A + V.
-};
 
 /// The loss and its terms. `total` is differentiable; the others are detached.
 struct PpoLoss {

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <span>
 
+#include "rl/ppo/ppo_minibatch.hpp"
+
 namespace upkie_rl {
 
 /// Computes GAE advantages and value targets over a rollout of `num_steps` x `num_envs`
@@ -49,6 +51,11 @@ class RolloutBuffer {
   torch::Tensor flat_log_probs() const { return log_probs_.view({-1}); }
   torch::Tensor flat_advantages() const { return advantages_.view({-1}); }
   torch::Tensor flat_returns() const { return returns_.view({-1}); }
+  /// The six flat views as one minibatch of the whole rollout, in collection order.
+  PpoMinibatch flat() const {
+    return {flat_observations(), flat_actions(),    flat_log_probs(),
+            flat_values(),       flat_advantages(), flat_returns()};
+  }
 
  private:
   float* row(torch::Tensor& tensor, std::int64_t t) {
