@@ -1,6 +1,8 @@
 #include "cli/suite_evaluation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -26,11 +28,19 @@ std::string engine_of(const std::string& env_id) {
 
 int falls(const CellResult& cell) { return cell.summary.episodes - cell.successes; }
 
-/// The options of one world for one contender: its own, the world's, then the evaluation
-/// start (a random initial state) unless exact_start.
-EnvOptions world_options(const Contender& contender, const SuiteWorld& world, bool exact_start) {
+/// The options of one world for one contender: its own, the suite's, the evaluation's
+/// (--env-option, which may change the suite's: a policy trained with the body-height command
+/// on a standing suite), the world's (which the evaluation's do not change), then the
+/// evaluation start (a random initial state) unless exact_start.
+EnvOptions world_options(const Contender& contender, const SuiteWorld& world,
+                         const EnvOptions& evaluation_options, bool exact_start) {
+  const auto world_own =
+      world.options.begin() +
+      static_cast<std::ptrdiff_t>(std::min(world.suite_option_count, world.options.size()));
   EnvOptions all = contender.options;
-  all.insert(all.end(), world.options.begin(), world.options.end());
+  all.insert(all.end(), world.options.begin(), world_own);
+  all.insert(all.end(), evaluation_options.begin(), evaluation_options.end());
+  all.insert(all.end(), world_own, world.options.end());
   return exact_start ? all : with_evaluation_start(world.env_id, all);
 }
 
@@ -53,7 +63,8 @@ void run_env(const std::string& env_id, const SuiteRequest& request, const Episo
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     for (const std::size_t w : worlds) {
       const SuiteWorld& world = run.suite.worlds[w];
-      const EnvOptions options = world_options(contenders[c], world, request.exact_start);
+      const EnvOptions options =
+          world_options(contenders[c], world, request.base, request.exact_start);
       factories[c].push_back(make_env_factory(env_id, options));
       const std::string words = evaluation_start_words(env_id, options, request.exact_start);
       if (run.start_words.empty() || words == "from random starts") run.start_words = words;

@@ -20,7 +20,7 @@ namespace upkie_rl::apps {
 struct SuiteRequest {
   std::vector<std::string> models;       ///< [label=]path
   std::vector<std::string> controllers;  ///< [label=]spec
-  EnvOptions base;                       ///< --env-option, before each world's options
+  EnvOptions base;                       ///< --env-option: after the suite's, before a world's
   bool exact_start = false;              ///< Keep the environments' own initial states.
   int threads = 1;                       ///< Threads; 0 or 1: the calling thread alone.
   /// Overrides of the suite's figures when positive (a quick run of a shipped suite).

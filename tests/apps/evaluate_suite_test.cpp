@@ -103,6 +103,33 @@ TEST(EvaluateSuite, TinySuiteWritesTheTableJsonCsvAndHeatMap) {
   std::filesystem::remove_all(output);
 }
 
+// --env-option goes after the suite's options and before a world's: here the suite's
+// motors are too weak to stand (a tenth of their torque), the command line gives them back
+// their torque, and a world's own weak motors stay weak.
+TEST(EvaluateSuite, EnvOptionsChangeTheSuitesOptionsButNotAWorlds) {
+  const auto suite = write_suite("suite_weak.yaml", R"(name: weak
+description: weak motors unless told
+envs: [Upkie-MuJoCo-Velocity]
+episodes: 2
+seed: 3
+max_steps: 100
+options: {torque_limit_scale: 0.1}
+worlds:
+  - name: the suite's motors
+  - name: its own weak motors
+    options: {torque_limit_scale: 0.1}
+)");
+  const std::string command = "evaluate --suite " + suite.string() + " --controller lqr --json";
+  for (const bool given : {false, true}) {
+    const auto result =
+        run_cli(command + (given ? " --env-option torque_limit_scale=1" : std::string()));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const nlohmann::json summary = nlohmann::json::parse(last_line(result.output));
+    EXPECT_EQ(summary["worlds"][0]["results"]["lqr"]["falls"], given ? 0 : 2) << result.output;
+    EXPECT_EQ(summary["worlds"][1]["results"]["lqr"]["falls"], 2) << result.output;
+  }
+}
+
 TEST(EvaluateSuite, BadSuitesAreRefusedNamingTheWorldAndTheKey) {
   const auto expect_error = [](const std::string& text, const std::string& part) {
     const auto suite = write_suite("suite_bad.yaml", text);

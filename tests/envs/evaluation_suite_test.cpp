@@ -56,6 +56,7 @@ TEST(EvaluationSuite, WorldsExpandOverTheEnvsWithTheSuiteOptionsFirst) {
   EXPECT_EQ(suite.worlds[2].name, "slippery");
   const EnvOptions expected = {{"command_start_delay", "1.0"}, {"floor_friction", "0.4"}};
   EXPECT_EQ(suite.worlds[3].options, expected);
+  EXPECT_EQ(suite.worlds[3].suite_option_count, 1u);
 }
 
 TEST(EvaluationSuite, MistakesNameTheWorldAndTheKey) {

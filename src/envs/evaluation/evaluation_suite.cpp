@@ -123,7 +123,7 @@ void read_worlds(const YAML::Node& root, const std::string& where, EvaluationSui
     const EnvOptions own = read_options(worlds[i], named_where);
     options.insert(options.end(), own.begin(), own.end());
     for (const std::string& env_id : suite.env_ids) {
-      suite.worlds.push_back({name.Scalar(), env_id, options});
+      suite.worlds.push_back({name.Scalar(), env_id, options, common.size()});
     }
   }
   if (suite.worlds.size() > kMaxSuiteWorlds) {

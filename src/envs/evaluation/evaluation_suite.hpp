@@ -22,6 +22,7 @@
 ///       - name: tire friction 0.4
 ///         options: {floor_friction: 0.4}
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -37,6 +38,9 @@ struct SuiteWorld {
   std::string name;    ///< As the file names it.
   std::string env_id;  ///< One of the suite's envs.
   EnvOptions options;  ///< Every option of the world, the suite's first.
+  /// How many of `options`, at the front, are the suite's: an evaluation's own options go
+  /// between them and the world's, so that they may change the suite's but not a world's.
+  std::size_t suite_option_count = 0;
 };
 
 /// A suite as read and checked: worlds expanded over the envs (world-major order).
