@@ -171,7 +171,7 @@ sim2real-demo: build
 # trained with): the yaw ramp of configs/velocity_scratch.yaml is repeated here so that the
 # two follow the same commands.
 SCRATCH_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000 \
-  --env-option command_max_yaw_acceleration=3
+  --env-option command_max_yaw_acceleration=10
 train-scratch: SCRATCH_RUN := runs/velocity-scratch-$(shell date +%Y%m%d-%H%M%S)
 train-scratch:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity_scratch.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
