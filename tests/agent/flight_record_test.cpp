@@ -101,8 +101,10 @@ TEST_F(AgentRecord, RunnerAndRolloutActAsOneFunctionOfTheCheckpoint) {
     EXPECT_EQ(runner.columns.at(i), rollout.columns.at(i));
   }
   // Each binary's actions are, bit for bit, the checkpoint's DeployedPolicy on its own
-  // recorded observations: the same function in both.
-  EXPECT_GT(expect_checkpoint_actions(runner, kPendulum), 380u);
+  // recorded observations: the same function in both. The runner's rows are its cycles: 2 s
+  // at 200 Hz is 400 on an idle machine, and 365 were seen beside four trainings, so they are
+  // bounded below as in the test above, not pinned near 400.
+  EXPECT_GT(expect_checkpoint_actions(runner, kPendulum), 100u);
   EXPECT_EQ(expect_checkpoint_actions(rollout, kPendulum), 300u);
 }
 
