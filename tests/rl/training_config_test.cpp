@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
+
+#include "common/temp_files.hpp"
 
 namespace upkie_rl {
 namespace {
@@ -218,12 +221,6 @@ TEST(TrainingConfig, ValidateNamesTheInconsistentKey) {
   EXPECT_NO_THROW(config.validate());
 }
 
-}  // namespace
-}  // namespace upkie_rl
-
-namespace upkie_rl {
-namespace {
-
 TEST(TrainingConfig, CurriculumRampsTheRandomisationScale) {
   TrainingConfig config = parse_training_config("env:\n  curriculum_steps: 1000\n");
   EXPECT_EQ(config.curriculum_steps, 1000);
@@ -247,6 +244,72 @@ TEST(TrainingConfig, RobustAndServosBalanceFilesAreValid) {
     EXPECT_NO_THROW(config.validate()) << name;
     EXPECT_FALSE(config.env_options.empty()) << name;
   }
+}
+
+TEST(TrainingConfig, ABaseIsReadFirstAndTheFilesKeysOverIt) {
+  const auto folder = testing::temp_path("bases") / "derived";
+  std::filesystem::create_directories(folder);
+  testing::write_bytes(folder.parent_path() / "base.yaml",
+                       "env:\n  id: Upkie-MuJoCo-Velocity\n  num_envs: 4\n"
+                       "  options: {push_force: 10, nb_substeps: 10}\nseed: 3\n");
+  testing::write_bytes(folder / "robust.yaml",
+                       "base: ../base.yaml  # relative to this file\n"
+                       "env:\n  options: {push_force: 20, slope_variation: 8}\nseed: 5\n");
+  const TrainingConfig config = load_training_config((folder / "robust.yaml").string());
+  EXPECT_EQ(config.env_id, "Upkie-MuJoCo-Velocity");  // the base's
+  EXPECT_EQ(config.num_envs, 4);
+  EXPECT_EQ(config.seed, 5u);  // the file's, over the base's
+  const std::vector<std::pair<std::string, std::string>> options = {
+      {"push_force", "20"}, {"nb_substeps", "10"}, {"slope_variation", "8"}};
+  EXPECT_EQ(config.env_options, options);
+  // What a run directory saves is the whole resolved configuration, without the base.
+  const std::string yaml = to_yaml(config);
+  EXPECT_EQ(yaml.find("base:"), std::string::npos) << yaml;
+  EXPECT_EQ(parse_training_config(yaml).env_options, options);
+}
+
+TEST(TrainingConfig, ShippedRobustVelocityFileExtendsTheScratchOne) {
+  const TrainingConfig scratch = load_training_config(config_path("velocity_scratch.yaml"));
+  const TrainingConfig robust = load_training_config(config_path("velocity_robust.yaml"));
+  EXPECT_NO_THROW(robust.validate());
+  EXPECT_EQ(robust.ppo.total_timesteps, scratch.ppo.total_timesteps);
+  EXPECT_GT(robust.env_options.size(), scratch.env_options.size());
+}
+
+TEST(TrainingConfig, BadBasesAreRefusedByName) {
+  const auto folder = testing::temp_path("bad_bases");
+  std::filesystem::create_directories(folder);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    testing::write_bytes(folder / name, text);
+    return (folder / name).string();
+  };
+  write("a.yaml", "base: b.yaml\n");
+  const std::string cycle = write("b.yaml", "base: a.yaml\n");
+  expect_error_mentions([&] { load_training_config(cycle); }, "a cycle of bases");
+  const std::string self = write("self.yaml", "base: ./self.yaml\n");
+  expect_error_mentions([&] { load_training_config(self); }, "a cycle of bases");
+  const std::string missing = write("missing.yaml", "base: nowhere.yaml\n");
+  expect_error_mentions([&] { load_training_config(missing); }, "nowhere.yaml");
+  const std::string empty = write("empty.yaml", "base: ''\n");
+  expect_error_mentions([&] { load_training_config(empty); }, "config key 'base'");
+  const std::string list = write("list.yaml", "base: [a.yaml]\n");
+  expect_error_mentions([&] { load_training_config(list); }, "config key 'base'");
+  // A bad key of the base names both files.
+  write("typo.yaml", "sed: 1\n");
+  const std::string derived = write("derived.yaml", "base: typo.yaml\n");
+  expect_error_mentions([&] { load_training_config(derived); }, "derived.yaml: ");
+  expect_error_mentions([&] { load_training_config(derived); },
+                        "typo.yaml: unknown config key 'sed'");
+  // A chain of nine files is refused, eight are read.
+  for (int i = 1; i <= 8; ++i) {
+    write("chain" + std::to_string(i) + ".yaml", "base: chain" + std::to_string(i + 1) + ".yaml\n");
+  }
+  write("chain9.yaml", "seed: 9\n");
+  expect_error_mentions([&] { load_training_config((folder / "chain1.yaml").string()); },
+                        "more than 8 files");
+  EXPECT_EQ(load_training_config((folder / "chain2.yaml").string()).seed, 9u);
+  // Text has no directory to resolve a base against.
+  expect_error_mentions([] { parse_training_config("base: a.yaml\n"); }, "only a config file");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -149,10 +150,11 @@ void walk(const YAML::Node& node, const std::string& prefix, TrainingConfig& con
         set_env_option(config, option_name, node_text(option.second, key + "." + option_name));
       }
     } else if (value.IsMap()) {
-      static const std::vector<std::string> sections = {"env", "normalize", "policy", "ppo"};
-      if (prefix.empty() && std::find(sections.begin(), sections.end(), name) == sections.end()) {
+      static const std::vector<std::string> kSections = {"env", "normalize", "policy", "ppo"};
+      if (prefix.empty() &&
+          std::find(kSections.begin(), kSections.end(), name) == kSections.end()) {
         throw std::invalid_argument("unknown config section '" + key + "'" +
-                                    did_you_mean(key, sections));
+                                    did_you_mean(key, kSections));
       }
       walk(value, key, config, table);
     } else {
@@ -309,30 +311,93 @@ void TrainingConfig::check_allocations(std::int64_t observation_size,
                    "the rollout buffer");
 }
 
-TrainingConfig parse_training_config(const std::string& yaml_text) {
+namespace {
+
+/// The top-level key naming the configuration file a file extends.
+constexpr const char* kBaseKey = "base";
+
+/// Files in one chain of bases, the first included. Why a bound: a cycle is refused by name
+/// (below), and a chain longer than any hand-written one is a mistake, not a layout.
+constexpr std::size_t kMaxBaseChain = 8;
+
+YAML::Node load_yaml(const std::string& yaml_text) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& error) {
     throw std::invalid_argument(std::string("malformed YAML: ") + error.what());
   }
-  TrainingConfig config;
-  if (root.IsNull()) return config;
-  if (!root.IsMap()) throw std::invalid_argument("config: expected a mapping at the top level");
+  if (!root.IsNull() && !root.IsMap()) {
+    throw std::invalid_argument("config: expected a mapping at the top level");
+  }
+  return root;
+}
+
+void apply_yaml(const YAML::Node& root, TrainingConfig& config) {
   OptionTable table;
   config.declare_options(table);
   walk(root, "", config, table);
+}
+
+/// Reads the file at `path` (as written, for messages; `chain.back()` is its canonical form)
+/// into `config`: its base first (a path relative to the file's directory), then its own keys
+/// over the base's. `chain` holds the files being read, to refuse a cycle by name.
+void read_config_file(const std::filesystem::path& path, std::vector<std::filesystem::path>& chain,
+                      TrainingConfig& config) {
+  const std::string text =
+      read_input_file<std::invalid_argument>(path.string(), "config file", kMaxConfigFileBytes);
+  try {
+    YAML::Node root = load_yaml(text);
+    if (root.IsNull()) return;
+    if (const YAML::Node base = root[kBaseKey]; base) {
+      if (!base.IsScalar() || base.Scalar().empty()) {
+        bad_value(kBaseKey, base.IsScalar() ? "" : "not a file name", "a config file's path");
+      }
+      const std::filesystem::path base_path = path.parent_path() / base.Scalar();
+      const std::filesystem::path canonical = std::filesystem::weakly_canonical(base_path);
+      if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
+        throw std::invalid_argument(config_key(kBaseKey) + ": '" + base.Scalar() +
+                                    "' extends this file again (a cycle of bases)");
+      }
+      if (chain.size() >= kMaxBaseChain) {
+        throw std::invalid_argument(config_key(kBaseKey) + ": more than " +
+                                    std::to_string(kMaxBaseChain) + " files in the chain of bases");
+      }
+      chain.push_back(canonical);
+      read_config_file(base_path, chain, config);
+      chain.pop_back();
+      root.remove(kBaseKey);
+    }
+    apply_yaml(root, config);
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(path.string() + ": " + error.what());
+  }
+}
+
+}  // namespace
+
+TrainingConfig parse_training_config(const std::string& yaml_text) {
+  const YAML::Node root = load_yaml(yaml_text);
+  TrainingConfig config;
+  if (root.IsNull()) return config;
+  if (root[kBaseKey]) {
+    throw std::invalid_argument(config_key(kBaseKey) +
+                                ": a base is a path relative to a config file, so only a config "
+                                "file may name one (upkie-rl train --config FILE)");
+  }
+  apply_yaml(root, config);
   return config;
 }
 
 TrainingConfig load_training_config(const std::string& path) {
-  const std::string text =
-      read_input_file<std::invalid_argument>(path, "config file", kMaxConfigFileBytes);
+  std::vector<std::filesystem::path> chain = {std::filesystem::weakly_canonical(path)};
+  TrainingConfig config;
   try {
-    return parse_training_config(text);
-  } catch (const std::invalid_argument& error) {
+    read_config_file(path, chain, config);
+  } catch (const std::filesystem::filesystem_error& error) {
     throw std::invalid_argument(path + ": " + error.what());
   }
+  return config;
 }
 
 void apply_overrides(TrainingConfig& config, const std::vector<std::string>& overrides) {

@@ -142,7 +142,10 @@ struct TrainingConfig {
 /// std::invalid_argument naming the dotted key. Keys absent from the text keep defaults.
 TrainingConfig parse_training_config(const std::string& yaml_text);
 
-/// Reads a YAML file (errors name the file and the key).
+/// Reads a YAML file (errors name the file and the key). A top-level `base: OTHER.yaml` (a path
+/// relative to the file's directory) reads that configuration first, and this file's keys
+/// over it: a key it sets replaces the base's, an env option is replaced or added one by one.
+/// A chain of bases holds at most 8 files; a cycle is an error naming the base.
 TrainingConfig load_training_config(const std::string& path);
 
 /// Applies overrides "dotted.key=value" (`env.options.NAME=value` adds an env option).
