@@ -390,9 +390,9 @@ TrainingConfig parse_training_config(const std::string& yaml_text) {
 }
 
 TrainingConfig load_training_config(const std::string& path) {
-  std::vector<std::filesystem::path> chain = {std::filesystem::weakly_canonical(path)};
   TrainingConfig config;
   try {
+    std::vector<std::filesystem::path> chain = {std::filesystem::weakly_canonical(path)};
     read_config_file(path, chain, config);
   } catch (const std::filesystem::filesystem_error& error) {
     throw std::invalid_argument(path + ": " + error.what());
