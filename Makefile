@@ -8,7 +8,7 @@ CMAKE_FLAGS ?=
 # module is built for it.
 PYTHON ?= /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-debian13 test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity sim2real-demo train-scratch sanitize sanitize-thread fuzz fuzz-long fuzz-python format tidy clean pi
+.PHONY: all deps configure build test test-cpp test-python test-debian13 test-docs docs typecheck-python wheel test-wheel bench train train-mujoco train-robust train-velocity train-velocity-robust sim2real-demo train-scratch sanitize sanitize-thread fuzz fuzz-long fuzz-python format tidy clean pi
 
 all: build
 
@@ -177,6 +177,25 @@ train-scratch:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity_scratch.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
 	  RUN_DIR=$(SCRATCH_RUN)
 	$(call evaluate_velocity_run,$(SCRATCH_RUN),scratch,$(SCRATCH_EVAL),scratch,configs/velocity_height_commands.csv)
+
+# The whole robot from scratch, trained for the reality suite's floors
+# (configs/velocity_robust.yaml: velocity_scratch.yaml with pushes, a drawn delay, slopes,
+# payloads and weaker motors in training, and the last three observations as input): trains,
+# evaluates and films as train-scratch does, then runs the reality suite on the policy beside
+# the baseline, standing (the shipped suite, every height command at the standing height) and
+# crouching (random height commands), both with the yaw ramp the policy trains with.
+ROBUST_SUITE = --env-option height_command=true --env-option leg_action_about_crouch=true \
+  --env-option command_max_yaw_acceleration=10
+train-velocity-robust: ROBUST_RUN := runs/velocity-robust-$(shell date +%Y%m%d-%H%M%S)
+train-velocity-robust:
+	$(MAKE) train TRAIN_CONFIG=configs/velocity_robust.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
+	  RUN_DIR=$(ROBUST_RUN)
+	$(call evaluate_velocity_run,$(ROBUST_RUN),robust,$(SCRATCH_EVAL),robust,configs/velocity_height_commands.csv)
+	@model=$$(ls -t $(ROBUST_RUN)/model_*.ckpt | head -n 1); \
+	  $(BUILD_DIR)/upkie-rl evaluate --suite reality --model policy=$$model --controller lqr \
+	    $(ROBUST_SUITE) --env-option min_height_command=0.557 --output $(ROBUST_RUN)/reality-suite && \
+	  $(BUILD_DIR)/upkie-rl evaluate --suite reality --model policy=$$model --controller lqr \
+	    $(ROBUST_SUITE) --output $(ROBUST_RUN)/reality-suite-crouching
 
 bench: build
 	for program in $(BUILD_DIR)/bench/*_bench; do $$program --benchmark_min_time=1; done
