@@ -170,8 +170,9 @@ sim2real-demo: build
 # The built-in baseline takes only these options (a model carries the task options it was
 # trained with): the yaw ramp of configs/velocity_scratch.yaml is repeated here so that the
 # two follow the same commands.
+SCRATCH_YAW_RAMP = --env-option command_max_yaw_acceleration=10
 SCRATCH_EVAL = --episodes 20 --seed 1000 --max-steps 1000 --env-option max_episode_steps=1000 \
-  --env-option command_max_yaw_acceleration=10
+  $(SCRATCH_YAW_RAMP)
 train-scratch: SCRATCH_RUN := runs/velocity-scratch-$(shell date +%Y%m%d-%H%M%S)
 train-scratch:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity_scratch.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
@@ -185,7 +186,7 @@ train-scratch:
 # the baseline, standing (the shipped suite, every height command at the standing height) and
 # crouching (random height commands), both with the yaw ramp the policy trains with.
 ROBUST_SUITE = --env-option height_command=true --env-option leg_action_about_crouch=true \
-  --env-option command_max_yaw_acceleration=10
+  $(SCRATCH_YAW_RAMP)
 train-velocity-robust: ROBUST_RUN := runs/velocity-robust-$(shell date +%Y%m%d-%H%M%S)
 train-velocity-robust:
 	$(MAKE) train TRAIN_CONFIG=configs/velocity_robust.yaml TRAIN_ENV=Upkie-MuJoCo-Velocity \
