@@ -40,6 +40,7 @@ struct GoalSettings {
   int max_evaluations = 120;
   ExcitationSettings excitation;
   bool check_truth = false;
+  bool truth_only = false;  ///< The objective at the hidden values, no fit.
 };
 
 /// The hidden value of a fitted parameter, NaN when the log's options do not set it.
@@ -68,8 +69,8 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
   settings.replay.window_spacing = goals.window_spacing;
   settings.replay.max_windows = goals.max_windows;
   settings.max_evaluations = goals.max_evaluations;
-  const IdentificationResult result = identify(log, settings);
-  if (goals.check_truth) {  // the objective at the hidden values, beside the fit's
+  if (goals.check_truth ||
+      goals.truth_only) {  // the objective at the hidden values, beside the fit's
     int max_delay = 0;
     double max_lag = 0.0;
     ParameterValues truth;
@@ -93,6 +94,8 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
       std::printf("\n");
     }
   }
+  if (goals.truth_only) return;
+  const IdentificationResult result = identify(log, settings);
   std::printf("seed %llu: %s -> %s, %.0f s log, %zu replays, %d evaluations, %.1f s wall\n",
               static_cast<unsigned long long>(seed), goals.log_env.c_str(), goals.fit_env.c_str(),
               log.duration(), result.windows, result.evaluations, result.seconds);
@@ -139,6 +142,7 @@ int main(int argc, char** argv) {
                  "Largest step added to the ground velocity [m/s]")
       ->capture_default_str();
   app.add_flag("--check-truth", goals.check_truth, "Also print the rmse at the hidden values");
+  app.add_flag("--truth-only", goals.truth_only, "Print the rmse at the hidden values, no fit");
   CLI11_PARSE(app, argc, argv);
   for (const std::uint64_t seed : goals.seeds) upkie_rl::run_seed(goals, seed);
   return 0;
