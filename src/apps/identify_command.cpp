@@ -28,10 +28,10 @@ struct IdentifyOptions {
   std::vector<std::string> env_options;
   std::string output_path;
   bool json = false;
-  double horizon = 0.2;
-  double window_spacing = 0.2;
-  std::size_t max_windows = 100;
-  int max_evaluations = 120;
+  double horizon = ReplaySettings{}.horizon;
+  double window_spacing = ReplaySettings{}.window_spacing;
+  std::size_t max_windows = ReplaySettings{}.max_windows;
+  int max_evaluations = IdentificationSettings{}.max_evaluations;
   std::uint64_t seed = 0;
 };
 
