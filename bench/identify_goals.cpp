@@ -35,9 +35,9 @@ struct GoalSettings {
                                      "floor_friction=0.1:1.5", "action_delay=0:4",
                                      "action_lag=0:0.1"};
   double horizon = ReplaySettings{}.horizon;
-  double window_spacing = 0.2;
+  double window_spacing = ReplaySettings{}.window_spacing;
   std::size_t max_windows = ReplaySettings{}.max_windows;
-  int max_evaluations = 120;
+  int max_evaluations = IdentificationSettings{}.max_evaluations;
   ExcitationSettings excitation;
   bool check_truth = false;
   bool truth_only = false;  ///< The objective at the hidden values, no fit.
@@ -69,8 +69,8 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
   settings.replay.window_spacing = goals.window_spacing;
   settings.replay.max_windows = goals.max_windows;
   settings.max_evaluations = goals.max_evaluations;
-  if (goals.check_truth ||
-      goals.truth_only) {  // the objective at the hidden values, beside the fit's
+  // The objective at the hidden values, beside the fit's (or alone).
+  if (goals.check_truth || goals.truth_only) {
     int max_delay = 0;
     double max_lag = 0.0;
     ParameterValues truth;
