@@ -10,10 +10,10 @@ const Eigen::Matrix3d kRotationArsToWorld = Eigen::Vector3d(1.0, -1.0, -1.0).asD
 
 }  // namespace
 
-ImuObserver::ImuObserver(const RobotModel& model, double physics_timestep, double gravity)
+ImuObserver::ImuObserver(const RobotModel& model, double observation_period, double gravity)
     : rotation_base_to_imu_(model.rotation_base_to_imu()),
       imu_position_in_base_(model.imu_position_in_base()),
-      physics_timestep_(physics_timestep),
+      observation_period_(observation_period),
       gravity_world_(0.0, 0.0, -gravity) {}
 
 Eigen::Vector3d ImuObserver::imu_velocity(const MeasuredBase& base) const {
@@ -32,7 +32,7 @@ void ImuObserver::observe(const MeasuredBase& base, ImuObservation& imu) {
       Eigen::Quaterniond(kRotationArsToWorld.transpose() * rotation_imu_to_world).normalized();
   imu.angular_velocity = rotation_imu_to_world.transpose() * base.angular_velocity_in_world;
   const Eigen::Vector3d velocity = imu_velocity(base);
-  const Eigen::Vector3d acceleration_world = (velocity - previous_velocity_) / physics_timestep_;
+  const Eigen::Vector3d acceleration_world = (velocity - previous_velocity_) / observation_period_;
   previous_velocity_ = velocity;
   imu.linear_acceleration = rotation_imu_to_world.transpose() * acceleration_world;
   imu.raw_linear_acceleration =

@@ -26,7 +26,7 @@ void check_finite(const MeasuredJoints& joints, const MeasuredBase& base, double
 }  // namespace
 
 SimulatedSensors::SimulatedSensors(const RobotModel& model, const PhysicsConfig& config)
-    : imu_(model, config.physics_timestep, config.gravity), odometry_(model) {}
+    : imu_(model, config.agent_timestep(), config.gravity), odometry_(model) {}
 
 void SimulatedSensors::observe_without_imu(const MeasuredJoints& joints, const MeasuredBase& base,
                                            const MeasuredBase& level, bool floor_contact,

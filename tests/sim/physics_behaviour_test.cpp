@@ -56,6 +56,23 @@ TEST_P(PhysicsBehaviour, FreeFallWithoutFloor) {
   EXPECT_NEAR(simulation->observation().time, duration, 1e-12);
 }
 
+TEST_P(PhysicsBehaviour, AccelerometerReadsTheMeanAccelerationOfEachStep) {
+  // Falling freely, the IMU accelerates at g whatever the number of physics steps between
+  // two observations: the raw accelerometer reads zero and the gravity-free one g downward,
+  // but for Bullet's multibody damping (0.03 m/s^2 after 50 ms of fall). Dividing a step's
+  // velocity change by one physics step read nb_substeps times g (49 m/s^2 at 5).
+  for (const int substeps : {1, 5}) {
+    PhysicsConfig config;
+    config.floor = false;
+    config.nb_substeps = substeps;
+    auto simulation = make(config);
+    for (int step = 0; step < 10; ++step) simulation->step(limp_action());
+    const ImuObservation& imu = simulation->observation().imu;
+    EXPECT_LT(imu.raw_linear_acceleration.norm(), 0.05) << substeps << " substeps";
+    EXPECT_NEAR(imu.linear_acceleration.norm(), config.gravity, 0.05) << substeps << " substeps";
+  }
+}
+
 TEST_P(PhysicsBehaviour, ResetStateIsObserved) {
   auto simulation = make();
   const Observation& observation = simulation->observation();
