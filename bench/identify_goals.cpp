@@ -34,9 +34,7 @@ struct GoalSettings {
   std::vector<std::string> params = {"mass_scale=0.6:1.6", "payload_offset_x=-0.1:0.1",
                                      "floor_friction=0.1:1.5", "action_delay=0:4",
                                      "action_lag=0:0.1"};
-  double horizon = ReplaySettings{}.horizon;
-  double window_spacing = ReplaySettings{}.window_spacing;
-  std::size_t max_windows = ReplaySettings{}.max_windows;
+  ReplaySettings replay;
   int max_evaluations = IdentificationSettings{}.max_evaluations;
   ExcitationSettings excitation;
   bool check_truth = false;
@@ -65,9 +63,7 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
   settings.env_id = goals.fit_env;
   settings.options = parse_env_options(goals.known);
   settings.parameters = parse_parameter_requests(goals.params);
-  settings.replay.horizon = goals.horizon;
-  settings.replay.window_spacing = goals.window_spacing;
-  settings.replay.max_windows = goals.max_windows;
+  settings.replay = goals.replay;
   settings.max_evaluations = goals.max_evaluations;
   // The objective at the hidden values, beside the fit's (or alone).
   if (goals.check_truth || goals.truth_only) {
@@ -127,10 +123,14 @@ int main(int argc, char** argv) {
   app.add_option("--known", goals.known, "Options the fit is given, KEY=VALUE")
       ->capture_default_str();
   app.add_option("--param", goals.params, "Parameters fitted")->capture_default_str();
-  app.add_option("--horizon", goals.horizon, "Each replay's duration [s]")->capture_default_str();
-  app.add_option("--window-spacing", goals.window_spacing, "Between replays [s]")
+  app.add_option("--horizon", goals.replay.horizon, "Each replay's duration [s]")
       ->capture_default_str();
-  app.add_option("--max-windows", goals.max_windows, "Replays per evaluation at most")
+  app.add_option("--window-spacing", goals.replay.window_spacing, "Between replays [s]")
+      ->capture_default_str();
+  app.add_option("--max-windows", goals.replay.max_windows, "Replays per evaluation at most")
+      ->capture_default_str();
+  app.add_option("--slip-threshold", goals.replay.slip_threshold,
+                 "Replays start off tire slip above it [m/s]; 0: at fixed starts")
       ->capture_default_str();
   app.add_option("--max-evaluations", goals.max_evaluations, "Per continuous fit")
       ->capture_default_str();

@@ -28,9 +28,7 @@ struct IdentifyOptions {
   std::vector<std::string> env_options;
   std::string output_path;
   bool json = false;
-  double horizon = ReplaySettings{}.horizon;
-  double window_spacing = ReplaySettings{}.window_spacing;
-  std::size_t max_windows = ReplaySettings{}.max_windows;
+  ReplaySettings replay;
   int max_evaluations = IdentificationSettings{}.max_evaluations;
   std::uint64_t seed = 0;
 };
@@ -39,6 +37,10 @@ void print_result(const IdentificationResult& result, const RobotLog& log) {
   std::printf("%s: %zu cycles, %.2f s at %.0f Hz; %zu replays of %.3g s, %d evaluations\n",
               log.name.c_str(), log.cycles.size(), log.duration(), 1.0 / log.period(),
               result.windows, result.horizon, result.evaluations);
+  if (result.windows_moved_off_slip > 0) {
+    std::printf("  %zu replays start later, off tire slip (the accelerometer against the wheels)\n",
+                result.windows_moved_off_slip);
+  }
   if (result.windows_down > 0) {
     std::printf("  %zu replays left out: the robot was down (tilted beyond %g rad) in them\n",
                 result.windows_down, kFallenTilt);
@@ -62,9 +64,7 @@ void run_identify(const IdentifyOptions& options) {
   settings.env_id = options.env_id;
   settings.options = parse_env_options(options.env_options);
   settings.parameters = parse_parameter_requests(options.params);
-  settings.replay.horizon = options.horizon;
-  settings.replay.window_spacing = options.window_spacing;
-  settings.replay.max_windows = options.max_windows;
+  settings.replay = options.replay;
   settings.max_evaluations = options.max_evaluations;
   settings.seed = options.seed;
   const RobotLog log = read_robot_log(options.log_path);
@@ -104,17 +104,23 @@ void add_identify_command(CLI::App& app) {
                    "Write the fitted options as YAML (env.options of a training config)")
       ->check(kNonEmptyPath);
   add_json_flag(*command, options->json);
-  command->add_option("--horizon", options->horizon, "Each replay's duration [s]")
+  command->add_option("--horizon", options->replay.horizon, "Each replay's duration [s]")
       ->capture_default_str()
       ->check(finite_range(0.01, 5.0));
-  command->add_option("--window-spacing", options->window_spacing, "Between replays [s]")
+  command->add_option("--window-spacing", options->replay.window_spacing, "Between replays [s]")
       ->capture_default_str()
       ->check(finite_range(0.005, 60.0));
   command
-      ->add_option("--max-windows", options->max_windows,
+      ->add_option("--max-windows", options->replay.max_windows,
                    "At most this many replays, spread evenly over the log")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
+  command
+      ->add_option("--slip-threshold", options->replay.slip_threshold,
+                   "Replays start where the accelerometer and the wheels agree within it, off "
+                   "tire slip [m/s]; 0: at fixed starts (logs without an accelerometer too)")
+      ->capture_default_str()
+      ->check(finite_range(0.0, 10.0));
   command
       ->add_option("--max-evaluations", options->max_evaluations,
                    "Replays of the whole log per continuous fit")

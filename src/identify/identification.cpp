@@ -309,6 +309,7 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   IdentificationResult result;
   result.windows = replay.num_windows();
   result.windows_down = replay.num_windows_down();
+  result.windows_moved_off_slip = replay.num_windows_moved_off_slip();
   result.horizon = settings.replay.horizon;
   const ParameterValues measured_values = std::exchange(fit.measured, {});
   result.rmse_before = fit.rmse(x);  // the nominal robot
@@ -352,6 +353,7 @@ std::string identification_json(const IdentificationResult& result) {
   json["seconds"] = result.seconds;
   json["evaluations"] = result.evaluations;
   json["windows_down"] = result.windows_down;
+  json["windows_moved_off_slip"] = result.windows_moved_off_slip;
   return json.dump();
 }
 

@@ -45,7 +45,9 @@ struct IdentificationResult {
   int evaluations = 0;           ///< Replays of the whole log.
   std::size_t windows = 0;       ///< Replays per evaluation.
   std::size_t windows_down = 0;  ///< Replays left out: the robot was down in them.
-  double horizon = 0.0;          ///< Of each replay [s].
+  /// Replays started later, off tire slip (ReplaySettings::slip_threshold).
+  std::size_t windows_moved_off_slip = 0;
+  double horizon = 0.0;  ///< Of each replay [s].
 };
 
 /// Fits the requested parameters: the delay (whole steps) by scanning its range, the others

@@ -12,6 +12,8 @@
 #include "envs/registry/env_factory.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
 #include "identify/measured_reset_state.hpp"
+#include "identify/tire_slip_evidence.hpp"
+#include "sim/physics_config.hpp"
 #include "sim/servo_command_fields.hpp"
 #include "sim/servo_target_lag.hpp"
 #include "sim/simulation.hpp"
@@ -79,6 +81,11 @@ struct ReplayStarts {
   std::size_t down = 0;  ///< Replays left out: the robot was down in them.
 };
 
+/// Whether the replay from sample `start` keeps the robot up (`up` as in replay_starts).
+bool replay_is_up(const std::vector<std::size_t>& up, std::size_t start, std::size_t horizon) {
+  return start + horizon + 1 < up.size() && up[start + horizon + 1] - up[start] == horizon + 1;
+}
+
 /// Every `spacing`-th sample from `first` that leaves a whole replay of `horizon` steps in
 /// the log, and in which the robot is up throughout (`up[i]`: how many of the samples before
 /// i have the robot up; one more entry than samples), at most `max_windows` of them spread
@@ -87,7 +94,7 @@ ReplayStarts replay_starts(std::size_t first, const std::vector<std::size_t>& up
                            std::size_t horizon, std::size_t spacing, std::size_t max_windows) {
   ReplayStarts replays;
   for (std::size_t start = first; start + horizon + 1 < up.size(); start += spacing) {
-    if (up[start + horizon + 1] - up[start] == horizon + 1) {
+    if (replay_is_up(up, start, horizon)) {
       replays.starts.push_back(start);
     } else {
       ++replays.down;
@@ -99,6 +106,29 @@ ReplayStarts replay_starts(std::size_t first, const std::vector<std::size_t>& up
     kept.push_back(replays.starts[i * replays.starts.size() / max_windows]);
   replays.starts = std::move(kept);
   return replays;
+}
+
+/// Slides each of `starts` forward by less than `reach` samples to the first one whose
+/// `evidence` of tire slip is at most `threshold` and whose replay keeps the robot up, or to
+/// the least evidence of those when none is under it. Returns how many moved.
+std::size_t slide_off_slip(std::vector<std::size_t>& starts, std::span<const double> evidence,
+                           const std::vector<std::size_t>& up, std::size_t horizon,
+                           std::size_t reach, double threshold) {
+  std::size_t moved = 0;
+  for (std::size_t& start : starts) {
+    std::size_t best = start;
+    for (std::size_t candidate = start; candidate < start + reach; ++candidate) {
+      if (candidate >= evidence.size() || !replay_is_up(up, candidate, horizon)) break;
+      if (evidence[candidate] < evidence[best]) best = candidate;
+      if (evidence[candidate] <= threshold) {
+        best = candidate;
+        break;
+      }
+    }
+    moved += best != start ? 1 : 0;
+    start = best;
+  }
+  return moved;
 }
 
 void require_signals(const RobotLog& log) {
@@ -166,8 +196,10 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
   timestep_ = probe->timestep();
   const std::size_t stride = decimation(log, timestep_, env_id);
   std::vector<std::size_t> up{0};  // samples with the robot up before each index
+  std::vector<std::size_t> sample_cycles;
   for (std::size_t i = agent_phase(log, stride); i < log.cycles.size(); i += stride) {
     const LoggedCycle& cycle = log.cycles[i];
+    sample_cycles.push_back(i);
     up.push_back(up.back() + (robot_is_down(cycle.observation) ? 0 : 1));
     Sample& sample = samples_.emplace_back();
     sample.state = measured_reset_state(model, cycle.observation);
@@ -203,6 +235,13 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
                                        settings.max_windows);
   window_starts_ = std::move(replays.starts);
   windows_down_ = replays.down;
+  if (settings.slip_threshold > 0.0 && logs_accelerometer(log)) {
+    const std::vector<double> evidence =
+        tire_slip_evidence(model, log, sample_cycles, settings.slip_span, PhysicsConfig{}.gravity);
+    windows_moved_off_slip_ =
+        slide_off_slip(window_starts_, evidence, up, static_cast<std::size_t>(horizon_steps_),
+                       std::max<std::size_t>(1, spacing / 2), settings.slip_threshold);
+  }
   if (window_starts_.empty() && windows_down_ > 0) {
     throw RobotLogError(log.format + " " + log.name + ": the robot is down (its base tilted " +
                         "beyond " + shortest_text(kFallenTilt) +

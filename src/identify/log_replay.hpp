@@ -26,6 +26,11 @@ struct ReplaySettings {
   /// At most this many replays, spread evenly over the log: the cost of one evaluation
   /// stays bounded on long logs (100 replays of 0.2 s: about a second on one core).
   std::size_t max_windows = 100;
+  /// Replays start off tire slip when the log has an accelerometer: each start slides
+  /// forward, by less than half the spacing, to the first cycle whose tire_slip_evidence
+  /// is at most this [m/s] (to the least evidence when none is); 0 leaves the starts be.
+  double slip_threshold = 0.02;
+  double slip_span = 0.02;  ///< The span of that evidence [s].
 };
 
 /// The measured signals compared, per predicted step: base pitch [rad] and pitch rate
@@ -83,6 +88,8 @@ class LogReplay {
   std::pair<double, double> pitch_rate_bias() const;
 
   std::size_t num_windows() const { return window_starts_.size(); }
+  /// Replays whose start moved off tire slip (ReplaySettings::slip_threshold).
+  std::size_t num_windows_moved_off_slip() const { return windows_moved_off_slip_; }
   /// Replays left out because the robot was down (its base tilted beyond 1 rad) in them: a
   /// robot's log may hold a fall, and a lying robot is not the one to identify.
   std::size_t num_windows_down() const { return windows_down_; }
@@ -125,6 +132,7 @@ class LogReplay {
   std::array<double, kNumReplaySignals> scales_{};
   std::vector<std::size_t> window_starts_;
   std::size_t windows_down_ = 0;
+  std::size_t windows_moved_off_slip_ = 0;
   std::size_t lag_warmup_ = 0;
 };
 
