@@ -297,8 +297,7 @@ bool refit_ridge_neighbours(Fit& fit, std::vector<double>& x,
 /// scanned), the continuous fit, each parameter scanned over its range from there (and the
 /// fit again from a better point), then the delay again (along the lag's ridge when both are
 /// fitted: at the fit, then with short fits at its neighbours) and the continuous fit again
-/// if it moved. Returns why the delay is not
-/// identifiable, or "".
+/// if it moved. Returns why the delay is not identifiable, or "".
 std::string run_fit(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
   std::string delay_reason;
   if (fit.delay != nullptr && fit.lag_index() >= 0) {
