@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
+#include <iostream>
 #include <numeric>
 #include <vector>
 
