@@ -109,36 +109,6 @@ void search_actuation(Fit& fit, std::vector<double>& x) {
   x[static_cast<std::size_t>(lag)] = best_lag;
 }
 
-/// After a fit, the delays along the ridge where delay·dt + lag stays the fitted sum (what
-/// the commands' timing pins down): a delay the coarse search chose wrongly leaves a lag
-/// that made up for it, and scanning the delay at that lag keeps it. Returns whether the
-/// delay changed.
-bool scan_delay_along_lag(Fit& fit, std::vector<double>& x) {
-  const auto lag = static_cast<std::size_t>(fit.lag_index());
-  const ParameterRequest& range = fit.continuous[lag];
-  const double dt = fit.replay.timestep();
-  const double total = fit.delay_value * dt + x[lag];
-  double best = fit.rmse(x);
-  const double fitted_delay = fit.delay_value;
-  double best_delay = fitted_delay;
-  double best_lag = x[lag];
-  std::vector<double> candidate = x;
-  for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
-    if (d == static_cast<int>(fitted_delay)) continue;
-    candidate[lag] = std::clamp(total - d * dt, range.low, range.high);
-    fit.delay_value = d;
-    const double cost = fit.rmse(candidate);
-    if (cost < best) {
-      best = cost;
-      best_delay = d;
-      best_lag = candidate[lag];
-    }
-  }
-  fit.delay_value = best_delay;
-  x[lag] = best_lag;
-  return best_delay != fitted_delay;
-}
-
 /// BOBYQA over the continuous parameters from `x`, for at most `max_evaluations`.
 void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings,
                     int max_evaluations) {
@@ -255,6 +225,49 @@ void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettin
   fit_continuous(fit, x, settings, settings.max_evaluations);
 }
 
+/// The delays `delays` on the ridge through the fit, where delay·dt + lag stays the fitted
+/// sum (what the commands' timing pins down), each from its ridge point: evaluated there,
+/// or after a continuous fit of `refit_evaluations` from there when it is not 0. Keeps the
+/// best prediction of them and the fit; returns whether the delay changed.
+bool try_delays_on_ridge(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings,
+                         const std::vector<double>& delays, int refit_evaluations) {
+  const auto lag = static_cast<std::size_t>(fit.lag_index());
+  const ParameterRequest& range = fit.continuous[lag];
+  const double dt = fit.replay.timestep();
+  const double total = fit.delay_value * dt + x[lag];
+  const double fitted_delay = fit.delay_value;
+  double best = fit.rmse(x);
+  double best_delay = fitted_delay;
+  std::vector<double> best_x = x;
+  for (const double d : delays) {
+    std::vector<double> candidate = x;
+    candidate[lag] = std::clamp(total - d * dt, range.low, range.high);
+    fit.delay_value = d;
+    if (refit_evaluations > 0) fit_continuous(fit, candidate, settings, refit_evaluations);
+    const double cost = fit.rmse(candidate);
+    if (cost < best) {
+      best = cost;
+      best_delay = d;
+      best_x = candidate;
+    }
+  }
+  fit.delay_value = best_delay;
+  x = best_x;
+  return best_delay != fitted_delay;
+}
+
+/// After a fit, every other delay of the range on the ridge, at its ridge point: a delay the
+/// coarse search chose wrongly leaves a lag that made up for it, and scanning the delay at
+/// that lag keeps it. Returns whether the delay changed.
+bool scan_delay_along_lag(Fit& fit, std::vector<double>& x,
+                          const IdentificationSettings& settings) {
+  std::vector<double> delays;
+  for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
+    if (d != static_cast<int>(fit.delay_value)) delays.push_back(d);
+  }
+  return try_delays_on_ridge(fit, x, settings, delays, 0);
+}
+
 /// Evaluations of each short fit of refit_ridge_neighbours.
 constexpr int kRidgeRefitEvaluations = 40;
 
@@ -267,30 +280,11 @@ constexpr int kRidgeRefitEvaluations = 40;
 /// them and the fit is kept. Returns whether the delay changed.
 bool refit_ridge_neighbours(Fit& fit, std::vector<double>& x,
                             const IdentificationSettings& settings) {
-  const auto lag = static_cast<std::size_t>(fit.lag_index());
-  const ParameterRequest& range = fit.continuous[lag];
-  const double dt = fit.replay.timestep();
-  const double total = fit.delay_value * dt + x[lag];
-  const double fitted_delay = fit.delay_value;
-  double best = fit.rmse(x);
-  double best_delay = fitted_delay;
-  std::vector<double> best_x = x;
-  for (const double d : {fitted_delay - 1.0, fitted_delay + 1.0}) {
-    if (d < fit.delay->low || d > fit.delay->high) continue;
-    std::vector<double> candidate = x;
-    candidate[lag] = std::clamp(total - d * dt, range.low, range.high);
-    fit.delay_value = d;
-    fit_continuous(fit, candidate, settings, kRidgeRefitEvaluations);
-    const double cost = fit.rmse(candidate);
-    if (cost < best) {
-      best = cost;
-      best_delay = d;
-      best_x = candidate;
-    }
+  std::vector<double> delays;
+  for (const double d : {fit.delay_value - 1.0, fit.delay_value + 1.0}) {
+    if (d >= fit.delay->low && d <= fit.delay->high) delays.push_back(d);
   }
-  fit.delay_value = best_delay;
-  x = best_x;
-  return best_delay != fitted_delay;
+  return try_delays_on_ridge(fit, x, settings, delays, kRidgeRefitEvaluations);
 }
 
 /// The fit's strategy: the actuation's start (a coarse grid of delay and lag, or the delay
@@ -309,7 +303,7 @@ std::string run_fit(Fit& fit, std::vector<double>& x, const IdentificationSettin
     fit_continuous(fit, x, settings);
     if (scan_axes(fit, x)) fit_continuous(fit, x, settings);
     if (fit.delay != nullptr && fit.lag_index() >= 0) {
-      if (scan_delay_along_lag(fit, x)) fit_continuous(fit, x, settings);
+      if (scan_delay_along_lag(fit, x, settings)) fit_continuous(fit, x, settings);
       if (refit_ridge_neighbours(fit, x, settings)) fit_continuous(fit, x, settings);
       delay_reason = scan_delay(fit, x).second;  // and whether it stands out
     } else if (fit.delay != nullptr) {
