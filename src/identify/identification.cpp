@@ -28,6 +28,9 @@ struct Fit {
   const ParameterRequest* delay = nullptr;
   double delay_value = 0.0;
   int evaluations = 0;
+  /// One replay in `window_stride` per evaluation, unless an evaluation says otherwise:
+  /// the search runs on half the replays, only the last steps on all (run_fit).
+  std::size_t window_stride = 1;
 
   ParameterValues values(const std::vector<double>& x) const {
     ParameterValues result = measured;
@@ -36,10 +39,12 @@ struct Fit {
     if (delay != nullptr) result.emplace_back(delay->parameter, delay_value);
     return result;
   }
-  double rmse(const std::vector<double>& x, std::vector<double>* residuals = nullptr,
-              std::size_t window_stride = 1) {
+  double rmse(const std::vector<double>& x, std::vector<double>* residuals = nullptr) {
+    return rmse(x, residuals, window_stride);
+  }
+  double rmse(const std::vector<double>& x, std::vector<double>* residuals, std::size_t stride) {
     ++evaluations;
-    return replay.rmse(values(x), residuals, window_stride);
+    return replay.rmse(values(x), residuals, stride);
   }
   /// The index of action_lag among the continuous parameters, or -1.
   int lag_index() const {
@@ -109,9 +114,16 @@ void search_actuation(Fit& fit, std::vector<double>& x) {
   x[static_cast<std::size_t>(lag)] = best_lag;
 }
 
-/// BOBYQA over the continuous parameters from `x`, for at most `max_evaluations`.
+/// One run of BOBYQA: its budget, the replays it uses and its first step.
+struct ContinuousFit {
+  int max_evaluations = 0;
+  std::size_t window_stride = 1;  ///< One replay in window_stride per evaluation.
+  double initial_step = 0.1;      ///< Of each parameter's range.
+};
+
+/// BOBYQA over the continuous parameters from `x`, as `how` says.
 void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings,
-                    int max_evaluations) {
+                    const ContinuousFit& how) {
   const unsigned n = static_cast<unsigned>(fit.continuous.size());
   nlopt_srand(settings.seed);
   nlopt_opt optimizer = nlopt_create(NLOPT_LN_BOBYQA, n);
@@ -119,17 +131,19 @@ void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettin
   for (unsigned i = 0; i < n; ++i) {
     low[i] = fit.continuous[i].low;
     high[i] = fit.continuous[i].high;
-    step[i] = 0.1 * (high[i] - low[i]);
+    step[i] = how.initial_step * (high[i] - low[i]);
   }
   nlopt_set_lower_bounds(optimizer, low.data());
   nlopt_set_upper_bounds(optimizer, high.data());
   nlopt_set_initial_step(optimizer, step.data());
   nlopt_set_min_objective(optimizer, objective, &fit);
-  nlopt_set_maxeval(optimizer, max_evaluations);
+  nlopt_set_maxeval(optimizer, how.max_evaluations);
   nlopt_set_ftol_rel(optimizer, 1e-6);
   nlopt_set_xtol_rel(optimizer, 1e-4);
   double best = 0.0;
+  const std::size_t stride = std::exchange(fit.window_stride, how.window_stride);
   const nlopt_result status = nlopt_optimize(optimizer, x.data(), &best);
+  fit.window_stride = stride;
   nlopt_destroy(optimizer);
   if (status < 0)
     throw IdentificationError("identify: NLopt failed (" + std::to_string(status) + ")");
@@ -221,16 +235,13 @@ void estimate_uncertainty(Fit& fit, const std::vector<double>& x,
   }
 }
 
-void fit_continuous(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
-  fit_continuous(fit, x, settings, settings.max_evaluations);
-}
-
 /// The delays `delays` on the ridge through the fit, where delay·dt + lag stays the fitted
 /// sum (what the commands' timing pins down), each from its ridge point: evaluated there,
-/// or after a continuous fit of `refit_evaluations` from there when it is not 0. Keeps the
-/// best prediction of them and the fit; returns whether the delay changed.
+/// or after the continuous fit `refit` from there when it has evaluations. Keeps the best
+/// prediction of them and the fit, on the fit's replays (Fit::window_stride); returns
+/// whether the delay changed.
 bool try_delays_on_ridge(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings,
-                         const std::vector<double>& delays, int refit_evaluations) {
+                         const std::vector<double>& delays, const ContinuousFit& refit) {
   const auto lag = static_cast<std::size_t>(fit.lag_index());
   const ParameterRequest& range = fit.continuous[lag];
   const double dt = fit.replay.timestep();
@@ -243,7 +254,7 @@ bool try_delays_on_ridge(Fit& fit, std::vector<double>& x, const IdentificationS
     std::vector<double> candidate = x;
     candidate[lag] = std::clamp(total - d * dt, range.low, range.high);
     fit.delay_value = d;
-    if (refit_evaluations > 0) fit_continuous(fit, candidate, settings, refit_evaluations);
+    if (refit.max_evaluations > 0) fit_continuous(fit, candidate, settings, refit);
     const double cost = fit.rmse(candidate);
     if (cost < best) {
       best = cost;
@@ -265,54 +276,84 @@ bool scan_delay_along_lag(Fit& fit, std::vector<double>& x,
   for (int d = static_cast<int>(fit.delay->low); d <= static_cast<int>(fit.delay->high); ++d) {
     if (d != static_cast<int>(fit.delay_value)) delays.push_back(d);
   }
-  return try_delays_on_ridge(fit, x, settings, delays, 0);
+  return try_delays_on_ridge(fit, x, settings, delays, ContinuousFit{});
 }
 
-/// Evaluations of each short fit of refit_ridge_neighbours.
-constexpr int kRidgeRefitEvaluations = 40;
+/// Each short fit of refit_ridge_neighbours: on a quarter of the replays, 10 replays of
+/// the whole log's worth.
+constexpr ContinuousFit kRidgeRefit{40, kCoarseStride};
 
 /// Why: after a fit on the wrong delay the other parameters have made up for it too, so the
 /// neighbouring delays on the ridge (scan_delay_along_lag) predict worse at those values and
 /// the wrong delay stays. On seed 1's 60 s Bullet log the fit ended at 3 steps and 25 ms,
 /// the friction 18 % high and the mass 3.6 % low, predicting 0.0585 where the hidden values
 /// (2 steps, 30 ms) predict 0.0511. So each neighbouring delay on the ridge gets a short fit
-/// of its own (kRidgeRefitEvaluations) from the ridge point, and the best prediction of
-/// them and the fit is kept. Returns whether the delay changed.
+/// of its own (kRidgeRefit, on a quarter of the replays: 20 replays of the whole log's
+/// worth for both instead of 80) from the ridge point, and the best prediction of them and
+/// the fit on the search's replays is kept (compared on a quarter too, MuJoCo seed 3 kept 1
+/// step and 37 ms against the hidden 2 and 30). Returns whether the delay changed.
 bool refit_ridge_neighbours(Fit& fit, std::vector<double>& x,
                             const IdentificationSettings& settings) {
   std::vector<double> delays;
   for (const double d : {fit.delay_value - 1.0, fit.delay_value + 1.0}) {
     if (d >= fit.delay->low && d <= fit.delay->high) delays.push_back(d);
   }
-  return try_delays_on_ridge(fit, x, settings, delays, kRidgeRefitEvaluations);
+  return try_delays_on_ridge(fit, x, settings, delays, kRidgeRefit);
 }
 
-/// The fit's strategy: the actuation's start (a coarse grid of delay and lag, or the delay
-/// scanned), the continuous fit, each parameter scanned over its range from there (and the
-/// fit again from a better point), then the delay again (along the lag's ridge when both are
-/// fitted: at the fit, then with short fits at its neighbours) and the continuous fit again
-/// if it moved. Returns why the delay is not identifiable, or "".
+/// Replays per evaluation of the search: one in kSearchStride.
+constexpr std::size_t kSearchStride = 2;
+/// A short first fit on a quarter of the replays, to scan the delay's ridge from.
+constexpr ContinuousFit kRoughFit{40, kCoarseStride, 0.1};
+/// The last fit: BOBYQA again from the search's end with a small first step, which the
+/// search's fits, stopped where their steps shrank in a flat valley, did not take.
+constexpr ContinuousFit kPolishFit{30, kSearchStride, 0.02};
+
+/// The fit's strategy, stage by stage: the actuation's start (a coarse grid of delay and
+/// lag, or the delay scanned); each parameter scanned over its range; with a delay and a
+/// lag, a rough fit and the delay along the lag's ridge from it; the continuous fit, each
+/// parameter scanned again (and the fit again from a better point); the delay again (along
+/// the ridge: at the fit, then with short fits at its neighbours) and the fit again if it
+/// moved; the polish; the delay on every replay, and whether it stands out. Returns why
+/// the delay is not identifiable, or "".
+///
+/// Why half the replays: each evaluation replays the log (0.5 s for 100 replays of a 60 s
+/// Bullet log on this 2-core machine, Bullet's contact solver most of it), so the fit's
+/// time is its count of replays. Every stage on all of them took 237-324 replays' worth on
+/// the 60 s Bullet logs of seeds 1-3 (114-161 s alone on the machine); the search on half
+/// and the scans, the rough fit and the neighbours' fits on a quarter take 113-130 (57-64
+/// s), the friction within 1.1 % on two seeds instead of one, the other parameters within
+/// 2.4 % as before (docs/identify.md); MuJoCo's fits 10-12 s instead of 20-24.
+/// rmse_before, the last delay scan, the uncertainties and rmse_after use them all.
 std::string run_fit(Fit& fit, std::vector<double>& x, const IdentificationSettings& settings) {
-  std::string delay_reason;
-  if (fit.delay != nullptr && fit.lag_index() >= 0) {
+  const bool on_ridge = fit.delay != nullptr && fit.lag_index() >= 0;
+  const ContinuousFit search{settings.max_evaluations, kSearchStride};
+  fit.window_stride = kSearchStride;
+  if (on_ridge) {
     search_actuation(fit, x);
   } else if (fit.delay != nullptr) {
-    delay_reason = scan_delay(fit, x).second;
+    scan_delay(fit, x);
   }
   if (!x.empty()) {
-    fit_continuous(fit, x, settings);
-    if (scan_axes(fit, x)) fit_continuous(fit, x, settings);
-    if (fit.delay != nullptr && fit.lag_index() >= 0) {
-      if (scan_delay_along_lag(fit, x, settings)) fit_continuous(fit, x, settings);
-      if (refit_ridge_neighbours(fit, x, settings)) fit_continuous(fit, x, settings);
-      delay_reason = scan_delay(fit, x).second;  // and whether it stands out
+    scan_axes(fit, x);
+    if (on_ridge) {
+      fit_continuous(fit, x, settings, kRoughFit);
+      scan_delay_along_lag(fit, x, settings);
+    }
+    fit_continuous(fit, x, settings, search);
+    if (scan_axes(fit, x)) fit_continuous(fit, x, settings, search);
+    if (on_ridge) {
+      if (scan_delay_along_lag(fit, x, settings)) fit_continuous(fit, x, settings, search);
+      if (refit_ridge_neighbours(fit, x, settings)) fit_continuous(fit, x, settings, search);
     } else if (fit.delay != nullptr) {
       const double previous = fit.delay_value;
-      delay_reason = scan_delay(fit, x).second;
-      if (fit.delay_value != previous) fit_continuous(fit, x, settings);
+      scan_delay(fit, x);
+      if (fit.delay_value != previous) fit_continuous(fit, x, settings, search);
     }
+    fit_continuous(fit, x, settings, kPolishFit);
   }
-  return delay_reason;
+  fit.window_stride = 1;
+  return fit.delay != nullptr ? scan_delay(fit, x).second : std::string();
 }
 
 }  // namespace

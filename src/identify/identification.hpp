@@ -19,7 +19,7 @@ struct IdentificationSettings {
   EnvOptions options;  ///< Fixed options of the environment.
   std::vector<ParameterRequest> parameters;
   ReplaySettings replay;
-  int max_evaluations = 120;  ///< Of the replay, per continuous fit.
+  int max_evaluations = 120;  ///< Per search fit (each on half the replays; run_fit).
   std::uint64_t seed = 0;     ///< NLopt's (BOBYQA itself draws nothing).
 };
 
