@@ -327,7 +327,7 @@ constexpr ContinuousFit kPolishFit{30, kSearchStride, 0.02};
 /// Bullet log on this 2-core machine, Bullet's contact solver most of it), so the fit's
 /// time is its count of replays. Every stage on all of them took 237-324 replays' worth on
 /// the 60 s Bullet logs of seeds 1-3 (114-161 s alone on the machine); the search on half
-/// and the scans, the rough fit and the neighbours' fits on a quarter take 113-130 (57-64
+/// and the scans, the rough fit and the neighbours' fits on a quarter take 113-130 (57-65
 /// s), the friction within 1.1 % on two seeds instead of one, the other parameters within
 /// 2.4 % as before (docs/identify.md); MuJoCo's fits 10-12 s instead of 20-24.
 /// rmse_before, the last delay scan, the uncertainties and rmse_after use them all.
