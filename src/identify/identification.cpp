@@ -308,7 +308,7 @@ bool refit_ridge_neighbours(Fit& fit, std::vector<double>& x,
 /// Replays per evaluation of the search: one in kSearchStride.
 constexpr std::size_t kSearchStride = 2;
 /// A short first fit on a quarter of the replays, to scan the delay's ridge from.
-constexpr ContinuousFit kRoughFit{40, kCoarseStride, 0.1};
+constexpr ContinuousFit kRoughFit{40, kCoarseStride};
 /// The last fit: BOBYQA again from the search's end with a small first step, which the
 /// search's fits, stopped where their steps shrank in a flat valley, did not take. Without
 /// it, Bullet seed 2 of identify_goals stops at friction +10.5 % predicting 0.0527, with it
