@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
   app.add_option("--slip-threshold", goals.replay.slip_threshold,
                  "Replays start off tire slip above it [m/s]; 0: at fixed starts")
       ->capture_default_str();
-  app.add_option("--max-evaluations", goals.max_evaluations, "Per continuous fit")
+  app.add_option("--max-evaluations", goals.max_evaluations, "Of the search's continuous fit")
       ->capture_default_str();
   app.add_option("--amplitude", goals.excitation.amplitude, "Largest forward command [m/s]")
       ->capture_default_str();

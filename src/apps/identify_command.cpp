@@ -123,7 +123,7 @@ void add_identify_command(CLI::App& app) {
       ->check(finite_range(0.0, 10.0));
   command
       ->add_option("--max-evaluations", options->max_evaluations,
-                   "Evaluations per search fit (each on half the replays)")
+                   "Evaluations of the search's continuous fit (each on half the replays)")
       ->capture_default_str()
       ->check(CLI::Range(10, 100000));
   add_seed_option(*command, options->seed, "the fit");

@@ -19,7 +19,7 @@ struct IdentificationSettings {
   EnvOptions options;  ///< Fixed options of the environment.
   std::vector<ParameterRequest> parameters;
   ReplaySettings replay;
-  int max_evaluations = 120;  ///< Per search fit (each on half the replays; run_fit).
+  int max_evaluations = 120;  ///< Of the search's continuous fit (on half the replays; run_fit).
   std::uint64_t seed = 0;     ///< NLopt's (BOBYQA itself draws nothing).
 };
 
@@ -30,8 +30,10 @@ struct FittedParameter {
   double value = 0.0;
   /// One standard deviation [unit of the value]: the spread of the fit over replays, from
   /// the errors' Jacobian with each replay an independent block (cluster-robust sandwich
-  /// covariance); 0 for a delay, which is scanned. It does not include the bias of a model
-  /// that cannot match the robot (another engine, the no-slip start states).
+  /// covariance). For a delay fitted with a lag, 1 step when a neighbouring delay, with the
+  /// other parameters refitted, predicts the log not worse beyond chance (paired_replay_z
+  /// under 2), else 0; 0 for a delay fitted without a lag. It does not include the bias of
+  /// a model that cannot match the robot (another engine, the no-slip start states).
   double uncertainty = 0.0;
   bool identifiable = true;
   std::string reason;  ///< Why not, when not identifiable.
