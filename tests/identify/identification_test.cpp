@@ -112,6 +112,34 @@ TEST(Identification, RecoversLegGainScaleOnMuJoCo) {
   EXPECT_LT(result.rmse_after, 0.5 * result.rmse_before);
 }
 
+// The delay-lag ridge at 5 ms steps: on this 60 s MuJoCo log (seed 4 of identify_goals, the
+// goals' five parameters) the fit ends one step short, 1 step and 38 ms for the hidden 2
+// and 30, predicting better than 2 steps would. What the fit owes the user is an
+// uncertainty that says so: a delay reported +-0 must be the hidden one.
+TEST(Identification, TheDelaysUncertaintyCoversTheHiddenDelay) {
+  const RobotLog log = simulated_log("ridge.mpack",
+                                     {{"mass_scale", "1.2"},
+                                      {"payload_mass", "1"},
+                                      {"payload_offset_x", "0.04"},
+                                      {"floor_friction", "0.6"},
+                                      {"action_delay", "2"},
+                                      {"action_lag_min", "0.03"},
+                                      {"action_lag_max", "0.03"}},
+                                     "Upkie-MuJoCo-Servos", 4, 60.0);
+  IdentificationSettings settings;
+  settings.env_id = "Upkie-MuJoCo-Servos";
+  settings.options = {{"payload_mass", "1"}};
+  settings.parameters =
+      parse_parameter_requests({"mass_scale=0.6:1.6", "payload_offset_x=-0.1:0.1",
+                                "floor_friction=0.1:1.5", "action_delay=0:4", "action_lag=0:0.1"});
+  const IdentificationResult result = identify(log, settings);
+  std::cout << identification_json(result) << std::endl;
+  const FittedParameter& delay = parameter(result, "action_delay");
+  EXPECT_LE(std::abs(delay.value - 2.0), delay.uncertainty) << delay.value;
+  EXPECT_NEAR(parameter(result, "mass_scale").value, 1.2, 0.06);
+  EXPECT_NEAR(parameter(result, "floor_friction").value, 0.6, 0.03);
+}
+
 TEST(Identification, SameLogSameResult) {
   const RobotLog log = simulated_log("repeat.mpack", {{"mass_scale", "0.8"}});
   const IdentificationResult first = fit(log, {"mass_scale=0.6:1.2"});
