@@ -323,8 +323,8 @@ bool scan_delay_along_lag(Fit& fit, std::vector<double>& x,
   return try_delays_on_ridge(fit, x, settings, delays, ContinuousFit{});
 }
 
-/// Each short fit of refit_ridge_neighbours: on a quarter of the replays, 6 replays of the
-/// whole log's worth. With 25 evaluations instead of 40, the 10 fits of identify_goals
+/// Each short fit of refit_ridge_neighbours: on a quarter of the replays, 6.25 replays of
+/// the whole log's worth. With 25 evaluations instead of 40, the 10 fits of identify_goals
 /// (both engines, seeds 1-5) kept the same delays, 7.5 replays' worth sooner.
 constexpr ContinuousFit kRidgeRefit{25, kCoarseStride};
 
@@ -333,7 +333,7 @@ constexpr ContinuousFit kRidgeRefit{25, kCoarseStride};
 /// the wrong delay stays. On seed 1's 60 s Bullet log the fit ended at 3 steps and 25 ms,
 /// the friction 18 % high and the mass 3.6 % low, predicting 0.0585 where the hidden values
 /// (2 steps, 30 ms) predict 0.0511. So each neighbouring delay on the ridge gets a short fit
-/// of its own (kRidgeRefit, on a quarter of the replays: 20 replays of the whole log's
+/// of its own (kRidgeRefit, on a quarter of the replays: 12.5 replays of the whole log's
 /// worth for both instead of 50) from the ridge point, and the best prediction of them and
 /// the fit on every replay is kept (3 replays' worth): compared on a quarter, MuJoCo seed 3
 /// of identify_goals kept 1 step and 37 ms against the hidden 2 and 30; on half, seed 5 1

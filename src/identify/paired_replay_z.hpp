@@ -4,10 +4,10 @@
 ///
 /// Why: a delay of d steps and a lag tau shift the commands alike to first order, so at
 /// 5 ms steps a neighbouring delay with the lag refitted predicts a log nearly as well. On
-/// the 60 s Bullet logs of identify_goals (seeds 1-5) the neighbours' refits predicted 5-26 %
-/// worse, or 2 % better on the seed whose delay ended one step short; what tells a
+/// the 60 s Bullet logs of identify_goals (seeds 1-5) the neighbours' short refits predicted
+/// 6-26 % worse, or 3 % better on the seed whose delay ended one step short; what tells a
 /// difference the log pins down from one it does not is whether it holds replay after replay
-/// (z 3.7-5.5 on seeds 1 and 4, 1.0-1.9 on seeds 2 and 5), not its size.
+/// (z 3.5-5.5 on seeds 1 and 4, 1.0-1.8 on seeds 2 and 5), not its size.
 
 #include <cstddef>
 #include <span>

@@ -52,7 +52,7 @@ std::unique_ptr<btCollisionShape> make_shape(const CollisionShape& shape) {
 }
 
 /// Why: Bullet's default pools hold 4096 contact manifolds and 4096 collision algorithms
-/// (megabytes at double precision), laid out again at every reset, which was 5 % of an
+/// (megabytes at double precision), laid out again at every reset, which was 4.9 % of an
 /// identification's time (it resets the world at each 0.2 s replay: perf, 60 s log). The
 /// robot on a floor with bumps uses a few dozen of each; a pool that runs out falls back to
 /// the heap, so only where the memory comes from changes, never the physics.
