@@ -55,6 +55,8 @@ void print_result(const IdentificationResult& result, const RobotLog& log) {
                   shortest_text(parameter.value).c_str(), parameter.reason.c_str());
     }
   }
+  const std::string latency = actuation_latency_line(result);
+  if (!latency.empty()) std::printf("  %s\n", latency.c_str());
   std::printf("rmse_before %.4g, rmse_after %.4g (normalised errors over %.3g s), %.1f s\n",
               result.rmse_before, result.rmse_after, result.horizon, result.seconds);
 }

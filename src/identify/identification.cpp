@@ -448,6 +448,7 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   result.windows_down = replay.num_windows_down();
   result.windows_moved_off_slip = replay.num_windows_moved_off_slip();
   result.horizon = settings.replay.horizon;
+  result.timestep = replay.timestep();
   const ParameterValues measured_values = std::exchange(fit.measured, {});
   result.rmse_before = fit.rmse(x);  // the nominal robot
   fit.measured = measured_values;
@@ -477,6 +478,23 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
+}
+
+std::string actuation_latency_line(const IdentificationResult& result) {
+  const FittedParameter* delay = nullptr;
+  const FittedParameter* lag = nullptr;
+  for (const FittedParameter& parameter : result.parameters) {
+    if (parameter.name == "action_delay") delay = &parameter;
+    if (parameter.name == "action_lag") lag = &parameter;
+  }
+  if (delay == nullptr || lag == nullptr || !(delay->uncertainty > 0.0)) return "";
+  const auto milliseconds = [](double seconds) {
+    return shortest_text(std::round(seconds * 1e4) / 10.0) + " ms";
+  };
+  return "action_delay and action_lag trade against each other on this log: their sum, " +
+         shortest_text(delay->value) + " x " + milliseconds(result.timestep) + " + " +
+         milliseconds(lag->value) + " = " +
+         milliseconds(delay->value * result.timestep + lag->value) + ", is what it pins down";
 }
 
 std::string identification_json(const IdentificationResult& result) {

@@ -50,6 +50,7 @@ struct IdentificationResult {
   /// Replays started later, off tire slip (ReplaySettings::slip_threshold).
   std::size_t windows_moved_off_slip = 0;
   double horizon = 0.0;  ///< Of each replay [s].
+  double timestep = 0.0;  ///< The environment's step [s], a delay's unit.
 };
 
 /// Fits the requested parameters: the delay (whole steps) by scanning its range, the others
@@ -63,6 +64,11 @@ IdentificationResult identify(const RobotLog& log, const IdentificationSettings&
 /// `{"params": {name: value}, "rmse_before": x, "rmse_after": y, "seconds": s}` plus each
 /// parameter's uncertainty and identifiability, on one line.
 std::string identification_json(const IdentificationResult& result);
+
+/// When the delay is uncertain by a step and a lag was fitted with it, what the log does pin
+/// down, on one line: a delay and a lag shift the commands alike, so their sum, delay x
+/// step + lag, is what to trust. "" otherwise.
+std::string actuation_latency_line(const IdentificationResult& result);
 
 /// The fitted options as a YAML training-configuration fragment (env.options), with the
 /// matching `--env-option` and `--set` arguments in its comments; the parameters not

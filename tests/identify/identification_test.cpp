@@ -281,3 +281,19 @@ TEST(IdentificationYaml, LeavesOutWhatTheLogDidNotInform) {
       upkie_rl::identification_yaml(result, "robot.mpack", "Upkie-MuJoCo-Servos");
   EXPECT_NE(nothing.find("env:\n  options: {}\n"), std::string::npos) << nothing;
 }
+
+// A delay uncertain by a step comes with what the log pins down: the delay and the lag's sum.
+TEST(IdentificationText, NamesTheLatencyWhenTheDelayIsUncertain) {
+  upkie_rl::IdentificationResult result;
+  result.timestep = 0.005;
+  result.parameters.push_back({"action_delay", "steps", 1.0, 1.0, true, ""});
+  result.parameters.push_back({"action_lag", "s", 0.0377, 0.0002, true, ""});
+  EXPECT_EQ(upkie_rl::actuation_latency_line(result),
+            "action_delay and action_lag trade against each other on this log: their sum, 1 x "
+            "5 ms + 37.7 ms = 42.7 ms, is what it pins down");
+  result.parameters[0].uncertainty = 0.0;  // the delay told apart from its neighbours
+  EXPECT_EQ(upkie_rl::actuation_latency_line(result), "");
+  result.parameters[0].uncertainty = 1.0;
+  result.parameters.pop_back();  // no lag fitted
+  EXPECT_EQ(upkie_rl::actuation_latency_line(result), "");
+}
