@@ -49,7 +49,7 @@ struct IdentificationResult {
   std::size_t windows_down = 0;  ///< Replays left out: the robot was down in them.
   /// Replays started later, off tire slip (ReplaySettings::slip_threshold).
   std::size_t windows_moved_off_slip = 0;
-  double horizon = 0.0;  ///< Of each replay [s].
+  double horizon = 0.0;   ///< Of each replay [s].
   double timestep = 0.0;  ///< The environment's step [s], a delay's unit.
 };
 
