@@ -23,6 +23,7 @@ from spine_process import cli_path
 
 sb3 = pytest.importorskip("stable_baselines3")
 torch = pytest.importorskip("torch")
+from stable_baselines3.common.logger import configure as configure_sb3_logger  # noqa: E402
 from stable_baselines3.common.vec_env import VecNormalize  # noqa: E402
 
 from upkie_rl.safe_pickle import UnsafePickleError  # noqa: E402
@@ -52,6 +53,8 @@ def sb3_model(request, tmp_path_factory):
     model = sb3.PPO("MlpPolicy", venv, n_steps=256, batch_size=64, n_epochs=2, seed=0,
                     device="cpu", policy_kwargs={"net_arch": [32, 32],
                                                  "activation_fn": getattr(torch.nn, request.param)})
+    # SB3 otherwise makes an empty SB3-<date> directory in /tmp at every learn().
+    model.set_logger(configure_sb3_logger(str(directory / "sb3_log"), [""]))
     model.learn(total_timesteps=1024)
     model.save(directory / "ppo.zip")
     venv.save(directory / "vecnormalize.pkl")

@@ -167,6 +167,7 @@ import sys
 from pathlib import Path
 import numpy as np
 import stable_baselines3
+import stable_baselines3.common.logger
 import upkie_rl
 from upkie_rl.sb3_convert import export_sb3, import_sb3
 
@@ -174,6 +175,8 @@ work, policies = Path(sys.argv[1]), Path(sys.argv[2])
 venv = upkie_rl.make_sb3_vec_env("Upkie-Bullet-Pendulum", num_envs=2, seed=0)
 model = stable_baselines3.PPO("MlpPolicy", venv, n_steps=128, batch_size=64, n_epochs=2,
                               seed=0, device="cpu")
+# SB3 otherwise makes an empty SB3-<date> directory in /tmp at every learn().
+model.set_logger(stable_baselines3.common.logger.configure(str(work / "sb3_log"), [""]))
 model.learn(total_timesteps=512)
 assert model.num_timesteps >= 512, model.num_timesteps
 model.save(work / "ppo.zip")
