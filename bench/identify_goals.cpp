@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -144,6 +145,11 @@ int main(int argc, char** argv) {
   app.add_flag("--check-truth", goals.check_truth, "Also print the rmse at the hidden values");
   app.add_flag("--truth-only", goals.truth_only, "Print the rmse at the hidden values, no fit");
   CLI11_PARSE(app, argc, argv);
-  for (const std::uint64_t seed : goals.seeds) upkie_rl::run_seed(goals, seed);
+  try {
+    for (const std::uint64_t seed : goals.seeds) upkie_rl::run_seed(goals, seed);
+  } catch (const std::exception& error) {  // a bad option, a log whose robot fell: one line
+    std::fprintf(stderr, "identify_goals: %s\n", error.what());
+    return 1;
+  }
   return 0;
 }
