@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace upkie_rl {
 
@@ -16,20 +17,18 @@ double paired_replay_z(std::span<const double> worse, std::span<const double> be
                                 "replays of " + std::to_string(per_replay));
   }
   const std::size_t replays = worse.size() / per_replay;
-  const auto difference = [&](std::size_t replay) {
-    double sum = 0.0;
+  std::vector<double> differences(replays, 0.0);  // each replay's, summed once
+  for (std::size_t replay = 0; replay < replays; ++replay) {
     for (std::size_t k = replay * per_replay; k < (replay + 1) * per_replay; ++k)
-      sum += worse[k] * worse[k] - better[k] * better[k];
-    return sum;
-  };
+      differences[replay] += worse[k] * worse[k] - better[k] * better[k];
+  }
   // Two passes (the mean, then the spread about it): the differences are small against
   // the sums of squares, so the one-pass formula would lose them.
   double mean = 0.0;
-  for (std::size_t replay = 0; replay < replays; ++replay) mean += difference(replay);
+  for (const double difference : differences) mean += difference;
   mean /= static_cast<double>(replays);
   double variance = 0.0;
-  for (std::size_t replay = 0; replay < replays; ++replay)
-    variance += (difference(replay) - mean) * (difference(replay) - mean);
+  for (const double difference : differences) variance += (difference - mean) * (difference - mean);
   variance /= static_cast<double>(replays - 1);
   if (variance == 0.0) {
     if (mean == 0.0) return 0.0;
