@@ -285,6 +285,11 @@ TEST_P(EnginePerturbations, InconsistentSettingsAreRefusedWithTheirNames) {
             std::string::npos);
   EXPECT_NE(message({{"inertia_variation", "1.5"}}).find("outside [0, 0.99]"), std::string::npos);
   EXPECT_NE(message({{"push_direction", "up"}}).find("not one of"), std::string::npos);
+  EXPECT_NE(message({{"push_force", "10"}, {"push_sagittal_share", "0.5"}})
+                .find("push_sagittal_share applies to push_direction any"),
+            std::string::npos);
+  EXPECT_NE(message({{"push_sagittal_share", "1.5"}}).find("push_sagittal_share"),
+            std::string::npos);
 }
 
 TEST_P(EnginePerturbations, OnASlopeThePolicyReadsThePitchOfARealSlope) {

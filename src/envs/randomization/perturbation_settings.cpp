@@ -166,6 +166,9 @@ void PerturbationSettings::declare_options(OptionTable& table) {
                     {"lateral", PushDirection::kLateral},
                     {"any", PushDirection::kAny}},
                    "direction of pushes relative to the robot's heading");
+  table.add_real("push_sagittal_share", &push.sagittal_share, 0.0, 1.0,
+                 "with push_direction any, the share of pushes along the heading (forward or "
+                 "back), the rest in any direction");
   table.add_rule([this] { return problem(); });
 }
 
@@ -177,6 +180,9 @@ std::string PerturbationSettings::problem() const {
   if (push.enabled() && push.duration > push.interval) {
     return "push_duration (" + std::to_string(push.duration) +
            " s) is longer than push_interval (" + std::to_string(push.interval) + " s)";
+  }
+  if (push.sagittal_share > 0.0 && push.direction != PushDirection::kAny) {
+    return "push_sagittal_share applies to push_direction any only";
   }
   return "";
 }

@@ -30,6 +30,9 @@ struct PushSettings {
   double start = 0.25;     ///< Start of the first window [s].
   double interval = 1.0;   ///< Length of a window [s], at least the duration.
   PushDirection direction = PushDirection::kSagittal;
+  /// With direction kAny: the share of pushes drawn along the heading (forward or backward,
+  /// each half of it); the rest point anywhere. 0 (the default) draws as kAny always did.
+  double sagittal_share = 0.0;
 
   bool enabled() const { return force > 0.0; }
 };

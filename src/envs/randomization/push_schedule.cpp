@@ -39,9 +39,17 @@ void PushSchedule::draw_push(int window) {
     case PushDirection::kLateral:
       angle_ = first_half ? kPi / 2.0 : -kPi / 2.0;
       break;
-    case PushDirection::kAny:
-      angle_ = 2.0 * kPi * u;
+    case PushDirection::kAny: {
+      // One draw decides both: u below the share is a push along the heading (each half of
+      // the share one way), above it any direction; a share of 0 keeps the draws of before.
+      const double share = settings_.sagittal_share;
+      if (u < share) {
+        angle_ = u < 0.5 * share ? 0.0 : kPi;
+      } else {
+        angle_ = 2.0 * kPi * (u - share) / (1.0 - share);
+      }
       break;
+    }
   }
 }
 
