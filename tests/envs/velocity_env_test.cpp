@@ -206,6 +206,30 @@ TEST(VelocityReward, ForwardErrorPenaltyIsTheSquaredErrorCappedAtOneMetrePerSeco
   EXPECT_EQ(unweighted.terms()[VelocityReward::kForwardVelocityError], 0.0);
 }
 
+TEST(VelocityReward, TiltExcessPenaltyGrowsLinearlyBeyondItsStart) {
+  VelocityRewardWeights weights;
+  weights.w_tilt_excess = 10.0;
+  weights.tilt_excess_start = 0.3;
+  VelocityReward reward(weights);
+  VelocityRewardInputs inputs;
+  const auto tilted = [](double tilt) {  // gravity in the frame of a base pitched by tilt
+    return Eigen::Vector3d(std::sin(tilt), 0.0, -std::cos(tilt));
+  };
+  inputs.gravity_in_base = tilted(0.25);  // below the start: free
+  reward(inputs);
+  EXPECT_EQ(reward.terms()[VelocityReward::kTiltExcess], 0.0);
+  inputs.gravity_in_base = tilted(0.35);
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kTiltExcess], -10.0 * 0.05, 1e-9);
+  inputs.gravity_in_base = tilted(-0.45);  // leaning back counts alike
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kTiltExcess], -10.0 * 0.15, 1e-9);
+  // Off by default.
+  VelocityReward unweighted;
+  unweighted(inputs);
+  EXPECT_EQ(unweighted.terms()[VelocityReward::kTiltExcess], 0.0);
+}
+
 /// An observation of a base rotated by `rotation`, moving at `velocity` in the world.
 Observation base_state(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& velocity,
                        const Eigen::Vector3d& angular_velocity_in_base) {

@@ -48,6 +48,8 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
   const double capped_forward_error = std::min(std::abs(forward_error), kForwardErrorCap);
   terms_[kForwardVelocityError] =
       -weights_.w_forward_velocity_error * capped_forward_error * capped_forward_error;
+  const double tilt = std::acos(std::clamp(-g.z(), -1.0, 1.0));
+  terms_[kTiltExcess] = -weights_.w_tilt_excess * std::max(0.0, tilt - weights_.tilt_excess_start);
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;
@@ -77,6 +79,10 @@ void VelocityRewardWeights::declare_options(OptionTable& table) {
                  "penalty weight of the legs' squared difference from their mirror image");
   table.add_real("w_height_error", &w_height_error, 0.0, kOptionHuge,
                  "penalty weight of the absolute base height error [1/m] (with height_command)");
+  table.add_real("w_tilt_excess", &w_tilt_excess, 0.0, kOptionHuge,
+                 "penalty weight of the base's tilt beyond tilt_excess_start [1/rad]");
+  table.add_real("tilt_excess_start", &tilt_excess_start, 0.0, 1.5,
+                 "tilt [rad] from which w_tilt_excess's penalty grows");
   table.add_real("w_forward_velocity_error", &w_forward_velocity_error, 0.0, kOptionHuge,
                  "penalty weight of the squared forward velocity error [s^2/m^2], capped at 1 m/s");
 }

@@ -45,6 +45,13 @@ struct VelocityRewardWeights {
   /// (exp(-9) of its weight at 0.3): the kernel rewards getting back, not getting back fast.
   /// The squared error is the suite's own measure, with its slope largest where the error is.
   double w_forward_velocity_error = 0.0;
+  /// Subtracted: a penalty on the base's tilt beyond tilt_excess_start [1/rad], linear.
+  /// Why: leaning past about 0.40 rad puts the ankle bracket on the floor (a fall), and the
+  /// policies that brake a push harder than the baseline lean there; the upright kernel
+  /// (w_upright) also taxes the small leans tracking needs, and a larger w_upright cost the
+  /// forward tracking (docs/reality.md). This term is 0 below the start.
+  double w_tilt_excess = 0.0;
+  double tilt_excess_start = 0.3;  ///< [rad]
 
   /// Declares the options of the fields, by their names.
   void declare_options(OptionTable& table);
@@ -66,7 +73,9 @@ struct VelocityRewardInputs {
 ///   + w_upright·exp(-(g_x² + g_y²)/0.1) + w_pose·exp(-Σ Δq²/0.25) - w_action_rate·Σ Δu²
 ///   - w_leg_symmetry·((Δq_lh + Δq_rh)² + (Δq_lk + Δq_rk)²) [- w_height_error·|h* - h|]
 ///   - w_forward_velocity_error·min((vx* - vx)², kForwardErrorCap²)
-/// where g is the unit gravity vector in the base frame, Δq the leg joints' deviations from
+///   - w_tilt_excess·max(0, tilt - tilt_excess_start)
+/// where g is the unit gravity vector in the base frame, tilt = acos(-g_z) the base's angle
+/// from upright, Δq the leg joints' deviations from
 /// the pose reference (VelocityTask) and Δu the change of the normalised action; the right
 /// leg's joints mirror the left's (negated angles), so a sum of a left and a right
 /// deviation is the legs' asymmetry (0 for any symmetric pose). The height
@@ -84,6 +93,7 @@ class VelocityReward {
     kLegSymmetry,
     kHeightError,
     kForwardVelocityError,
+    kTiltExcess,
     kNumTerms
   };
   /// Term names, as logged (`episode/reward_<name>`).
@@ -95,7 +105,8 @@ class VelocityReward {
                                                                          "track_height",
                                                                          "leg_symmetry",
                                                                          "height_error",
-                                                                         "forward_velocity_error"};
+                                                                         "forward_velocity_error",
+                                                                         "tilt_excess"};
   /// The forward error [m/s] beyond which forward_velocity_error stops growing: a robot
   /// that fell or runs away is that far off or further.
   static constexpr double kForwardErrorCap = 1.0;
