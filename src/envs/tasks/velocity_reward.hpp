@@ -75,8 +75,8 @@ struct VelocityRewardInputs {
 ///   - w_forward_velocity_error·min((vx* - vx)², kForwardErrorCap²)
 ///   - w_tilt_excess·max(0, tilt - tilt_excess_start)
 /// where g is the unit gravity vector in the base frame, tilt = acos(-g_z) the base's angle
-/// from upright, Δq the leg joints' deviations from
-/// the pose reference (VelocityTask) and Δu the change of the normalised action; the right
+/// from upright, Δq the leg joints' deviations from the pose reference (VelocityTask) and
+/// Δu the change of the normalised action; the right
 /// leg's joints mirror the left's (negated angles), so a sum of a left and a right
 /// deviation is the legs' asymmetry (0 for any symmetric pose). The height
 /// terms (track_height, height_error) are 0 without a height command. Every term is bounded, so a
