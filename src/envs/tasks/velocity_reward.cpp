@@ -18,6 +18,10 @@ double kernel(double error, double sigma) { return std::exp(-(error * error) / (
 
 }  // namespace
 
+double tilt_from_gravity(const Eigen::Vector3d& gravity_in_base) {
+  return std::acos(std::clamp(-gravity_in_base.z(), -1.0, 1.0));
+}
+
 double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
   const double forward_error = inputs.command.forward_velocity - inputs.velocity.forward_velocity;
   const double yaw_error = inputs.command.yaw_rate - inputs.velocity.yaw_rate;
@@ -48,8 +52,8 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
   const double capped_forward_error = std::min(std::abs(forward_error), kForwardErrorCap);
   terms_[kForwardVelocityError] =
       -weights_.w_forward_velocity_error * capped_forward_error * capped_forward_error;
-  const double tilt = std::acos(std::clamp(-g.z(), -1.0, 1.0));
-  terms_[kTiltExcess] = -weights_.w_tilt_excess * std::max(0.0, tilt - weights_.tilt_excess_start);
+  terms_[kTiltExcess] =
+      -weights_.w_tilt_excess * std::max(0.0, tilt_from_gravity(g) - weights_.tilt_excess_start);
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;

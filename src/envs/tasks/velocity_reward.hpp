@@ -57,6 +57,10 @@ struct VelocityRewardWeights {
   void declare_options(OptionTable& table);
 };
 
+/// The angle between the base's vertical and the world's [rad], from the unit gravity vector
+/// in the base frame: one formula for the reward's tilt term and the task's fall test.
+double tilt_from_gravity(const Eigen::Vector3d& gravity_in_base);
+
 /// What a step gives the reward.
 struct VelocityRewardInputs {
   VelocityCommand command;    ///< Held during the step.
@@ -76,9 +80,9 @@ struct VelocityRewardInputs {
 ///   - w_tilt_excess·max(0, tilt - tilt_excess_start)
 /// where g is the unit gravity vector in the base frame, tilt = acos(-g_z) the base's angle
 /// from upright, Δq the leg joints' deviations from the pose reference (VelocityTask) and
-/// Δu the change of the normalised action; the right
-/// leg's joints mirror the left's (negated angles), so a sum of a left and a right
-/// deviation is the legs' asymmetry (0 for any symmetric pose). The height
+/// Δu the change of the normalised action; the right leg's joints mirror the left's
+/// (negated angles), so a sum of a left and a right deviation is the legs' asymmetry (0 for
+/// any symmetric pose). The height
 /// terms (track_height, height_error) are 0 without a height command. Every term is bounded, so a
 /// fall costs the rewards of the steps it forfeits.
 class VelocityReward {

@@ -139,7 +139,7 @@ Eigen::Vector3d VelocityTask::gravity_in_base(const Observation& full) {
 }
 
 double VelocityTask::tilt(const Observation& full) {
-  return std::acos(std::clamp(-gravity_in_base(full).z(), -1.0, 1.0));
+  return tilt_from_gravity(gravity_in_base(full));
 }
 
 BaseVelocity VelocityTask::measured_velocity(const Observation& full) {
@@ -241,7 +241,7 @@ StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand
   StepResult result;
   result.reward = reward_(inputs);
   reason_ = VelocityTermination::kNone;
-  if (tilt(full) > config_.fall_tilt) {
+  if (tilt_from_gravity(inputs.gravity_in_base) > config_.fall_tilt) {
     reason_ = VelocityTermination::kTilt;
   } else if (config_.terminate_on_contact && full.floor_contact.non_wheel) {
     reason_ = VelocityTermination::kContact;
