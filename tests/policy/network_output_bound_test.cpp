@@ -80,7 +80,7 @@ TEST(NetworkOutputBound, ABoundBeyondTheLimitNamesTheLayerAndItsLargestWeight) {
 TEST(NetworkOutputBound, TheStoredPoliciesStayFarBelowTheLimit) {
   for (const char* name :
        {"pendulum_bullet_seed0", "pendulum_mujoco_seed0", "pendulum_robust_mujoco_seed4",
-        "servos_balance_mujoco_seed0", "velocity_mujoco_seed0"}) {
+        "servos_balance_mujoco_seed0", "velocity_mujoco_seed0", "velocity_reality_mujoco_seed0"}) {
     const CheckpointFile file = read_checked_checkpoint(std::string(UPKIE_RL_TEST_DATA_DIR) +
                                                         "/policies/" + name + ".ckpt");
     const PolicyShape shape = policy_shape_from_json(file.header.at("policy"));
