@@ -77,9 +77,10 @@ TEST(RobustPolicies, ServosBalanceBalancesWithItsLegs) {
 }
 
 TEST(RobustPolicies, RealityVelocityPolicyStandsWhereTheBaselineFalls) {
-  // The shipped reality suite's "payload 30 % forward" world on Bullet (the engine it
-  // trained on for a quarter of its environments), 10 of its 20 episodes: the baseline
-  // falls in most (15 of 20 over the suite's episodes), the policy in none (docs/reality.md).
+  // The shipped reality suite's "payload 30 % forward" world on Bullet (the engine of a
+  // quarter of its training environments), 10 episodes: the baseline falls in most (1 of 10
+  // stood when this was written; 15 of 20 falls on the suite's episodes), the policy in
+  // none (10 of 10; docs/reality.md).
   const auto result =
       run_cli("evaluate --env Upkie-Bullet-Velocity --model policy=" + kPolicies +
               "velocity_reality_mujoco_seed0.ckpt --controller lqr --episodes 10 --max-steps 500 "
