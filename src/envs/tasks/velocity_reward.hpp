@@ -82,9 +82,8 @@ struct VelocityRewardInputs {
 /// from upright, Δq the leg joints' deviations from the pose reference (VelocityTask) and
 /// Δu the change of the normalised action; the right leg's joints mirror the left's
 /// (negated angles), so a sum of a left and a right deviation is the legs' asymmetry (0 for
-/// any symmetric pose). The height
-/// terms (track_height, height_error) are 0 without a height command. Every term is bounded, so a
-/// fall costs the rewards of the steps it forfeits.
+/// any symmetric pose). The height terms (track_height, height_error) are 0 without a height
+/// command. Every term is bounded, so a fall costs the rewards of the steps it forfeits.
 class VelocityReward {
  public:
   enum Term : std::size_t {
