@@ -98,10 +98,12 @@ void run_seed(const GoalSettings& goals, std::uint64_t seed) {
               log.duration(), result.windows, result.evaluations, result.seconds);
   for (const FittedParameter& parameter : result.parameters) {
     const double truth = hidden_value(hidden, parameter.name);
-    std::printf("  %-18s hidden %-8s fitted %-10.4g +- %-9.2g error %+7.2f %%%s\n",
-                parameter.name.c_str(), shortest_text(truth).c_str(), parameter.value,
-                parameter.uncertainty, 100.0 * (parameter.value - truth) / truth,
-                parameter.identifiable ? "" : "  (not identifiable)");
+    std::printf(
+        "  %-18s hidden %-8s fitted %-10.4g +- %-9.2g error %+7.2f %% in [%.4g, %.4g]%s%s\n",
+        parameter.name.c_str(), shortest_text(truth).c_str(), parameter.value,
+        parameter.uncertainty, 100.0 * (parameter.value - truth) / truth, parameter.low,
+        parameter.high, truth >= parameter.low && truth <= parameter.high ? "" : " MISSES",
+        parameter.identifiable ? "" : "  (not identifiable)");
   }
   std::printf("  rmse %.4f -> %.4f (x%.2f)\n  %s\n", result.rmse_before, result.rmse_after,
               result.rmse_before / result.rmse_after, identification_json(result).c_str());

@@ -33,6 +33,16 @@ struct IdentifyOptions {
   std::uint64_t seed = 0;
 };
 
+/// "; predicts alike from LOW to HIGH UNIT" when the values the log cannot tell from the
+/// fit reach wider than its uncertainty says, or "".
+std::string interval_text(const FittedParameter& parameter, const std::string& unit) {
+  if (parameter.high - parameter.low <= 4.0 * parameter.uncertainty) return "";
+  char text[96];
+  std::snprintf(text, sizeof(text), "; predicts alike from %.4g to %.4g%s", parameter.low,
+                parameter.high, unit.c_str());
+  return text;
+}
+
 void print_result(const IdentificationResult& result, const RobotLog& log) {
   std::printf("%s: %zu cycles, %.2f s at %.0f Hz; %zu replays of %.3g s, %d evaluations\n",
               log.name.c_str(), log.cycles.size(), log.duration(), 1.0 / log.period(),
@@ -48,8 +58,9 @@ void print_result(const IdentificationResult& result, const RobotLog& log) {
   for (const FittedParameter& parameter : result.parameters) {
     const std::string unit = parameter.unit.empty() ? "" : " " + parameter.unit;
     if (parameter.identifiable) {
-      std::printf("  %-20s %-12s +- %.3g%s\n", parameter.name.c_str(),
-                  shortest_text(parameter.value).c_str(), parameter.uncertainty, unit.c_str());
+      std::printf("  %-20s %-12s +- %.3g%s%s\n", parameter.name.c_str(),
+                  shortest_text(parameter.value).c_str(), parameter.uncertainty, unit.c_str(),
+                  interval_text(parameter, unit).c_str());
     } else {
       std::printf("  %-20s %-12s not identifiable from this log: %s\n", parameter.name.c_str(),
                   shortest_text(parameter.value).c_str(), parameter.reason.c_str());

@@ -37,6 +37,17 @@ struct FittedParameter {
   double uncertainty = 0.0;
   bool identifiable = true;
   std::string reason;  ///< Why not, when not identifiable.
+  /// The values the log cannot tell from the fit: with the other parameters at the fit, on
+  /// each side the nearest value that predicts the log worse beyond chance (paired_replay_z
+  /// of 2 or more against the fit, replay by replay, on a quarter of the replays), found in
+  /// steps out from the fit and erring wide; the bound itself when none does, as when the
+  /// log bounds a parameter on one side only. Unlike
+  /// `uncertainty` it holds where the prediction error is flat or kinked (the floor's
+  /// friction, shown only where a tire slips). Conditional on the others: a delay one step
+  /// off (uncertainty 1) moves the lag's. The value itself for a delay, the measured
+  /// gyroscope bias and a parameter not identifiable.
+  double low = 0.0;
+  double high = 0.0;
 };
 
 struct IdentificationResult {
