@@ -313,10 +313,11 @@ double interval_end(Fit& fit, const std::vector<double>& x, std::size_t i, doubl
 
 /// FittedParameter::low and high of the identifiable continuous parameters.
 ///
-/// Why: the sandwich uncertainty is the curvature's, and a floor's friction has none above
-/// what the tires needed: every higher friction predicts a log without slip alike. On the
-/// 60 s Bullet logs of identify_goals (seeds 1-8) the fits landed 9-18 % high on five seeds
-/// with a printed uncertainty of 0.2-0.8 %.
+/// Why: the sandwich uncertainty is the curvature's at the fit, and a floor's friction has
+/// little there: every friction above what the tires needed predicts a log without slip
+/// nearly alike. On the 60 s Bullet logs of identify_goals (seeds 1-8) the fits landed
+/// 5.5-18 % high on five seeds with an uncertainty of 0.2-0.9 %; these intervals hold the
+/// hidden friction on all eight (docs/identify.md).
 void estimate_intervals(Fit& fit, const std::vector<double>& x,
                         std::vector<FittedParameter>& fitted) {
   std::vector<double> errors;

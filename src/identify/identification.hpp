@@ -73,7 +73,7 @@ struct IdentificationResult {
 IdentificationResult identify(const RobotLog& log, const IdentificationSettings& settings);
 
 /// `{"params": {name: value}, "rmse_before": x, "rmse_after": y, "seconds": s}` plus each
-/// parameter's uncertainty and identifiability, on one line.
+/// parameter's uncertainty, interval (`[low, high]`) and identifiability, on one line.
 std::string identification_json(const IdentificationResult& result);
 
 /// When the delay is uncertain by a step and a lag was fitted with it, what the log does pin
