@@ -153,8 +153,9 @@ TEST(Identification, TheDelaysUncertaintyCoversTheHiddenDelay) {
 }
 
 // Bullet's floor friction, fitted alone on 60 s of log with the rest of the physics known:
-// every higher friction but a little predicts this log alike, and the fit stops 11 % high
-// (0.667 for 0.6) with a curvature's uncertainty of +-0.002. The interval must say what the
+// frictions from well below the hidden one to a little above it predict this log alike (the
+// tires rarely near slipping), and the fit stops 11 % high (0.667 for 0.6) with a
+// curvature's uncertainty of +-0.002. The interval must say what the
 // log cannot tell apart (measured 0.463-0.687), and still bound the friction: a fit whose
 // interval spans the range informs nothing.
 TEST(Identification, TheFrictionsIntervalHoldsWhatTheLogCannotTellApart) {
