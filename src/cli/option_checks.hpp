@@ -40,8 +40,8 @@ inline const CLI::Validator kNonEmptyPath(
 /// configuration's `seed`. CLI11 alone turns "-1" and 2^64 into 2^64 - 1 without a word.
 inline const CLI::Validator kSeed(
     [](std::string& text) {
-      const std::string refusal = text + " is not a whole number in [0, " +
-                                  std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
+      std::string refusal = text + " is not a whole number in [0, " +
+                            std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
       if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
         return refusal;
       }
