@@ -53,8 +53,9 @@ TEST(SignedPermutation, MirrorsEachRowAndRepeats) {
 }
 
 TEST(VelocityMirror, SwapsTheSidesAndNegatesWhatTurns) {
-  auto env = make_env("Upkie-MuJoCo-Velocity",
-                      {{"height_command", "true"}, {"observe_command_acceleration", "true"}});
+  auto env = make_env("Upkie-MuJoCo-Velocity", {{"height_command", "true"},
+                                                {"observe_command_acceleration", "true"},
+                                                {"observe_acceleration", "true"}});
   const MirrorSymmetry* mirror = env->mirror_symmetry();
   ASSERT_NE(mirror, nullptr);
   const BoxSpace& space = env->observation_space();
@@ -69,12 +70,13 @@ TEST(VelocityMirror, SwapsTheSidesAndNegatesWhatTurns) {
   EXPECT_EQ(mirrored("right_knee.position"), -value("left_knee.position"));
   EXPECT_EQ(mirrored("left_wheel.velocity"), -value("right_wheel.velocity"));
   EXPECT_EQ(mirrored("last_action.right_wheel"), -value("last_action.left_wheel"));
-  for (const char* same : {"gravity.x", "gravity.z", "gyro.y", "command.forward_velocity",
-                           "command.height", "command.forward_acceleration"}) {
+  for (const char* same :
+       {"gravity.x", "gravity.z", "gyro.y", "command.forward_velocity", "command.height",
+        "command.forward_acceleration", "imu_acceleration.x", "imu_acceleration.z"}) {
     EXPECT_EQ(mirrored(same), value(same)) << same;
   }
-  for (const char* negated :
-       {"gravity.y", "gyro.x", "gyro.z", "command.yaw_rate", "command.yaw_acceleration"}) {
+  for (const char* negated : {"gravity.y", "gyro.x", "gyro.z", "command.yaw_rate",
+                              "command.yaw_acceleration", "imu_acceleration.y"}) {
     EXPECT_EQ(mirrored(negated), -value(negated)) << negated;
   }
   const std::vector<float> action = {1, 2, 3, 4, 5, 6};
@@ -102,10 +104,10 @@ TEST(VelocityMirror, TheHistoryMirrorsEachObservation) {
 /// difference between the second's observations and the mirror of the first's, less
 /// `relative` times the mirror's magnitude.
 double largest_mirror_error(const std::string& id, double relative) {
-  const EnvOptions options = {{"height_command", "true"},  {"leg_action_about_crouch", "true"},
-                              {"leg_action_scale", "0.5"}, {"init_rand_pitch", "0"},
-                              {"init_rand_omega_y", "0"},  {"residual_scale", "1"},
-                              {"command_start_delay", "0"}};
+  const EnvOptions options = {{"height_command", "true"},   {"leg_action_about_crouch", "true"},
+                              {"leg_action_scale", "0.5"},  {"init_rand_pitch", "0"},
+                              {"init_rand_omega_y", "0"},   {"residual_scale", "1"},
+                              {"command_start_delay", "0"}, {"observe_acceleration", "true"}};
   auto original = make_env(id, options);
   auto image = make_env(id, options);
   const MirrorSymmetry& mirror = *original->mirror_symmetry();

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "envs/kinds/velocity_env.hpp"
 #include "envs/registry/env_factory.hpp"
@@ -98,7 +99,7 @@ TEST(VelocityEnv, ObservesTheCommandsAccelerationsWhenAsked) {
   EXPECT_EQ(env->observation_space().names[forward + 1], "command.yaw_acceleration");
   VelocityEnv* velocity = find_velocity_env(*env);
   velocity->set_command_override(VelocityCommand{0.03, -1.0});
-  std::array<float, VelocityTask::kMaxObservationSize> observation{};
+  std::vector<float> observation(env->observation_space().size());
   env->reset(0, observation);
   EXPECT_FLOAT_EQ(observation[forward], 0.5f);       // ramping up at the limit
   EXPECT_FLOAT_EQ(observation[forward + 1], -2.0f);  // and down in yaw

@@ -40,8 +40,8 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
       sampler_(commands),
       limiter_(commands.max_acceleration, commands.max_yaw_acceleration,
                commands.height_command ? commands.max_height_velocity : 0.0) {
-  observation_space_ = VelocityTask::make_observation_space(commands.height_command,
-                                                            task.observe_command_acceleration);
+  observation_space_ = VelocityTask::make_observation_space(
+      commands.height_command, task.observe_command_acceleration, task.observe_acceleration);
   check_crouch_reach(task, commands);
   action_space_ = VelocityTask::make_action_space();
   mirror_ = VelocityTask::make_mirror_symmetry(observation_space_, action_space_);

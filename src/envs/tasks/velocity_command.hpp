@@ -19,6 +19,10 @@ inline constexpr const char* kHeightCommandColumn = "command.height";
 /// [m/s²], then yaw acceleration [rad/s²].
 inline constexpr std::array<const char*, 2> kCommandAccelerationColumns = {
     "command.forward_acceleration", "command.yaw_acceleration"};
+/// Names of the IMU's gravity-free linear acceleration in the base frame [m/s²], as
+/// columns of observations (last, with option observe_acceleration): x forward, y left, z up.
+inline constexpr std::array<const char*, 3> kImuAccelerationColumns = {
+    "imu_acceleration.x", "imu_acceleration.y", "imu_acceleration.z"};
 /// Name of the measured base height (record files, viewer frames).
 inline constexpr const char* kMeasuredHeightColumn = "measured.height";
 

@@ -23,6 +23,7 @@ VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& co
       height_command_(height_command),
       legs_(model),
       wheels_(model.wheel_geometry()),
+      imu_to_base_(model.rotation_base_to_imu()),
       reward_(config.reward) {
   if (config.relative_wheel_action && config.wheel_command_feedforward) {
     throw std::invalid_argument(
@@ -37,7 +38,8 @@ VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& co
   }
 }
 
-BoxSpace VelocityTask::make_observation_space(bool height_command, bool command_acceleration) {
+BoxSpace VelocityTask::make_observation_space(bool height_command, bool command_acceleration,
+                                              bool imu_acceleration) {
   BoxSpace space;
   for (const std::size_t joint : kLegJoints) {
     space.add(std::string(kServoNames[joint]) + ".position", -kInf, kInf);
@@ -54,6 +56,9 @@ BoxSpace VelocityTask::make_observation_space(bool height_command, bool command_
   if (command_acceleration) {
     for (const char* column : kCommandAccelerationColumns) space.add(column, -kInf, kInf);
   }
+  if (imu_acceleration) {
+    for (const char* column : kImuAccelerationColumns) space.add(column, -kInf, kInf);
+  }
   return space;
 }
 
@@ -66,8 +71,9 @@ BoxSpace VelocityTask::make_action_space() {
 namespace {
 
 /// Components that change sign under the left-right mirror, besides the servos'.
-constexpr std::array<std::string_view, 5> kMirrorNegated = {
-    "gravity.y", "gyro.x", "gyro.z", "command.yaw_rate", "command.yaw_acceleration"};
+constexpr std::array<std::string_view, 6> kMirrorNegated = {
+    "gravity.y",         "gyro.x", "gyro.z", "command.yaw_rate", "command.yaw_acceleration",
+    "imu_acceleration.y"};
 
 /// The mirror of `space` by its names (VelocityTask::make_mirror_symmetry).
 SignedPermutation mirror_by_names(const BoxSpace& space, const std::string& what) {
@@ -225,6 +231,10 @@ void VelocityTask::write_observation(const Observation& full, std::span<const fl
     observation[k++] = static_cast<float>(command_rate.forward_velocity);
     observation[k++] = static_cast<float>(command_rate.yaw_rate);
   }
+  if (config_.observe_acceleration) {
+    const Eigen::Vector3d acceleration = imu_to_base_ * full.imu.linear_acceleration;
+    for (int i = 0; i < 3; ++i) observation[k++] = static_cast<float>(acceleration[i]);
+  }
 }
 
 StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand& command,
@@ -275,6 +285,10 @@ void VelocityTaskConfig::declare_options(OptionTable& table) {
                    {{"true", true}, {"false", false}},
                    "append the followed command's forward and yaw accelerations over the "
                    "coming step to the observation (the ramp toward the target)");
+  table.add_choice("observe_acceleration", &observe_acceleration,
+                   {{"true", true}, {"false", false}},
+                   "append the IMU's gravity-free linear acceleration in the base frame to the "
+                   "observation (imu_acceleration.x, .y, .z [m/s^2])");
   table.add_real("leg_kp_scale", &leg_kp_scale, 0.0, ServosEnv::kMaxGainScale,
                  "kp_scale of hips and knees");
   table.add_real("leg_kd_scale", &leg_kd_scale, 0.0, ServosEnv::kMaxGainScale,
