@@ -327,7 +327,8 @@ std::size_t expect_history_rows(const RecordTable& record, const std::string& mo
 
 TEST_F(HistoryRunner, RolloutTheSpineEnvAndTheRunnerFeedTheHistoryTheCheckpointWants) {
   const DeployedPolicy policy = DeployedPolicy::load(model_);
-  EXPECT_EQ(policy.observation_space().size(), 40u);  // 2 x the 20 of height_command=false
+  // 2 x the 23 of configs/velocity.yaml: height_command=false (20), observe_acceleration (3).
+  EXPECT_EQ(policy.observation_space().size(), 46u);
   // `upkie-rl rollout` on the training's engine, then on a MuJoCo spine: the checkpoint's
   // observation_history comes with its task options, as the runner's does.
   const auto mujoco_record = temp_path("history_rollout_mujoco.csv");
@@ -354,7 +355,7 @@ TEST_F(HistoryRunner, RolloutTheSpineEnvAndTheRunnerFeedTheHistoryTheCheckpointW
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
   const auto info = testing::run_cli("info " + onnx.string());
   ASSERT_EQ(info.exit_code, 0) << info.output;
-  EXPECT_NE(info.output.find("input: observation FLOAT [batch, 40]"), std::string::npos)
+  EXPECT_NE(info.output.find("input: observation FLOAT [batch, 46]"), std::string::npos)
       << info.output;
 }
 
