@@ -90,8 +90,9 @@ def test_test_data_has_the_pendulum_and_servos_policies():
 def test_the_velocity_policy_is_one(velocity_checkpoint):
     policy = upkie_rl.load_policy(velocity_checkpoint)
     assert policy.env_id == "Upkie-MuJoCo-Velocity"
-    # configs/velocity.yaml's observation_history 3: the last three observations of 20.
-    assert policy.observation_space.shape == (60,) and policy.action_space.shape == (6,)
+    # configs/velocity.yaml's observation_history 3: the last three observations of 23 (20
+    # and the IMU's acceleration, observe_acceleration).
+    assert policy.observation_space.shape == (69,) and policy.action_space.shape == (6,)
 
 
 def test_one_float_input_with_free_batch_and_one_output(exported):
