@@ -109,9 +109,18 @@ const Observation& SpineBackend::read_observation_payload(bool after_reset) {
   // A spine that writes no `time` (the robot's) gets the agent's clock instead.
   const double previous_time = observation_.time;
   observation_.time = std::numeric_limits<double>::quiet_NaN();
+  // An absent optional key keeps its value: NaN tells a required one was not written.
+  Eigen::Vector3d& acceleration = observation_.imu.linear_acceleration;
+  if (config_.require_imu_acceleration) acceleration.x() = std::numeric_limits<double>::quiet_NaN();
   read_observation(unpacker_.unpack(memory_.payload()), observation_);
   if (std::isnan(observation_.time)) {
     observation_.time = after_reset ? 0.0 : previous_time + agent_timestep();
+  }
+  if (config_.require_imu_acceleration && !acceleration.allFinite()) {
+    throw SpineError(
+        "spine observation key 'imu.linear_acceleration' is missing or not finite: the policy "
+        "observes the IMU's acceleration (observe_acceleration), which this spine does not "
+        "write");
   }
   return observation_;
 }

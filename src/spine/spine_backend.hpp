@@ -37,6 +37,12 @@ struct SpineBackendConfig {
   /// on a loaded 2-core machine otherwise tripped the supervisor's overrun limit in 1 of
   /// 4 runs). Only for a real-time spine: one that advances on request would step twice.
   bool fresh_observation = true;
+  /// Refuse observations without `imu.linear_acceleration` (a SpineError naming the key at
+  /// reset or step). Why: the reader leaves an optional key that a spine does not write as it
+  /// was, so a policy that observes the IMU's acceleration (observe_acceleration) would run
+  /// on zeros, silently, on a spine without an accelerometer (a mock spine). Set from the
+  /// task by spine_backend_config().
+  bool require_imu_acceleration = false;
   /// How long a request may stay unprocessed before a SpineTimeoutError [s].
   double request_timeout = 0.1;
   int open_tries = 10;            ///< Attempts at opening the shared memory.

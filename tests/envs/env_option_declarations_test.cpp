@@ -115,5 +115,17 @@ TEST(EnvOptionDeclarations, SettingsRulesAreCheckedByTheRegistry) {
       std::invalid_argument);
 }
 
+// The spine's link refuses observations without the IMU's acceleration exactly when the
+// velocity task observes it (SpineBackendConfig::require_imu_acceleration).
+TEST(EnvOptionDeclarations, TheSpineRequiresTheAccelerationTheTaskObserves) {
+  const EnvId id = parse_env_id("Upkie-Spine-Velocity");
+  EXPECT_FALSE(spine_backend_config(parse_env_settings(id, "v", {})).require_imu_acceleration);
+  const EnvSettings observing = parse_env_settings(id, "v", {{"observe_acceleration", "true"}});
+  EXPECT_TRUE(spine_backend_config(observing).require_imu_acceleration);
+  EXPECT_FALSE(
+      spine_backend_config(parse_env_settings(parse_env_id("Upkie-Spine-Pendulum"), "p", {}))
+          .require_imu_acceleration);
+}
+
 }  // namespace
 }  // namespace upkie_rl

@@ -299,6 +299,30 @@ TEST(VelocityTask, GravityAndPitchOfTheObservation) {
   EXPECT_FLOAT_EQ(observation[space.index_of("command.yaw_rate")], -0.2f);
 }
 
+// The sizes the code declares as constants (buffers, tests) and the sizes of the spaces
+// and tasks built from the options agree for every combination of the optional columns.
+TEST(VelocityTask, ObservationSizesAreTheSpacesSizes) {
+  EXPECT_EQ(VelocityTask::make_observation_space(false).size(), VelocityTask::kObservationSize);
+  EXPECT_EQ(VelocityTask::make_observation_space(true).size(),
+            VelocityTask::kHeightObservationSize);
+  EXPECT_EQ(VelocityTask::make_observation_space(true, true, true).size(),
+            VelocityTask::kMaxObservationSize);
+  for (const bool height_command : {false, true}) {
+    for (const bool command_acceleration : {false, true}) {
+      for (const bool imu_acceleration : {false, true}) {
+        VelocityTaskConfig config;
+        config.observe_command_acceleration = command_acceleration;
+        config.observe_acceleration = imu_acceleration;
+        const VelocityTask task(*RobotModel::default_model(), config, height_command);
+        EXPECT_EQ(task.observation_size(),
+                  VelocityTask::make_observation_space(height_command, command_acceleration,
+                                                       imu_acceleration)
+                      .size());
+      }
+    }
+  }
+}
+
 TEST(VelocityEnv, ActionMappingAroundTheDefaultPose) {
   auto simulation = std::make_unique<testing::ScriptedSimulation>(0.02);
   testing::ScriptedSimulation* scripted = simulation.get();

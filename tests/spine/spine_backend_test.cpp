@@ -1,12 +1,14 @@
 #include "spine/spine_backend.hpp"
 
 #include <fcntl.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <thread>
 
 #include "fake_simulation.hpp"
@@ -204,10 +206,12 @@ TEST_F(SpineBackendTest, NonFiniteCommandsAreRefusedBeforeSending) {
   EXPECT_EQ(simulation_->actions.size(), 1u);
 }
 
-/// A robot-like observation: no `time`, no `sim`, integer fault/mode, extra keys.
-std::string robot_observation(double wheel_velocity) {
+/// A robot-like observation: no `time`, no `sim`, integer fault/mode, extra keys; with
+/// `imu_acceleration`, an `imu` map holding only `linear_acceleration` (0, 0, that).
+std::string robot_observation(double wheel_velocity,
+                              std::optional<double> imu_acceleration = std::nullopt) {
   testing::MessageBuilder message;
-  message.map(4);
+  message.map(imu_acceleration ? 5 : 4);
   message.key("base_orientation").map(2);
   message.key("angular_velocity").array(3).real(0.0).real(0.2).real(0.0);
   message.key("pitch").real(0.1);
@@ -220,53 +224,109 @@ std::string robot_observation(double wheel_velocity) {
     message.key("velocity").real(is_wheel(i) ? wheel_velocity : 0.0);
   }
   message.key("wheel_odometry").map(2).key("position").real(0.0).key("velocity").real(0.3);
+  if (imu_acceleration) {
+    message.key("imu").map(1).key("linear_acceleration").array(3);
+    message.real(0.0).real(0.0).real(*imu_acceleration);
+  }
   return message.bytes();
 }
 
-TEST(SpineBackend, ReadsARobotSpineWithoutTimeOrGroundTruth) {
-  const std::string name = testing::unique_shm_name("robot");
-  SharedMemory memory = SharedMemory::create(name);
-  std::atomic<bool> done{false};
-  // Answers every request at once: Start and Action with an observation, Stop by clearing.
-  std::thread spine([&] {
-    int actions = 0;
-    while (!done) {
-      const std::uint32_t request = memory.request();
-      if (request == static_cast<std::uint32_t>(Request::kStart) ||
-          request == static_cast<std::uint32_t>(Request::kAction)) {
-        if (request == static_cast<std::uint32_t>(Request::kAction)) ++actions;
-        const std::string reply = robot_observation(actions);
-        memory.write_payload({reply.data(), reply.size()});
-        memory.set_request(Request::kNone);
-      } else if (request == static_cast<std::uint32_t>(Request::kStop)) {
-        memory.set_request(Request::kNone);
-      }
-      std::this_thread::yield();
-    }
-  });
-  {
+/// A spine thread on fresh shared memory that answers every request at once: Start and
+/// Action with `reply(number of actions so far)`, Stop by clearing.
+class RobotLikeSpine {
+ public:
+  explicit RobotLikeSpine(std::function<std::string(int)> reply)
+      : name_(testing::unique_shm_name("robot")),
+        memory_(SharedMemory::create(name_)),
+        thread_([this, reply = std::move(reply)] { serve(reply); }) {}
+  ~RobotLikeSpine() {
+    done_ = true;
+    thread_.join();
+  }
+  RobotLikeSpine(const RobotLikeSpine&) = delete;
+  RobotLikeSpine& operator=(const RobotLikeSpine&) = delete;
+
+  /// A backend's configuration for this spine: on request, 100 Hz, one try.
+  SpineBackendConfig backend_config() const {
     SpineBackendConfig config;
-    config.shm_name = name;
+    config.shm_name = name_;
     config.regulate_frequency = false;
     config.agent_frequency = 100.0;
     config.open_tries = 1;
-    SpineBackend backend(config);
-    const Observation& first = backend.reset(ResetState{});
-    EXPECT_DOUBLE_EQ(first.time, 0.0);
-    EXPECT_FALSE(first.has_sim);
-    EXPECT_DOUBLE_EQ(first.base_orientation.pitch, 0.1);
-    EXPECT_DOUBLE_EQ(first.servo[kLeftKnee].torque, 0.5);  // float32 accepted
-    ServoAction action;
-    for (ServoCommand& command : action) command.maximum_torque = 1.0;
-    for (int i = 1; i <= 3; ++i) {
-      const Observation& observation = backend.step(action);
-      EXPECT_NEAR(observation.time, 0.01 * i, 1e-12);  // the agent's clock
-      EXPECT_DOUBLE_EQ(observation.servo[kRightWheel].velocity, i);
-    }
-    EXPECT_DOUBLE_EQ(backend.reset(ResetState{}).time, 0.0);
+    return config;
   }
-  done = true;
-  spine.join();
+
+ private:
+  void serve(const std::function<std::string(int)>& reply) {
+    int actions = 0;
+    while (!done_) {
+      const std::uint32_t request = memory_.request();
+      if (request == static_cast<std::uint32_t>(Request::kStart) ||
+          request == static_cast<std::uint32_t>(Request::kAction)) {
+        if (request == static_cast<std::uint32_t>(Request::kAction)) ++actions;
+        const std::string bytes = reply(actions);
+        memory_.write_payload({bytes.data(), bytes.size()});
+        memory_.set_request(Request::kNone);
+      } else if (request == static_cast<std::uint32_t>(Request::kStop)) {
+        memory_.set_request(Request::kNone);
+      }
+      std::this_thread::yield();
+    }
+  }
+
+  std::string name_;
+  SharedMemory memory_;
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
+TEST(SpineBackend, ReadsARobotSpineWithoutTimeOrGroundTruth) {
+  RobotLikeSpine spine([](int actions) { return robot_observation(actions); });
+  SpineBackend backend(spine.backend_config());
+  const Observation& first = backend.reset(ResetState{});
+  EXPECT_DOUBLE_EQ(first.time, 0.0);
+  EXPECT_FALSE(first.has_sim);
+  EXPECT_DOUBLE_EQ(first.base_orientation.pitch, 0.1);
+  EXPECT_DOUBLE_EQ(first.servo[kLeftKnee].torque, 0.5);  // float32 accepted
+  ServoAction action;
+  for (ServoCommand& command : action) command.maximum_torque = 1.0;
+  for (int i = 1; i <= 3; ++i) {
+    const Observation& observation = backend.step(action);
+    EXPECT_NEAR(observation.time, 0.01 * i, 1e-12);  // the agent's clock
+    EXPECT_DOUBLE_EQ(observation.servo[kRightWheel].velocity, i);
+  }
+  EXPECT_DOUBLE_EQ(backend.reset(ResetState{}).time, 0.0);
+}
+
+// A policy that observes the IMU's acceleration must not run on the zeros an optional key
+// the spine does not write would leave.
+TEST(SpineBackend, RequiredImuAccelerationMissingIsRefusedNamingTheKey) {
+  RobotLikeSpine spine([](int actions) { return robot_observation(actions); });
+  SpineBackendConfig config = spine.backend_config();
+  config.require_imu_acceleration = true;
+  SpineBackend backend(config);
+  try {
+    backend.reset(ResetState{});
+    FAIL() << "an observation without imu.linear_acceleration was accepted";
+  } catch (const SpineError& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("'imu.linear_acceleration' is missing"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("observe_acceleration"));
+  }
+}
+
+// Written on the first cycles, then dropped: the previous value is not kept.
+TEST(SpineBackend, RequiredImuAccelerationIsReadAndItsLaterAbsenceRefused) {
+  RobotLikeSpine spine([](int actions) {
+    return actions < 2 ? robot_observation(actions, 9.5 + actions) : robot_observation(actions);
+  });
+  SpineBackendConfig config = spine.backend_config();
+  config.require_imu_acceleration = true;
+  SpineBackend backend(config);
+  EXPECT_DOUBLE_EQ(backend.reset(ResetState{}).imu.linear_acceleration.z(), 9.5);
+  ServoAction action;
+  for (ServoCommand& command : action) command.maximum_torque = 1.0;
+  EXPECT_DOUBLE_EQ(backend.step(action).imu.linear_acceleration.z(), 10.5);
+  EXPECT_THROW(backend.step(action), SpineError);
 }
 
 TEST(SpineBackend, NoSpineFailsAfterTheConfiguredTries) {

@@ -74,7 +74,8 @@ OptionTable env_option_table(const EnvId& id, EnvSettings& settings);
 /// @throws std::invalid_argument on an unknown option, a bad value or inconsistent settings.
 EnvSettings parse_env_settings(const EnvId& id, const std::string& name, const EnvOptions& options);
 
-/// The spine backend's configuration of `settings` (its agent frequency included).
+/// The spine backend's configuration of `settings`: its agent frequency, and the IMU's
+/// acceleration required when the velocity task observes it.
 SpineBackendConfig spine_backend_config(const EnvSettings& settings);
 
 /// The task chain of `id` on `simulation`: ServosEnv, the kind's task, then the action lag,

@@ -214,6 +214,7 @@ EnvSettings parse_env_settings(const EnvId& id, const std::string& name,
 SpineBackendConfig spine_backend_config(const EnvSettings& settings) {
   SpineBackendConfig config = settings.spine;
   config.agent_frequency = settings.frequency;
+  config.require_imu_acceleration = settings.velocity.observe_acceleration;
   return config;
 }
 

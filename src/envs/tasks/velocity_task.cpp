@@ -21,6 +21,9 @@ VelocityTask::VelocityTask(const RobotModel& model, const VelocityTaskConfig& co
                            bool height_command)
     : config_(config),
       height_command_(height_command),
+      observation_size_(make_observation_space(height_command, config.observe_command_acceleration,
+                                               config.observe_acceleration)
+                            .size()),
       legs_(model),
       wheels_(model.wheel_geometry()),
       imu_to_base_(model.rotation_base_to_imu()),

@@ -207,10 +207,8 @@ class VelocityTask {
   const VelocityReward& reward() const { return reward_; }
   const VelocityTaskConfig& config() const { return config_; }
   bool height_command() const { return height_command_; }
-  std::size_t observation_size() const {
-    return kObservationSize + (height_command_ ? 1 : 0) +
-           (config_.observe_command_acceleration ? 2 : 0) + (config_.observe_acceleration ? 3 : 0);
-  }
+  /// The size of this task's observation space (make_observation_space of its options).
+  std::size_t observation_size() const { return observation_size_; }
   const LegKinematics& legs() const { return legs_; }
 
   /// Origin of each servo's position target [rad] under the followed command `command`:
@@ -228,6 +226,7 @@ class VelocityTask {
 
   VelocityTaskConfig config_;
   bool height_command_;
+  std::size_t observation_size_;
   LegKinematics legs_;
   std::array<double, kNumServos> lower_limit_{};
   std::array<double, kNumServos> upper_limit_{};
