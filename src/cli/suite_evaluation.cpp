@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "base/csv_field.hpp"
+#include "cli/fall_statistics.hpp"
 #include "cli/fixed_text.hpp"
 #include "cli/gnuplot_figure.hpp"
 #include "cli/tracking_report.hpp"
@@ -27,6 +28,9 @@ std::string engine_of(const std::string& env_id) {
 }
 
 int falls(const CellResult& cell) { return cell.summary.episodes - cell.successes; }
+
+/// The JSON and CSV name of a cell's fall_rate_upper_bound at kFallConfidence.
+constexpr const char* kFallRateUpperKey = "fall_rate_upper_95";
 
 /// The options of one world for one contender: its own, the suite's, the evaluation's
 /// (--env-option, which may change the suite's: a policy trained with the body-height command
@@ -111,29 +115,86 @@ std::vector<ContenderTotals> totals_of(const SuiteResults& run) {
   return totals;
 }
 
-/// The worlds where `a` fell and `b` did not, as "name (engine), ...".
-std::string worlds_where_only_first_falls(const SuiteResults& run, std::size_t a, std::size_t b,
-                                          int& count) {
-  std::string names;
-  count = 0;
+/// "name (engine)" of world `w`.
+std::string world_label(const SuiteResults& run, std::size_t w) {
+  const SuiteWorld& world = run.suite.worlds[w];
+  return world.name + " (" + engine_of(world.env_id) + ")";
+}
+
+/// The fall rate's upper bound of one cell (fall_statistics.hpp).
+double upper_bound_of(const CellResult& cell) {
+  return fall_rate_upper_bound(falls(cell), cell.summary.episodes);
+}
+
+/// Contender a against contender b: the worlds where a fell and b did not, and those where a
+/// fell more often than chance allows (more_falls_p_value under 1 - kFallConfidence).
+struct PairComparison {
+  struct World {
+    std::size_t index = 0;
+    double p_value = 1.0;  ///< That a falls more often, one-sided.
+  };
+  std::vector<World> falls_where_other_stands;
+  std::vector<World> falls_more_often;
+};
+
+PairComparison compare(const SuiteResults& run, std::size_t a, std::size_t b) {
+  PairComparison comparison;
   for (std::size_t w = 0; w < run.results.size(); ++w) {
-    if (falls(run.results[w][a]) == 0 || falls(run.results[w][b]) > 0) continue;
-    ++count;
-    const SuiteWorld& world = run.suite.worlds[w];
-    names += (names.empty() ? "" : ", ") + world.name + " (" + engine_of(world.env_id) + ")";
+    const CellResult& cell_a = run.results[w][a];
+    const CellResult& cell_b = run.results[w][b];
+    if (falls(cell_a) == 0) continue;
+    const PairComparison::World world{
+        w, more_falls_p_value(falls(cell_a), cell_a.summary.episodes, falls(cell_b),
+                              cell_b.summary.episodes)};
+    if (falls(cell_b) == 0) comparison.falls_where_other_stands.push_back(world);
+    if (world.p_value < 1.0 - kFallConfidence) comparison.falls_more_often.push_back(world);
   }
-  return names;
+  return comparison;
+}
+
+/// "0.500", or "< 0.001".
+std::string p_text(double p_value) {
+  return p_value < 0.001 ? std::string("< 0.001") : fixed_text(p_value, 3);
+}
+
+/// ": name (engine) 1/20 against 0/20, p 0.500, ..." (nothing for no world).
+std::string worlds_text(const SuiteResults& run, std::size_t a, std::size_t b,
+                        const std::vector<PairComparison::World>& worlds) {
+  std::string text;
+  for (const PairComparison::World& world : worlds) {
+    text += (text.empty() ? ": " : ", ") + world_label(run, world.index) + " " +
+            falls_text(run.results[world.index][a]) + " against " +
+            falls_text(run.results[world.index][b]) + ", p " + p_text(world.p_value);
+  }
+  return text;
+}
+
+/// "from 20 episodes a world's falls bound its fall rate (one-sided 95 %): 0 -> 13.9 %, ...".
+std::string fall_bounds_text(int episodes) {
+  std::string text = "from " + std::to_string(episodes) +
+                     " episodes a world's falls bound its fall rate (one-sided " +
+                     fixed_text(100.0 * kFallConfidence, 0) + " % confidence):";
+  for (int falls = 0; falls <= std::min(3, episodes); ++falls) {
+    text += std::string(falls == 0 ? " " : ", ") + std::to_string(falls) + " -> " +
+            fixed_text(100.0 * fall_rate_upper_bound(falls, episodes), 1) + " %";
+  }
+  return text;
 }
 
 void print_comparisons(std::ostream& out, const SuiteResults& run,
                        const std::vector<ContenderTotals>& totals) {
+  const std::string test =
+      "(one-sided Fisher exact test, p < " + fixed_text(1.0 - kFallConfidence, 2) + ")";
   for (std::size_t a = 0; a < run.labels.size(); ++a) {
     for (std::size_t b = 0; b < run.labels.size(); ++b) {
       if (a == b) continue;
-      int count = 0;
-      const std::string names = worlds_where_only_first_falls(run, a, b, count);
-      out << run.labels[a] << " falls where " << run.labels[b] << " stands: " << count
-          << " world(s)" << (names.empty() ? "" : ": " + names) << '\n';
+      const PairComparison comparison = compare(run, a, b);
+      out << run.labels[a] << " falls where " << run.labels[b]
+          << " stands: " << comparison.falls_where_other_stands.size() << " world(s)"
+          << worlds_text(run, a, b, comparison.falls_where_other_stands) << '\n';
+      out << run.labels[a] << " falls more often than " << run.labels[b] << ' ' << test << ": "
+          << comparison.falls_more_often.size() << " world(s)"
+          << worlds_text(run, a, b, comparison.falls_more_often) << '\n';
     }
   }
   for (std::size_t a = 0; a < run.labels.size(); ++a) {
@@ -146,6 +207,30 @@ void print_comparisons(std::ostream& out, const SuiteResults& run,
           << " % lower)\n";
     }
   }
+}
+
+/// Every ordered pair of contenders' comparison, for the JSON: worlds as "name (engine)".
+nlohmann::json comparisons_json(const SuiteResults& run) {
+  nlohmann::json comparisons = nlohmann::json::array();
+  const auto names = [&](const std::vector<PairComparison::World>& worlds) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const PairComparison::World& world : worlds) {
+      list.push_back({{"world", world_label(run, world.index)}, {"p_value", world.p_value}});
+    }
+    return list;
+  };
+  for (std::size_t a = 0; a < run.labels.size(); ++a) {
+    for (std::size_t b = 0; b < run.labels.size(); ++b) {
+      if (a == b) continue;
+      const PairComparison comparison = compare(run, a, b);
+      comparisons.push_back(
+          {{"contender", run.labels[a]},
+           {"other", run.labels[b]},
+           {"falls_where_other_stands", names(comparison.falls_where_other_stands)},
+           {"falls_more_often", names(comparison.falls_more_often)}});
+    }
+  }
+  return comparisons;
 }
 
 }  // namespace
@@ -204,6 +289,7 @@ std::string suite_table(const SuiteResults& run) {
         << " worlds; forward tracking RMS summed over the worlds "
         << fixed_text(totals[c].rms_vx_sum, 3) << " m/s\n";
   }
+  out << fall_bounds_text(suite.episodes) << '\n';
   print_comparisons(out, run, totals);
   return out.str();
 }
@@ -236,24 +322,25 @@ nlohmann::json suite_json(const SuiteResults& run) {
     nlohmann::json results = nlohmann::json::object();
     for (std::size_t c = 0; c < run.labels.size(); ++c) {
       const CellResult& cell = run.results[w][c];
-      nlohmann::json entry = {{"episodes", cell.summary.episodes},
-                              {"falls", falls(cell)},
-                              {"early_falls", cell.early_falls},
-                              {"mean_return", cell.mean_return},
-                              {"mean_length", cell.mean_length}};
+      nlohmann::json entry = {
+          {"episodes", cell.summary.episodes}, {"falls", falls(cell)},
+          {"early_falls", cell.early_falls},   {"mean_return", cell.mean_return},
+          {"mean_length", cell.mean_length},   {kFallRateUpperKey, upper_bound_of(cell)}};
       add_tracking_json(entry, cell.summary);
       results[run.labels[c]] = entry;
     }
     json["worlds"].push_back(
         {{"name", world.name}, {"env", world.env_id}, {"options", options}, {"results", results}});
   }
+  json["comparisons"] = comparisons_json(run);
   return json;
 }
 
 std::string suite_csv(const SuiteResults& run) {
   std::ostringstream out;
   out << "world,env,contender,episodes,falls,early_falls,tracking_rms_vx,tracking_rms_wz,"
-         "mean_return\n";
+         "mean_return,"
+      << kFallRateUpperKey << '\n';
   out << std::setprecision(9);
   for (std::size_t w = 0; w < run.results.size(); ++w) {
     const SuiteWorld& world = run.suite.worlds[w];
@@ -262,7 +349,7 @@ std::string suite_csv(const SuiteResults& run) {
       out << csv_field(world.name) << ',' << world.env_id << ',' << csv_field(run.labels[c]) << ','
           << cell.summary.episodes << ',' << falls(cell) << ',' << cell.early_falls << ','
           << cell.summary.tracking.rms_forward() << ',' << cell.summary.tracking.rms_yaw() << ','
-          << cell.mean_return << '\n';
+          << cell.mean_return << ',' << upper_bound_of(cell) << '\n';
     }
   }
   return out.str();

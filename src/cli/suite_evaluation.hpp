@@ -48,13 +48,19 @@ SuiteResults run_suite(const EvaluationSuite& suite, const SuiteRequest& request
 
 /// The table printed and written: one row per world and env, for each contender falls of
 /// episodes (early falls), RMS of forward velocity and yaw rate, mean return; then each
-/// contender's totals and each model beside each controller.
+/// contender's totals, what a count of falls bounds (fall_statistics.hpp), and each
+/// contender beside each other: the worlds where it falls and the other stands, those where
+/// it falls more often beyond chance (one-sided Fisher exact test), each with its p-value,
+/// and the summed forward tracking.
 std::string suite_table(const SuiteResults& run);
 
-/// The same as JSON (suite, worlds with options and results per label, totals).
+/// The same as JSON (suite, worlds with options and results per label, each result's
+/// fall_rate_upper_95, totals, and `comparisons`: for each ordered pair of contenders the
+/// worlds, with p-values, where the first falls and the other stands and where it falls
+/// more often).
 nlohmann::json suite_json(const SuiteResults& run);
 
-/// One CSV row per world, env and contender.
+/// One CSV row per world, env and contender (its fall_rate_upper_95 last).
 std::string suite_csv(const SuiteResults& run);
 
 /// Writes table.txt, summary.json, results.csv and falls.png (worlds x contenders, the

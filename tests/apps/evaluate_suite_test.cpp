@@ -72,7 +72,22 @@ TEST(EvaluateSuite, TinySuiteWritesTheTableJsonCsvAndHeatMap) {
     EXPECT_EQ(weak["falls"], 2) << label;
     EXPECT_EQ(weak["early_falls"], 2) << label;
     EXPECT_TRUE(nominal["tracking_rms_vx"].is_number()) << label;
+    // No fall in 2 episodes leaves a fall rate up to 1 - 0.05^(1/2); all fell: up to 1.
+    EXPECT_NEAR(nominal["fall_rate_upper_95"].get<double>(), 0.7764, 1e-4) << label;
+    EXPECT_EQ(weak["fall_rate_upper_95"], 1.0) << label;
   }
+  ASSERT_EQ(summary["comparisons"].size(), 2u);
+  EXPECT_EQ(summary["comparisons"][0]["contender"], "policy");
+  EXPECT_EQ(summary["comparisons"][0]["other"], "lqr");
+  EXPECT_TRUE(summary["comparisons"][0]["falls_where_other_stands"].empty());
+  EXPECT_NE(result.output.find("from 2 episodes a world's falls bound its fall rate (one-sided "
+                               "95 % confidence): 0 -> 77.6 %, 1 -> 97.5 %, 2 -> 100.0 %"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("policy falls more often than lqr (one-sided Fisher exact test, "
+                               "p < 0.05): 0 world(s)"),
+            std::string::npos)
+      << result.output;
   EXPECT_EQ(summary["worlds"][1]["options"]["torque_limit_scale"], "0.1");
   EXPECT_NE(result.output.find("2/2 (2 early)"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("policy: 2 falls (2 early) in 1 of 2 worlds"), std::string::npos)
@@ -83,6 +98,7 @@ TEST(EvaluateSuite, TinySuiteWritesTheTableJsonCsvAndHeatMap) {
   std::string header, row;
   std::getline(csv, header);
   EXPECT_EQ(header.rfind("world,env,contender,episodes,falls,early_falls,", 0), 0u) << header;
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "fall_rate_upper_95") << header;
   int rows = 0;
   bool quoted = false;
   while (std::getline(csv, row)) {
