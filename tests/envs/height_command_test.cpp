@@ -11,6 +11,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/temp_files.hpp"
@@ -85,6 +86,38 @@ TEST(LegKinematics, TiltDoesNotChangeTheHeightOfAStraightLeg) {
       Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()).toRotationMatrix();
   // Leaning by 0.2 rad on straight legs: the axle is 0.507 m from the base along the leg.
   EXPECT_NEAR(legs.base_height({0, 0, 0, 0}, pitched), 0.05 + 0.507 * std::cos(0.2), 1e-9);
+}
+
+// largest_shin_tilt against the shin's direction rotated into the world: the left shin's
+// direction in the base frame is (sin(hip + knee), 0, -cos(hip + knee)) (wheel_from_hip).
+TEST(LegKinematics, ShinTiltIsTheShinsAngleFromTheWorldsVertical) {
+  const auto world_shin_angle = [](double pitch, double hip, double knee) {
+    const Eigen::Vector3d in_base(std::sin(hip + knee), 0.0, -std::cos(hip + knee));
+    const Eigen::Vector3d in_world = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) * in_base;
+    return std::abs(std::atan2(in_world.x(), -in_world.z()));
+  };
+  for (const double pitch : {-0.3, 0.0, 0.2, 0.4}) {
+    for (const auto& [hip, knee] : std::array<std::pair<double, double>, 4>{
+             {{0.0, 0.0}, {0.3, -0.1}, {0.41, -0.80}, {-0.2, 0.1}}}) {
+      const double expected = world_shin_angle(pitch, hip, knee);
+      // Symmetric legs (the right leg mirrors the left).
+      EXPECT_NEAR(largest_shin_tilt(pitch, {hip, knee, -hip, -knee}), expected, 1e-12)
+          << pitch << " " << hip << " " << knee;
+      // One leg so posed, the other under the base's vertical: the larger of the two.
+      EXPECT_NEAR(largest_shin_tilt(pitch, {hip, knee, 0.0, 0.0}),
+                  std::max(expected, std::abs(pitch)), 1e-12);
+      EXPECT_NEAR(largest_shin_tilt(pitch, {0.0, 0.0, -hip, -knee}),
+                  std::max(expected, std::abs(pitch)), 1e-12);
+    }
+  }
+  // Straight legs tilt with the base; legs swung forward by the lean keep the shins upright.
+  EXPECT_NEAR(largest_shin_tilt(0.35, {0.0, 0.0, 0.0, 0.0}), 0.35, 1e-12);
+  EXPECT_NEAR(largest_shin_tilt(0.35, {0.25, 0.10, -0.25, -0.10}), 0.0, 1e-12);
+  // The deepest crouch's shins, at the tilt height_at_shin_tilt was asked for.
+  const LegKinematics legs(*RobotModel::default_model());
+  const CrouchPose crouch = legs.crouch_pose(legs.height_at_shin_tilt(0.3));
+  EXPECT_NEAR(largest_shin_tilt(0.0, crouch.leg_angles()), 0.3, 1e-9);
+  EXPECT_NEAR(largest_shin_tilt(0.1, crouch.leg_angles()), 0.4, 1e-9);  // leaning forward
 }
 
 TEST(HeightCommandSampler, DrawsOverTheRangeWithAShareStanding) {

@@ -230,6 +230,28 @@ TEST(VelocityReward, TiltExcessPenaltyGrowsLinearlyBeyondItsStart) {
   EXPECT_EQ(unweighted.terms()[VelocityReward::kTiltExcess], 0.0);
 }
 
+TEST(VelocityReward, ShinTiltExcessPenaltyGrowsLinearlyBeyondItsStart) {
+  VelocityRewardWeights weights;
+  weights.w_shin_tilt_excess = 10.0;
+  weights.shin_tilt_excess_start = 0.3;
+  VelocityReward reward(weights);
+  VelocityRewardInputs inputs;
+  inputs.shin_tilt = 0.25;  // below the start: free
+  reward(inputs);
+  EXPECT_EQ(reward.terms()[VelocityReward::kShinTiltExcess], 0.0);
+  inputs.shin_tilt = 0.42;
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kShinTiltExcess], -10.0 * 0.12, 1e-9);
+  // The base's own tilt does not enter it: that is w_tilt_excess's (0 here).
+  inputs.gravity_in_base = Eigen::Vector3d(std::sin(0.6), 0.0, -std::cos(0.6));
+  reward(inputs);
+  EXPECT_NEAR(reward.terms()[VelocityReward::kShinTiltExcess], -10.0 * 0.12, 1e-9);
+  EXPECT_EQ(reward.terms()[VelocityReward::kTiltExcess], 0.0);
+  VelocityReward unweighted;  // off by default
+  unweighted(inputs);
+  EXPECT_EQ(unweighted.terms()[VelocityReward::kShinTiltExcess], 0.0);
+}
+
 /// An observation of a base rotated by `rotation`, moving at `velocity` in the world.
 Observation base_state(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& velocity,
                        const Eigen::Vector3d& angular_velocity_in_base) {
@@ -275,6 +297,28 @@ TEST(VelocityTask, TerminatesOnTiltAndOnNonWheelContact) {
   lenient.terminate_on_contact = false;
   VelocityTask without_contact(*RobotModel::default_model(), lenient, false);
   EXPECT_FALSE(without_contact.evaluate(full, {}, action, action).terminated);
+}
+
+// The task gives the reward the shins' tilt of the pose it measures: the base's lean minus
+// the legs' forward swing.
+TEST(VelocityTask, RewardsTheShinTiltOfTheMeasuredPose) {
+  VelocityTaskConfig config;
+  config.reward.w_shin_tilt_excess = 10.0;
+  config.reward.shin_tilt_excess_start = 0.3;
+  VelocityTask task(*RobotModel::default_model(), config, /*height_command=*/false);
+  const Act action{};
+  const Eigen::Matrix3d leaning =
+      Eigen::AngleAxisd(0.45, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  Observation full = base_state(leaning, {}, {});
+  task.evaluate(full, {}, action, action);  // straight legs: the shins lean 0.45 rad
+  EXPECT_NEAR(task.reward().terms()[VelocityReward::kShinTiltExcess], -10.0 * 0.15, 1e-9);
+  full.servo[kLeftHip].position = 0.2;  // both legs swung forward by 0.2 rad
+  full.servo[kRightHip].position = -0.2;
+  task.evaluate(full, {}, action, action);
+  EXPECT_EQ(task.reward().terms()[VelocityReward::kShinTiltExcess], 0.0);
+  full.servo[kRightHip].position = 0.0;  // the right shin still leans with the base
+  task.evaluate(full, {}, action, action);
+  EXPECT_NEAR(task.reward().terms()[VelocityReward::kShinTiltExcess], -10.0 * 0.15, 1e-9);
 }
 
 TEST(VelocityTask, GravityAndPitchOfTheObservation) {

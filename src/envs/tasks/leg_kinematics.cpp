@@ -21,6 +21,13 @@ Eigen::Vector3d joint_position(const RobotModel& model, const std::vector<Eigen:
 
 }  // namespace
 
+double largest_shin_tilt(double base_pitch, const std::array<double, 4>& leg_angles) {
+  // The right leg's joints mirror the left's: its angles in the left convention are negated.
+  const double left_shin = leg_angles[0] + leg_angles[1];
+  const double right_shin = -(leg_angles[2] + leg_angles[3]);
+  return std::max(std::abs(base_pitch - left_shin), std::abs(base_pitch - right_shin));
+}
+
 LegKinematics::LegKinematics(const RobotModel& model) : wheel_radius_(model.wheel_radius()) {
   const std::vector<Eigen::Isometry3d> poses = model.link_poses_at_zero();
   const Eigen::Vector3d hip = joint_position(model, poses, kLeftHip);

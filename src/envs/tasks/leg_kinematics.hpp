@@ -19,6 +19,16 @@ namespace upkie_rl {
 /// soft tire sinks by a few millimetres; at 0.38 rad it clears the floor by about 3 mm.
 inline constexpr double kMaxShinTilt = 0.38;
 
+/// The larger of the two shins' tilts from the world's vertical in the legs' sagittal plane
+/// [rad, >= 0]: the angle the ankle brackets' clearance depends on (kMaxShinTilt).
+/// `base_pitch` is the base's forward lean [rad] (velocity_task_pitch: positive when the top
+/// leans forward) and `leg_angles` the (left hip, left knee, right hip, right knee) angles;
+/// a shin's angle from the base's downward vertical is hip + knee in the left leg's
+/// convention (forward positive), and leaning the base forward swings it back by the lean.
+/// So straight legs tilt with the base, and a forward swing of the legs can keep the shins
+/// upright while the base leans. Allocation-free.
+double largest_shin_tilt(double base_pitch, const std::array<double, 4>& leg_angles);
+
 /// Hip and knee angles of the left leg [rad]; the right leg mirrors them (negated).
 struct CrouchPose {
   double hip = 0.0;

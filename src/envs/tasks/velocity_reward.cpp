@@ -22,6 +22,10 @@ double tilt_from_gravity(const Eigen::Vector3d& gravity_in_base) {
   return std::acos(std::clamp(-gravity_in_base.z(), -1.0, 1.0));
 }
 
+double pitch_from_gravity(const Eigen::Vector3d& gravity_in_base) {
+  return std::atan2(gravity_in_base.x(), -gravity_in_base.z());
+}
+
 double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
   const double forward_error = inputs.command.forward_velocity - inputs.velocity.forward_velocity;
   const double yaw_error = inputs.command.yaw_rate - inputs.velocity.yaw_rate;
@@ -54,6 +58,8 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
       -weights_.w_forward_velocity_error * capped_forward_error * capped_forward_error;
   terms_[kTiltExcess] =
       -weights_.w_tilt_excess * std::max(0.0, tilt_from_gravity(g) - weights_.tilt_excess_start);
+  terms_[kShinTiltExcess] = -weights_.w_shin_tilt_excess *
+                            std::max(0.0, inputs.shin_tilt - weights_.shin_tilt_excess_start);
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;
@@ -87,6 +93,10 @@ void VelocityRewardWeights::declare_options(OptionTable& table) {
                  "penalty weight of the base's tilt beyond tilt_excess_start [1/rad]");
   table.add_real("tilt_excess_start", &tilt_excess_start, 0.0, 1.5,
                  "tilt [rad] from which w_tilt_excess's penalty grows");
+  table.add_real("w_shin_tilt_excess", &w_shin_tilt_excess, 0.0, kOptionHuge,
+                 "penalty weight of the larger shin tilt beyond shin_tilt_excess_start [1/rad]");
+  table.add_real("shin_tilt_excess_start", &shin_tilt_excess_start, 0.0, 1.5,
+                 "shin tilt [rad] from which w_shin_tilt_excess's penalty grows");
   table.add_real("w_forward_velocity_error", &w_forward_velocity_error, 0.0, kOptionHuge,
                  "penalty weight of the squared forward velocity error [s^2/m^2], capped at 1 m/s");
 }

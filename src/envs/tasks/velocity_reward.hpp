@@ -52,6 +52,14 @@ struct VelocityRewardWeights {
   /// forward tracking (docs/reality.md). This term is 0 below the start.
   double w_tilt_excess = 0.0;
   double tilt_excess_start = 0.3;  ///< [rad]
+  /// Subtracted: a penalty on the larger shin tilt from the world's vertical beyond
+  /// shin_tilt_excess_start [1/rad], linear (largest_shin_tilt).
+  /// Why: the ankle brackets, not the base, meet the floor (beyond about 0.43 rad of shin
+  /// tilt on a flat floor, kMaxShinTilt), and with straight legs the shins tilt with the
+  /// base. A penalty on the base's tilt (w_tilt_excess) also forbids the lean that brakes a
+  /// push; this one leaves the lean free where the legs swing forward to keep the shins up.
+  double w_shin_tilt_excess = 0.0;
+  double shin_tilt_excess_start = 0.3;  ///< [rad]
 
   /// Declares the options of the fields, by their names.
   void declare_options(OptionTable& table);
@@ -61,6 +69,10 @@ struct VelocityRewardWeights {
 /// in the base frame: one formula for the reward's tilt term and the task's fall test.
 double tilt_from_gravity(const Eigen::Vector3d& gravity_in_base);
 
+/// The base's forward lean in its sagittal plane [rad], positive when the top leans forward,
+/// from the unit gravity vector in the base frame.
+double pitch_from_gravity(const Eigen::Vector3d& gravity_in_base);
+
 /// What a step gives the reward.
 struct VelocityRewardInputs {
   VelocityCommand command;    ///< Held during the step.
@@ -69,6 +81,7 @@ struct VelocityRewardInputs {
   Eigen::Vector3d gravity_in_base = Eigen::Vector3d(0.0, 0.0, -1.0);  ///< Unit vector.
   /// Left hip, left knee, right hip and right knee angles minus the pose reference [rad].
   std::array<double, 4> leg_deviation{};
+  double shin_tilt = 0.0;                  ///< largest_shin_tilt of the step's pose [rad]
   std::span<const float> action;           ///< Normalised action of the step.
   std::span<const float> previous_action;  ///< Of the step before (zero at reset).
 };
@@ -78,6 +91,7 @@ struct VelocityRewardInputs {
 ///   - w_leg_symmetry·((Δq_lh + Δq_rh)² + (Δq_lk + Δq_rk)²) [- w_height_error·|h* - h|]
 ///   - w_forward_velocity_error·min((vx* - vx)², kForwardErrorCap²)
 ///   - w_tilt_excess·max(0, tilt - tilt_excess_start)
+///   - w_shin_tilt_excess·max(0, shin_tilt - shin_tilt_excess_start)
 /// where g is the unit gravity vector in the base frame, tilt = acos(-g_z) the base's angle
 /// from upright, Δq the leg joints' deviations from the pose reference (VelocityTask) and
 /// Δu the change of the normalised action; the right leg's joints mirror the left's
@@ -97,6 +111,7 @@ class VelocityReward {
     kHeightError,
     kForwardVelocityError,
     kTiltExcess,
+    kShinTiltExcess,
     kNumTerms
   };
   /// Term names, as logged (`episode/reward_<name>`).
@@ -109,7 +124,8 @@ class VelocityReward {
                                                                          "leg_symmetry",
                                                                          "height_error",
                                                                          "forward_velocity_error",
-                                                                         "tilt_excess"};
+                                                                         "tilt_excess",
+                                                                         "shin_tilt_excess"};
   /// The forward error [m/s] beyond which forward_velocity_error stops growing: a robot
   /// that fell or runs away is that far off or further.
   static constexpr double kForwardErrorCap = 1.0;

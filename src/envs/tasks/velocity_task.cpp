@@ -166,13 +166,18 @@ BaseVelocity VelocityTask::measured_velocity(const Observation& full) {
   return velocity;
 }
 
+std::array<double, 4> VelocityTask::leg_angles(const Observation& full) {
+  std::array<double, 4> angles{};
+  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
+    angles[k] = full.servo[kLegJoints[k]].position;
+  }
+  return angles;
+}
+
 BaseVelocity VelocityTask::measure(const Observation& full) const {
   BaseVelocity measured = measured_velocity(full);
-  std::array<double, 4> leg_angles{};
-  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
-    leg_angles[k] = full.servo[kLegJoints[k]].position;
-  }
-  measured.height = legs_.base_height(leg_angles, full.base_orientation.rotation_base_to_world);
+  measured.height =
+      legs_.base_height(leg_angles(full), full.base_orientation.rotation_base_to_world);
   return measured;
 }
 
@@ -200,10 +205,8 @@ std::array<double, kNumServos> VelocityTask::leg_action_origin(
 std::array<double, 4> VelocityTask::leg_deviation(const Observation& full,
                                                   const VelocityCommand& command) const {
   const std::array<double, 4> reference = leg_reference(command);
-  std::array<double, 4> deviation{};
-  for (std::size_t k = 0; k < kLegJoints.size(); ++k) {
-    deviation[k] = full.servo[kLegJoints[k]].position - reference[k];
-  }
+  std::array<double, 4> deviation = leg_angles(full);
+  for (std::size_t k = 0; k < deviation.size(); ++k) deviation[k] -= reference[k];
   return deviation;
 }
 
@@ -249,6 +252,7 @@ StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand
   inputs.track_height = height_command_;
   inputs.gravity_in_base = gravity_in_base(full);
   inputs.leg_deviation = leg_deviation(full, command);
+  inputs.shin_tilt = largest_shin_tilt(pitch_from_gravity(inputs.gravity_in_base), leg_angles(full));
   inputs.action = action;
   inputs.previous_action = previous_action;
   StepResult result;

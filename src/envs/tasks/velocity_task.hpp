@@ -220,6 +220,8 @@ class VelocityTask {
   /// Hip and knee angles (kLegJoints order) of the crouch pose of `command`'s height with a
   /// height command, straight legs (0) without.
   std::array<double, 4> leg_reference(const VelocityCommand& command) const;
+  /// Hip and knee angles of `full` in kLegJoints order [rad].
+  static std::array<double, 4> leg_angles(const Observation& full);
   /// The leg angles' deviations from the pose reward's reference for `command`.
   std::array<double, 4> leg_deviation(const Observation& full,
                                       const VelocityCommand& command) const;
