@@ -152,6 +152,24 @@ PairComparison compare(const SuiteResults& run, std::size_t a, std::size_t b) {
   return comparison;
 }
 
+/// One ordered pair of contenders (a against b) and its comparison.
+struct OrderedComparison {
+  std::size_t a = 0;
+  std::size_t b = 0;
+  PairComparison comparison;
+};
+
+/// Every ordered pair of distinct contenders, a-major: what the table and the JSON both say.
+std::vector<OrderedComparison> ordered_comparisons(const SuiteResults& run) {
+  std::vector<OrderedComparison> pairs;
+  for (std::size_t a = 0; a < run.labels.size(); ++a) {
+    for (std::size_t b = 0; b < run.labels.size(); ++b) {
+      if (a != b) pairs.push_back({a, b, compare(run, a, b)});
+    }
+  }
+  return pairs;
+}
+
 /// "0.500", or "< 0.001".
 std::string p_text(double p_value) {
   return p_value < 0.001 ? std::string("< 0.001") : fixed_text(p_value, 3);
@@ -185,17 +203,13 @@ void print_comparisons(std::ostream& out, const SuiteResults& run,
                        const std::vector<ContenderTotals>& totals) {
   const std::string test =
       "(one-sided Fisher exact test, p < " + fixed_text(1.0 - kFallConfidence, 2) + ")";
-  for (std::size_t a = 0; a < run.labels.size(); ++a) {
-    for (std::size_t b = 0; b < run.labels.size(); ++b) {
-      if (a == b) continue;
-      const PairComparison comparison = compare(run, a, b);
-      out << run.labels[a] << " falls where " << run.labels[b]
-          << " stands: " << comparison.falls_where_other_stands.size() << " world(s)"
-          << worlds_text(run, a, b, comparison.falls_where_other_stands) << '\n';
-      out << run.labels[a] << " falls more often than " << run.labels[b] << ' ' << test << ": "
-          << comparison.falls_more_often.size() << " world(s)"
-          << worlds_text(run, a, b, comparison.falls_more_often) << '\n';
-    }
+  for (const auto& [a, b, comparison] : ordered_comparisons(run)) {
+    out << run.labels[a] << " falls where " << run.labels[b]
+        << " stands: " << comparison.falls_where_other_stands.size() << " world(s)"
+        << worlds_text(run, a, b, comparison.falls_where_other_stands) << '\n';
+    out << run.labels[a] << " falls more often than " << run.labels[b] << ' ' << test << ": "
+        << comparison.falls_more_often.size() << " world(s)"
+        << worlds_text(run, a, b, comparison.falls_more_often) << '\n';
   }
   for (std::size_t a = 0; a < run.labels.size(); ++a) {
     for (std::size_t b = a + 1; b < run.labels.size(); ++b) {
@@ -219,16 +233,11 @@ nlohmann::json comparisons_json(const SuiteResults& run) {
     }
     return list;
   };
-  for (std::size_t a = 0; a < run.labels.size(); ++a) {
-    for (std::size_t b = 0; b < run.labels.size(); ++b) {
-      if (a == b) continue;
-      const PairComparison comparison = compare(run, a, b);
-      comparisons.push_back(
-          {{"contender", run.labels[a]},
-           {"other", run.labels[b]},
-           {"falls_where_other_stands", names(comparison.falls_where_other_stands)},
-           {"falls_more_often", names(comparison.falls_more_often)}});
-    }
+  for (const auto& [a, b, comparison] : ordered_comparisons(run)) {
+    comparisons.push_back({{"contender", run.labels[a]},
+                           {"other", run.labels[b]},
+                           {"falls_where_other_stands", names(comparison.falls_where_other_stands)},
+                           {"falls_more_often", names(comparison.falls_more_often)}});
   }
   return comparisons;
 }

@@ -252,7 +252,8 @@ StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand
   inputs.track_height = height_command_;
   inputs.gravity_in_base = gravity_in_base(full);
   inputs.leg_deviation = leg_deviation(full, command);
-  inputs.shin_tilt = largest_shin_tilt(pitch_from_gravity(inputs.gravity_in_base), leg_angles(full));
+  inputs.shin_tilt =
+      largest_shin_tilt(pitch_from_gravity(inputs.gravity_in_base), leg_angles(full));
   inputs.action = action;
   inputs.previous_action = previous_action;
   StepResult result;
