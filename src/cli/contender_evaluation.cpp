@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -27,20 +28,28 @@ std::pair<std::string, std::string> labelled(const std::string& item, bool is_mo
   return {is_model ? std::filesystem::path(item).stem().string() : item, item};
 }
 
+/// The plan's episode length in steps of `env`.
+int max_steps_on(const EpisodePlan& plan, const Env& env) {
+  if (plan.duration <= 0.0) return plan.max_steps;
+  return std::max(1, static_cast<int>(std::lround(plan.duration / env.timestep())));
+}
+
 /// Runs the episodes of one cell: success = the episode was not terminated (it reached the
-/// time limit or max_steps).
+/// time limit or the plan's length).
 CellResult evaluate_cell(const EpisodePlan& plan, const Contender& contender,
                          const EnvFactory& make_cell_env) {
   std::unique_ptr<Env> env = make_cell_env();
+  const int max_steps = max_steps_on(plan, *env);
   std::unique_ptr<Controller> controller = contender.model.empty()
                                                ? make_builtin_controller(contender.spec, *env)
                                                : make_policy_controller(contender.model, *env);
   std::vector<float> observation(env->observation_space().size());
   std::vector<float> action(env->action_space().size());
   std::vector<EpisodeOutcome> outcomes;
+  outcomes.reserve(static_cast<std::size_t>(std::max(0, plan.episodes)));
   for (int episode = 0; episode < plan.episodes; ++episode) {
     outcomes.push_back(run_episode(*env, *controller,
-                                   plan.seed + static_cast<std::uint64_t>(episode), plan.max_steps,
+                                   plan.seed + static_cast<std::uint64_t>(episode), max_steps,
                                    observation, action));
   }
   const EpisodeSummary summary = summarize_episodes(outcomes);

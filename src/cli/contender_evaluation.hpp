@@ -28,6 +28,9 @@ struct EpisodePlan {
   int episodes = 10;
   std::uint64_t seed = 0;  ///< Episode e uses seed + e.
   int max_steps = kDefaultMaxSteps;
+  /// Episode length [s] when positive, in place of max_steps: each cell's environment
+  /// gets round(duration / its timestep) steps.
+  double duration = 0.0;
   int threads = 1;  ///< Threads that run the cells; 0 or 1: the calling thread alone.
   /// Falls in the first `early_fall_time` seconds are counted apart [s]; 0: none.
   double early_fall_time = 0.0;

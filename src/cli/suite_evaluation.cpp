@@ -32,16 +32,19 @@ int falls(const CellResult& cell) { return cell.summary.episodes - cell.successe
 /// The JSON and CSV name of a cell's fall_rate_upper_bound at kFallConfidence.
 constexpr const char* kFallRateUpperKey = "fall_rate_upper_95";
 
-/// The options of one world for one contender: its own, the suite's, the evaluation's
-/// (--env-option, which may change the suite's: a policy trained with the body-height command
-/// on a standing suite), the world's (which the evaluation's do not change), then the
-/// evaluation start (a random initial state) unless exact_start.
-EnvOptions world_options(const Contender& contender, const SuiteWorld& world,
+/// The options of one world for one contender: its own, no time limit of the environment's
+/// when the suite's episodes last `duration` seconds (a policy carries its training's
+/// max_episode_steps, in its own steps), the suite's, the evaluation's (--env-option, which
+/// may change the suite's: a policy trained with the body-height command on a standing
+/// suite), the world's (which the evaluation's do not change), then the evaluation start (a
+/// random initial state) unless exact_start.
+EnvOptions world_options(const Contender& contender, const SuiteWorld& world, double duration,
                          const EnvOptions& evaluation_options, bool exact_start) {
   const auto world_own =
       world.options.begin() +
       static_cast<std::ptrdiff_t>(std::min(world.suite_option_count, world.options.size()));
   EnvOptions all = contender.options;
+  if (duration > 0.0) all.emplace_back("max_episode_steps", "0");
   all.insert(all.end(), world.options.begin(), world_own);
   all.insert(all.end(), evaluation_options.begin(), evaluation_options.end());
   all.insert(all.end(), world_own, world.options.end());
@@ -68,7 +71,7 @@ void run_env(const std::string& env_id, const SuiteRequest& request, const Episo
     for (const std::size_t w : worlds) {
       const SuiteWorld& world = run.suite.worlds[w];
       const EnvOptions options =
-          world_options(contenders[c], world, request.base, request.exact_start);
+          world_options(contenders[c], world, plan.duration, request.base, request.exact_start);
       factories[c].push_back(make_env_factory(env_id, options));
       const std::string words = evaluation_start_words(env_id, options, request.exact_start);
       if (run.start_words.empty() || words == "from random starts") run.start_words = words;
@@ -79,6 +82,16 @@ void run_env(const std::string& env_id, const SuiteRequest& request, const Episo
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     for (std::size_t k = 0; k < worlds.size(); ++k) run.results[worlds[k]][c] = results[c][k];
   }
+}
+
+/// "10 s" or "500 steps": how long an episode of the suite may last.
+std::string length_words(const EvaluationSuite& suite) {
+  if (suite.duration > 0.0) {
+    std::ostringstream words;
+    words << suite.duration << " s";
+    return words.str();
+  }
+  return std::to_string(suite.max_steps) + " steps";
 }
 
 /// "3/20 (2 early)" or "0/20".
@@ -252,12 +265,16 @@ SuiteResults run_suite(const EvaluationSuite& suite, const SuiteRequest& request
   SuiteResults run;
   run.suite = suite;
   if (request.episodes > 0) run.suite.episodes = request.episodes;
-  if (request.max_steps > 0) run.suite.max_steps = request.max_steps;
+  if (request.max_steps > 0) {  // steps given: the same steps for every contender
+    run.suite.max_steps = request.max_steps;
+    run.suite.duration = 0.0;
+  }
   if (request.seed) run.suite.seed = *request.seed;
   EpisodePlan plan;
   plan.episodes = run.suite.episodes;
   plan.seed = run.suite.seed;
   plan.max_steps = run.suite.max_steps;
+  plan.duration = run.suite.duration;
   plan.threads = request.threads;
   plan.early_fall_time = run.suite.early_fall_time;
   run.results.assign(suite.worlds.size(),
@@ -271,8 +288,8 @@ std::string suite_table(const SuiteResults& run) {
   const EvaluationSuite& suite = run.suite;
   out << "suite " << suite.name << (suite.description.empty() ? "" : ": " + suite.description)
       << "\n"
-      << suite.episodes << " episodes per world and controller, at most " << suite.max_steps
-      << " steps, seeds " << suite.seed << ".. " << run.start_words << "; falls (early: within "
+      << suite.episodes << " episodes per world and controller, at most " << length_words(suite)
+      << ", seeds " << suite.seed << ".. " << run.start_words << "; falls (early: within "
       << suite.early_fall_time << " s), forward and yaw tracking RMS [m/s, rad/s], mean return\n";
   out << std::left << std::setw(34) << "world" << std::setw(8) << "engine";
   for (const std::string& label : run.labels) out << " | " << std::setw(36) << label;
@@ -305,15 +322,18 @@ std::string suite_table(const SuiteResults& run) {
 
 nlohmann::json suite_json(const SuiteResults& run) {
   const EvaluationSuite& suite = run.suite;
-  nlohmann::json json = {{"suite", suite.name},
-                         {"description", suite.description},
-                         {"episodes", suite.episodes},
-                         {"seed", suite.seed},
-                         {"max_steps", suite.max_steps},
-                         {"early_fall_time", suite.early_fall_time},
-                         {"start", run.start_words},
-                         {"contenders", nlohmann::json::array()},
-                         {"worlds", nlohmann::json::array()}};
+  nlohmann::json json = {
+      {"suite", suite.name},
+      {"description", suite.description},
+      {"episodes", suite.episodes},
+      {"seed", suite.seed},
+      {"max_steps",
+       suite.duration > 0.0 ? nlohmann::json(nullptr) : nlohmann::json(suite.max_steps)},
+      {"duration", suite.duration > 0.0 ? nlohmann::json(suite.duration) : nlohmann::json(nullptr)},
+      {"early_fall_time", suite.early_fall_time},
+      {"start", run.start_words},
+      {"contenders", nlohmann::json::array()},
+      {"worlds", nlohmann::json::array()}};
   const std::vector<ContenderTotals> all_totals = totals_of(run);
   for (std::size_t c = 0; c < run.labels.size(); ++c) {
     const ContenderTotals& totals = all_totals[c];

@@ -146,6 +146,40 @@ worlds:
   }
 }
 
+// A suite's duration is seconds for every contender: the baseline at 100 Hz runs twice the
+// steps it runs at 50 Hz, and the policy runs past its training's time limit (it carries
+// max_episode_steps 500); --max-steps makes it steps again.
+TEST(EvaluateSuite, ADurationIsTheSameSecondsAtAnyRate) {
+  const auto suite = write_suite("suite_seconds.yaml", R"(name: seconds
+envs: [Upkie-MuJoCo-Velocity]
+episodes: 1
+seed: 3
+duration: 12
+worlds:
+  - name: nominal
+)");
+  const std::string command = "evaluate --suite " + suite.string() + " --json";
+  const auto run = [&](const std::string& extra) {
+    const auto result = run_cli(command + extra);
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    return nlohmann::json::parse(last_line(result.output));
+  };
+  const auto length = [](const nlohmann::json& summary, const char* label) {
+    EXPECT_EQ(summary["worlds"][0]["results"][label]["falls"], 0) << label;
+    return summary["worlds"][0]["results"][label]["mean_length"].get<double>();
+  };
+  const nlohmann::json at_50_hz = run(" --controller lqr --model policy=" + kVelocityPolicy);
+  EXPECT_EQ(length(at_50_hz, "lqr"), 600.0);
+  EXPECT_EQ(length(at_50_hz, "policy"), 600.0);
+  EXPECT_EQ(at_50_hz["duration"], 12.0);
+  EXPECT_TRUE(at_50_hz["max_steps"].is_null());
+  EXPECT_EQ(length(run(" --controller lqr --env-option frequency=100"), "lqr"), 1200.0);
+  const nlohmann::json stepped = run(" --controller lqr --env-option frequency=100 --max-steps 40");
+  EXPECT_EQ(length(stepped, "lqr"), 40.0);
+  EXPECT_TRUE(stepped["duration"].is_null());
+  EXPECT_EQ(stepped["max_steps"], 40);
+}
+
 TEST(EvaluateSuite, BadSuitesAreRefusedNamingTheWorldAndTheKey) {
   const auto expect_error = [](const std::string& text, const std::string& part) {
     const auto suite = write_suite("suite_bad.yaml", text);

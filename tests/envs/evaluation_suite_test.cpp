@@ -90,6 +90,22 @@ TEST(EvaluationSuite, MistakesNameTheWorldAndTheKey) {
             std::string::npos);
 }
 
+// An episode's length in seconds (the same seconds for contenders at any rate) or in
+// steps, not both.
+TEST(EvaluationSuite, AnEpisodeLastsSecondsOrSteps) {
+  std::string text = kTwoWorlds;
+  text.replace(text.find("max_steps: 50"), 13, "duration: 2.5");
+  const EvaluationSuite suite = parse_evaluation_suite(text, "t", make_world_env);
+  EXPECT_DOUBLE_EQ(suite.duration, 2.5);
+  EXPECT_DOUBLE_EQ(parse_evaluation_suite(kTwoWorlds, "t", make_world_env).duration, 0.0);
+  std::string error = error_of(std::string(kTwoWorlds) + "duration: 10\n");
+  EXPECT_NE(error.find("give duration [s] or max_steps [agent steps], not both"), std::string::npos)
+      << error;
+  text.replace(text.find("duration: 2.5"), 13, "duration: 0.0");
+  error = error_of(text);
+  EXPECT_NE(error.find("duration must be in ["), std::string::npos) << error;
+}
+
 TEST(EvaluationSuite, TheShippedSuitesAreValid) {
   const std::filesystem::path directory =
       std::filesystem::path(UPKIE_RL_SOURCE_DIR) / "configs" / "suites";

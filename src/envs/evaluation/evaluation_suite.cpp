@@ -21,14 +21,15 @@ constexpr const char* kEnvs = "envs";
 constexpr const char* kEpisodes = "episodes";
 constexpr const char* kSeed = "seed";
 constexpr const char* kMaxSteps = "max_steps";
+constexpr const char* kDuration = "duration";
 constexpr const char* kEarlyFallTime = "early_fall_time";
 constexpr const char* kOptions = "options";
 constexpr const char* kWorlds = "worlds";
 }  // namespace key
 
-const std::set<std::string> kSuiteKeys = {key::kName,          key::kDescription, key::kEnvs,
-                                          key::kEpisodes,      key::kSeed,        key::kMaxSteps,
-                                          key::kEarlyFallTime, key::kOptions,     key::kWorlds};
+const std::set<std::string> kSuiteKeys = {
+    key::kName,     key::kDescription, key::kEnvs,          key::kEpisodes, key::kSeed,
+    key::kMaxSteps, key::kDuration,    key::kEarlyFallTime, key::kOptions,  key::kWorlds};
 const std::set<std::string> kWorldKeys = {key::kName, key::kOptions};
 
 std::string listed(const std::set<std::string>& keys) {
@@ -146,6 +147,11 @@ EvaluationSuite read_suite_node(const YAML::Node& root, const std::string& where
   suite.seed = read_number<std::uint64_t>(root, key::kSeed, suite.seed, 0,
                                           std::numeric_limits<std::uint64_t>::max(), where);
   suite.max_steps = read_number(root, key::kMaxSteps, suite.max_steps, 1, 10'000'000, where);
+  suite.duration = read_number(root, key::kDuration, suite.duration, 1e-3, 1e5, where);
+  if (root[key::kDuration] && root[key::kMaxSteps]) {
+    throw std::invalid_argument(where + ": give " + key::kDuration + " [s] or " + key::kMaxSteps +
+                                " [agent steps], not both");
+  }
   suite.early_fall_time =
       read_number(root, key::kEarlyFallTime, suite.early_fall_time, 0.0, 1e6, where);
   read_worlds(root, where, suite);

@@ -14,7 +14,7 @@
 ///     envs: [Upkie-MuJoCo-Velocity, Upkie-Bullet-Velocity]   # each world on each
 ///     episodes: 20                   # per world, env and controller
 ///     seed: 0                        # episode e of every world uses seed + e
-///     max_steps: 1000                # episode length [agent steps]
+///     duration: 10                   # episode length [s], whatever a contender's rate
 ///     early_fall_time: 1.0           # falls before it are reported apart [s]
 ///     options: {command_start_delay: 1.0}   # every world's environment options
 ///     worlds:
@@ -50,7 +50,13 @@ struct EvaluationSuite {
   std::vector<std::string> env_ids;
   int episodes = 20;
   std::uint64_t seed = 0;
+  /// Episode length [agent steps] when `duration` is 0 (the file gives one or the other).
   int max_steps = 1000;
+  /// Episode length [s] when positive: each contender gets as many steps as its rate makes
+  /// of it (a 100 Hz policy twice the 50 Hz baseline's), and no environment time limit.
+  /// Why: a length in steps gives contenders at different rates different seconds of the
+  /// same world, and the shorter episodes fall less.
+  double duration = 0.0;
   double early_fall_time = 1.0;  ///< [s]
   std::vector<SuiteWorld> worlds;
 };
