@@ -53,7 +53,7 @@ RobotEnv make_robot_env(const DeployedPolicy& policy, const RunnerOptions& optio
   const std::string name = env_id_name(robot.backend, robot.kind);
   EnvOptions env_options = task_options(policy.env_id(), policy.env_options(), name);
   env_options.emplace_back("shm_name", options.shm_name);
-  env_options.emplace_back("max_episode_steps", "0");
+  env_options.emplace_back(kMaxEpisodeStepsOption, "0");
   env_options.emplace_back("request_timeout", std::to_string(options.limits.spine_timeout));
   env_options.emplace_back("open_tries", std::to_string(options.open_tries));
   std::unique_ptr<VelocityCommandInput> commands =

@@ -18,6 +18,7 @@
 #include "cli/option_checks.hpp"
 #include "cli/velocity_view.hpp"
 #include "envs/registry/env_factory.hpp"
+#include "envs/registry/registry.hpp"
 
 namespace upkie_rl::apps {
 
@@ -39,8 +40,8 @@ struct DriveOptions {
 EnvOptions drive_env_options(const DriveOptions& options) {
   EnvOptions given = parse_env_options(options.env_options);
   bool has_limit = false;
-  for (const auto& [key, value] : given) has_limit = has_limit || key == "max_episode_steps";
-  if (!has_limit) given.emplace_back("max_episode_steps", "0");
+  for (const auto& [key, value] : given) has_limit = has_limit || key == kMaxEpisodeStepsOption;
+  if (!has_limit) given.emplace_back(kMaxEpisodeStepsOption, "0");
   return run_env_options(options.env_id, options.model, given);
 }
 

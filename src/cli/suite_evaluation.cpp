@@ -15,6 +15,7 @@
 #include "cli/tracking_report.hpp"
 #include "envs/evaluation/evaluation_start.hpp"
 #include "envs/registry/env_factory.hpp"
+#include "envs/registry/registry.hpp"
 
 namespace upkie_rl::apps {
 namespace {
@@ -44,7 +45,7 @@ EnvOptions world_options(const Contender& contender, const SuiteWorld& world, do
       world.options.begin() +
       static_cast<std::ptrdiff_t>(std::min(world.suite_option_count, world.options.size()));
   EnvOptions all = contender.options;
-  if (duration > 0.0) all.emplace_back("max_episode_steps", "0");
+  if (duration > 0.0) all.emplace_back(kMaxEpisodeStepsOption, "0");
   all.insert(all.end(), world.options.begin(), world_own);
   all.insert(all.end(), evaluation_options.begin(), evaluation_options.end());
   all.insert(all.end(), world_own, world.options.end());

@@ -20,8 +20,6 @@ namespace upkie_rl {
 
 namespace {
 
-/// The agent period the velocity task's filter gains are designed for [s].
-constexpr double kVelocityTaskTimestep = 0.02;
 /// Balance before the log starts [s]: the simulators release the robot above the floor, and
 /// a robot's log starts with it standing on its wheels.
 constexpr double kSettleTime = 0.5;
@@ -74,11 +72,11 @@ void write_excitation_log(const std::string& env_id, const EnvOptions& options,
   const double timestep = env->timestep();
   GroundVelocityCommander commander(*model, timestep);
   commander.reset(*full);
-  ForwardBalanceLaw balance(
-      settings.balance, timestep,
-      filter_gain_at_rate(VelocityBalancer::kVelocityFilterGain, kVelocityTaskTimestep, timestep),
-      filter_gain_at_rate(VelocityBalancer::kAccelerationFilterGain, kVelocityTaskTimestep,
-                          timestep));
+  ForwardBalanceLaw balance(settings.balance, timestep,
+                            filter_gain_at_rate(VelocityBalancer::kVelocityFilterGain,
+                                                VelocityBalancer::kFilterDesignTimestep, timestep),
+                            filter_gain_at_rate(VelocityBalancer::kAccelerationFilterGain,
+                                                VelocityBalancer::kFilterDesignTimestep, timestep));
   CommandSteps commands(settings);
   SpineLogWriter writer(path);
   const int settle_steps = static_cast<int>(std::lround(kSettleTime / timestep));

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "envs/controllers/builtin_controllers.hpp"
 #include "envs/controllers/velocity_balancer_design.hpp"
@@ -97,6 +98,32 @@ TEST(VelocityBalancer, LawOfHandMadeObservations) {
   EXPECT_NEAR(action[kLeftWheel] - still[kLeftWheel], action[kRightWheel] - still[kRightWheel],
               1e-6);
   EXPECT_THROW(VelocityBalancer(*make_env("Upkie-Mock-Pendulum"), gains), std::invalid_argument);
+}
+
+// The filters' gains are per 20 ms step: at another agent rate the balancer takes the gains
+// of the same time constants, so that a velocity estimate has come as far after 0.2 s at
+// 50, 100 or 200 Hz (at 100 Hz with the 20 ms gains it would come further: 0.80 of the
+// way instead of 0.80^(1/2)).
+TEST(VelocityBalancer, FiltersKeepTheirTimeConstantsAtAnyRate) {
+  VelocityBalancerGains gains;
+  gains.feedback = {10.0, 1.0, 2.0, 0.5};
+  std::vector<double> estimates;
+  for (const char* frequency : {"50", "100", "200"}) {
+    auto env =
+        make_env("Upkie-Mock-Velocity", {{"height_command", "false"}, {"frequency", frequency}});
+    VelocityBalancer balancer(*env, gains);
+    reset_past_touchdown(balancer, env->timestep());
+    Obs rolling = upright(0.0f, 0.0f);
+    rolling[4] = 10.0f;   // left wheel [rad/s]
+    rolling[5] = -10.0f;  // right wheel: the opposite joint direction
+    Act action{};
+    const auto steps = std::lround(0.2 / env->timestep());
+    for (long step = 0; step < steps; ++step) balancer.act(rolling, action);
+    estimates.push_back(balancer.filtered_velocity());
+  }
+  EXPECT_GT(std::abs(estimates[0]), 0.1);
+  EXPECT_NEAR(estimates[1], estimates[0], 1e-9);
+  EXPECT_NEAR(estimates[2], estimates[0], 1e-9);
 }
 
 TEST(VelocityBalancerDesign, IdentifiedModelAndSteadyStateOnMujoco) {

@@ -44,6 +44,9 @@ double ForwardBalanceLaw::ground_velocity(const ForwardBalanceInputs& inputs) {
 }
 
 double filter_gain_at_rate(double gain, double designed_timestep, double timestep) {
+  // At the designed rate the gain itself: 1 - (1 - gain) rounds it in its last bit, which
+  // a chaotic rollout would carry into every figure's last digits.
+  if (timestep == designed_timestep) return gain;
   return 1.0 - std::pow(1.0 - gain, timestep / designed_timestep);
 }
 

@@ -69,7 +69,8 @@ class ForwardBalanceLaw {
 };
 
 /// The per-step gain of a first-order low-pass filter whose gain is `gain` per step of
-/// `designed_timestep`, for steps of `timestep`: the same time constant at another rate.
+/// `designed_timestep`, for steps of `timestep`: the same time constant at another rate
+/// (`gain` itself, to the bit, at the designed rate).
 double filter_gain_at_rate(double gain, double designed_timestep, double timestep);
 
 }  // namespace upkie_rl

@@ -38,7 +38,9 @@ double velocity_task_pitch(std::span<const float> observation) {
 double velocity_task_pitch_rate(std::span<const float> observation) { return observation[kGyroY]; }
 
 VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& gains)
-    : forward_(gains, env.timestep(), kVelocityFilterGain, kAccelerationFilterGain),
+    : forward_(gains, env.timestep(),
+               filter_gain_at_rate(kVelocityFilterGain, kFilterDesignTimestep, env.timestep()),
+               filter_gain_at_rate(kAccelerationFilterGain, kFilterDesignTimestep, env.timestep())),
       legs_(velocity_env(env).servos().model()) {
   const VelocityEnv& velocity = velocity_env(env);
   const VelocityTaskConfig& task = velocity.task().config();

@@ -43,7 +43,10 @@ namespace upkie_rl {
 /// reset.
 class VelocityBalancer final : public Controller {
  public:
-  /// Low-pass gain of the velocity estimate per agent step.
+  /// The agent step the filter gains below are given for [s] (the task's 50 Hz); at another
+  /// rate the balancer takes the gains of the same time constants (filter_gain_at_rate).
+  static constexpr double kFilterDesignTimestep = 0.02;
+  /// Low-pass gain of the velocity estimate per agent step of kFilterDesignTimestep.
   static constexpr double kVelocityFilterGain = 0.15;
   /// Low-pass gain of a_ref per agent step: the lean comes in over a few steps instead
   /// of a step of the pitch reference when the command starts to ramp.

@@ -181,7 +181,7 @@ OptionTable env_option_table(const EnvId& id, EnvSettings& settings) {
   table.add_integer("observation_history", &settings.observation_history, 1, kMaxObservationHistory,
                     "observations the agent sees: the last k concatenated, newest first "
                     "(\"gyro.y@t-1\" the previous step's), filled with the reset's at reset");
-  table.add_integer("max_episode_steps", &settings.max_episode_steps, 0, 1'000'000'000,
+  table.add_integer(kMaxEpisodeStepsOption, &settings.max_episode_steps, 0, 1'000'000'000,
                     "truncate episodes after this many steps, 0 for never");
   declare_randomization(table, [&] { settings.init_rand.declare_options(table); });
   if (id.backend == Backend::kBullet || id.backend == Backend::kMujoco) {

@@ -22,6 +22,11 @@
 
 namespace upkie_rl {
 
+/// The option that truncates every environment's episodes after this many agent steps (0:
+/// never); named once for the registry and for the callers that lift the limit (a suite's
+/// episodes in seconds, the robot's runner, the driving page).
+inline constexpr const char* kMaxEpisodeStepsOption = "max_episode_steps";
+
 /// Canonical ids that make_env (env_factory.hpp) accepts (aliases not listed).
 std::vector<std::string> registered_env_ids();
 
