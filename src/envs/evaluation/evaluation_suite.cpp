@@ -147,7 +147,7 @@ EvaluationSuite read_suite_node(const YAML::Node& root, const std::string& where
   suite.seed = read_number<std::uint64_t>(root, key::kSeed, suite.seed, 0,
                                           std::numeric_limits<std::uint64_t>::max(), where);
   suite.max_steps = read_number(root, key::kMaxSteps, suite.max_steps, 1, 10'000'000, where);
-  suite.duration = read_number(root, key::kDuration, suite.duration, 1e-3, 1e5, where);
+  suite.duration = read_number(root, key::kDuration, suite.duration, 1e-3, 3600.0, where);
   if (root[key::kDuration] && root[key::kMaxSteps]) {
     throw std::invalid_argument(where + ": give " + key::kDuration + " [s] or " + key::kMaxSteps +
                                 " [agent steps], not both");
