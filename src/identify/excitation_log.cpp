@@ -72,11 +72,7 @@ void write_excitation_log(const std::string& env_id, const EnvOptions& options,
   const double timestep = env->timestep();
   GroundVelocityCommander commander(*model, timestep);
   commander.reset(*full);
-  ForwardBalanceLaw balance(settings.balance, timestep,
-                            filter_gain_at_rate(VelocityBalancer::kVelocityFilterGain,
-                                                VelocityBalancer::kFilterDesignTimestep, timestep),
-                            filter_gain_at_rate(VelocityBalancer::kAccelerationFilterGain,
-                                                VelocityBalancer::kFilterDesignTimestep, timestep));
+  ForwardBalanceLaw balance = VelocityBalancer::forward_law(settings.balance, timestep);
   CommandSteps commands(settings);
   SpineLogWriter writer(path);
   const int settle_steps = static_cast<int>(std::lround(kSettleTime / timestep));

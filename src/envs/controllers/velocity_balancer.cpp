@@ -38,10 +38,7 @@ double velocity_task_pitch(std::span<const float> observation) {
 double velocity_task_pitch_rate(std::span<const float> observation) { return observation[kGyroY]; }
 
 VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& gains)
-    : forward_(gains, env.timestep(),
-               filter_gain_at_rate(kVelocityFilterGain, kFilterDesignTimestep, env.timestep()),
-               filter_gain_at_rate(kAccelerationFilterGain, kFilterDesignTimestep, env.timestep())),
-      legs_(velocity_env(env).servos().model()) {
+    : forward_(forward_law(gains, env.timestep())), legs_(velocity_env(env).servos().model()) {
   const VelocityEnv& velocity = velocity_env(env);
   const VelocityTaskConfig& task = velocity.task().config();
   if (task.relative_wheel_action || task.wheel_command_feedforward) {
@@ -57,6 +54,13 @@ VelocityBalancer::VelocityBalancer(const Env& env, const VelocityBalancerGains& 
   height_command_ = velocity.task().height_command();
   timestep_ = env.timestep();
   touchdown_steps_ = static_cast<int>(std::lround(kTouchdownTime / timestep_));
+}
+
+ForwardBalanceLaw VelocityBalancer::forward_law(const VelocityBalancerGains& gains,
+                                                double timestep) {
+  return {gains, timestep,
+          filter_gain_at_rate(kVelocityFilterGain, kFilterDesignTimestep, timestep),
+          filter_gain_at_rate(kAccelerationFilterGain, kFilterDesignTimestep, timestep)};
 }
 
 void VelocityBalancer::reset() {

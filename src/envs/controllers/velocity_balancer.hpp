@@ -79,6 +79,11 @@ class VelocityBalancer final : public Controller {
   void reset() override;
   void act(std::span<const float> observation, std::span<float> action) override;
 
+  /// The balancer's wheel law with `gains` stepped every `timestep` [s], its filters at
+  /// the time constants of kVelocityFilterGain and kAccelerationFilterGain: the one law of
+  /// the balancer and of the identification's excitation.
+  static ForwardBalanceLaw forward_law(const VelocityBalancerGains& gains, double timestep);
+
   /// Adds `offset` [m/s] to the ground velocity of the next actions (excitation for the
   /// identification of envs/controllers/velocity_balancer_design.hpp; 0 otherwise).
   void set_excitation(double offset) { forward_.set_excitation(offset); }
