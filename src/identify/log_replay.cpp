@@ -168,6 +168,11 @@ LogReplay::LogReplay(const std::string& env_id, const EnvOptions& options, const
           "identify: action_delay_max draws a delay per episode; a log is replayed with one "
           "delay, set action_delay");
     }
+    if (name == "action_delay_time") {
+      throw std::invalid_argument(
+          "identify: action_delay_time: give the replay's delay in the environment's steps, "
+          "action_delay");
+    }
     if (!is_actuation_option(name)) {
       options_.emplace_back(name, value);
       continue;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "envs/controllers/builtin_controllers.hpp"
@@ -194,9 +195,15 @@ TEST_P(EnginePerturbations, ActionDelayAppliesEachCommandStepsLater) {
   };
   auto delayed = make_env(id("Servos"), {{"action_delay", "3"}});
   auto plain = make_env(id("Servos"), {});
-  EXPECT_EQ(servo_run(*delayed, wheel_velocity), servo_run(*plain, [&](int step) {
+  const auto delayed_run = servo_run(*delayed, wheel_velocity);
+  EXPECT_EQ(delayed_run, servo_run(*plain, [&](int step) {
               return step < 3 ? wheel_velocity(0) : wheel_velocity(step - 3);
             }));
+  // The same delay in seconds: 15 ms at the servos environment's 5 ms steps (16 ms rounds
+  // to it too).
+  ASSERT_EQ(delayed->timestep(), 0.005);
+  auto in_seconds = make_env(id("Servos"), {{"action_delay_time", "0.016"}});
+  EXPECT_EQ(servo_run(*in_seconds, wheel_velocity), delayed_run);
 }
 
 TEST_P(EnginePerturbations, ActionLagAppliesTheFiltersMeanOverEachStep) {
@@ -706,6 +713,47 @@ TEST(ActionLag, RefusesADelayMaximumOutOfRangeNamingIt) {
   ActionLagSettings settings;
   settings.delay_steps_max = -1;
   EXPECT_NE(settings.problem().find("action_delay_max"), std::string::npos);
+}
+
+// A delay in seconds is the same time at any agent rate, in whole steps.
+TEST(ActionLag, ADelayInSecondsIsWholeStepsAtAnyRate) {
+  ActionLagSettings settings;
+  settings.delay_time = 0.02;
+  ASSERT_TRUE(settings.any());
+  ASSERT_EQ(settings.problem(), "");
+  for (const auto& [step, steps] : {std::pair{0.02, 1}, {0.01, 2}, {0.005, 4}, {0.03, 1}}) {
+    ActionLag lag(settings, step);
+    lag.reset(0, 1.0);
+    EXPECT_EQ(lag.delay(), steps) << "a step of " << step << " s";
+  }
+  ActionLag halved(settings, 0.01);
+  halved.reset(0, 0.5);  // the randomisation scale scales it as a delay in steps
+  EXPECT_EQ(halved.delay(), 1);
+}
+
+TEST(ActionLag, RefusesADelayInSecondsAndStepsOrOutOfRangeNamingIt) {
+  ActionLagSettings both;
+  both.delay_time = 0.02;
+  both.delay_steps = 1;
+  EXPECT_NE(both.problem().find("action_delay_time and action_delay"), std::string::npos);
+  both.delay_steps = 0;
+  both.delay_steps_max = 2;
+  EXPECT_NE(both.problem().find("action_delay_time"), std::string::npos);
+  for (const double bad : {-0.01, 1.5, std::nan(""), HUGE_VAL}) {
+    ActionLagSettings settings;
+    settings.delay_time = bad;
+    EXPECT_NE(settings.problem().find("action_delay_time must be in [0, 1"), std::string::npos)
+        << bad;
+    EXPECT_THROW(ActionLag(settings, 0.02), std::invalid_argument) << bad;
+  }
+  ActionLagSettings long_delay;
+  long_delay.delay_time = 1.0;
+  try {
+    ActionLag lag(long_delay, 1e-6);
+    FAIL() << "a million steps of delay passed";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("more than 10000 steps"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -219,17 +219,22 @@ TEST(Identification, LogWithoutServoCommandsIsRefused) {
   }
 }
 
+// A log is replayed with one delay, in the environment's steps: a delay drawn per episode
+// or given in seconds is refused.
 TEST(Identification, DelayDrawnPerEpisodeIsRefusedNamingTheOption) {
   const RobotLog log = simulated_log("delay_max.mpack", {});
   IdentificationSettings settings;
   settings.env_id = "Upkie-Bullet-Servos";
   settings.parameters = parse_parameter_requests({"mass_scale"});
-  settings.options = {{"action_delay_max", "2"}};
-  try {
-    identify(log, settings);
-    FAIL() << "a log is replayed with one delay";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("action_delay_max"), std::string::npos);
+  for (const auto& [option, value] :
+       {std::pair{"action_delay_max", "2"}, {"action_delay_time", "0.01"}}) {
+    settings.options = {{option, value}};
+    try {
+      identify(log, settings);
+      FAIL() << option << " passed";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(option), std::string::npos);
+    }
   }
 }
 

@@ -13,6 +13,23 @@ namespace {
 
 constexpr std::uint64_t kActionLagStream = 3;
 constexpr int kMaxDelaySteps = 10000;
+constexpr double kMaxDelayTime = 1.0;  ///< [s]
+
+/// `settings` (valid) with a delay_time as the nearest whole number of `step_duration`
+/// (positive) steps.
+/// @throws std::invalid_argument when that is more than kMaxDelaySteps.
+ActionLagSettings in_steps(ActionLagSettings settings, double step_duration) {
+  if (settings.delay_time <= 0.0) return settings;
+  const double steps = std::round(settings.delay_time / step_duration);
+  if (steps > kMaxDelaySteps) {
+    throw std::invalid_argument(
+        "ActionLag: action_delay_time " + std::to_string(settings.delay_time) + " s is more than " +
+        std::to_string(kMaxDelaySteps) + " steps of " + std::to_string(step_duration) + " s");
+  }
+  settings.delay_steps = static_cast<int>(steps);
+  settings.delay_time = 0.0;
+  return settings;
+}
 
 }  // namespace
 
@@ -31,6 +48,14 @@ std::string ActionLagSettings::problem() const {
     return "ActionLag: action_delay_max must be in [0, " + std::to_string(kMaxDelaySteps) +
            "], got " + std::to_string(delay_steps_max);
   }
+  if (!(std::isfinite(delay_time) && delay_time >= 0.0 && delay_time <= kMaxDelayTime)) {
+    return "ActionLag: action_delay_time must be in [0, " + std::to_string(kMaxDelayTime) +
+           "] s, got " + std::to_string(delay_time);
+  }
+  if (delay_time > 0.0 && (delay_steps > 0 || delay_steps_max > 0)) {
+    return "ActionLag: action_delay_time and action_delay or action_delay_max are both set; "
+           "give the delay in seconds or in steps";
+  }
   return "";
 }
 
@@ -46,6 +71,9 @@ void ActionLagSettings::declare_options(OptionTable& table) {
   table.add_integer("action_delay_max", &delay_steps_max, 0, kMaxDelaySteps,
                     "largest delay drawn per episode in U{action_delay..max} [steps], 0 for "
                     "a fixed delay");
+  table.add_real("action_delay_time", &delay_time, 0.0, kMaxDelayTime,
+                 "delay between an action and its application [s], rounded to whole steps "
+                 "(instead of action_delay: the same time at any rate)");
   table.add_rule([this] { return problem(); });
 }
 
@@ -56,8 +84,9 @@ ActionLag::ActionLag(const ActionLagSettings& settings, double step_duration)
     throw std::invalid_argument("ActionLag: the step must be positive, got " +
                                 std::to_string(step_duration) + " s");
   }
+  settings_ = in_steps(settings_, step_duration);
   // The largest delay the randomisation scale (at most 1) can draw.
-  delay_line_ = ServoDelayLine(static_cast<std::size_t>(settings.largest_delay()));
+  delay_line_ = ServoDelayLine(static_cast<std::size_t>(settings_.largest_delay()));
 }
 
 void ActionLag::reset(std::optional<std::uint64_t> seed, double randomization_scale) {

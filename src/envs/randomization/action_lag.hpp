@@ -26,21 +26,25 @@ struct ActionLagSettings {
   /// delay_steps) for a fixed delay. Why: a robot's agent runs late on some runs and not on
   /// others, and a policy trained on one fixed delay oscillates on another (docs/reality.md).
   int delay_steps_max = 0;
+  /// The delay in seconds instead of steps [s], 0 for none: ActionLag rounds it to whole
+  /// agent steps (a spine delays by whole cycles). Why: a suite's world of "20 ms of delay"
+  /// must be 20 ms for a 100 Hz policy too, which `delay_steps` 1 made 10 ms.
+  double delay_time = 0.0;
 
-  bool any() const { return time_constant_max > 0.0 || largest_delay() > 0; }
-  /// The largest delay an episode can draw [steps].
+  bool any() const { return time_constant_max > 0.0 || largest_delay() > 0 || delay_time > 0.0; }
+  /// The largest delay an episode can draw [steps], delay_time aside.
   int largest_delay() const {
     return delay_steps_max > delay_steps ? delay_steps_max : delay_steps;
   }
 
-  /// What is wrong unless 0 <= min <= max (finite) and the delays are in [0, 10000]; "" if
-  /// nothing.
+  /// What is wrong unless 0 <= min <= max (finite), the delays are in [0, 10000] steps,
+  /// delay_time in [0, 1] s and not given with a delay in steps; "" if nothing.
   std::string problem() const;
   /// @throws std::invalid_argument with problem(), if any.
   void validate() const;
 
-  /// Declares the options action_lag_min, action_lag_max, action_delay and
-  /// action_delay_max, and problem() as their rule.
+  /// Declares the options action_lag_min, action_lag_max, action_delay, action_delay_max
+  /// and action_delay_time, and problem() as their rule.
   void declare_options(OptionTable& table);
 };
 
@@ -60,7 +64,8 @@ struct ActionLagSettings {
 /// Nothing is allocated after construction.
 class ActionLag {
  public:
-  /// @param step_duration The agent step the commands are held for [s].
+  /// @param step_duration The agent step the commands are held for [s]; a delay_time
+  ///                      becomes the nearest whole number of them.
   /// @throws std::invalid_argument on settings out of their domain or a step not > 0.
   ActionLag(const ActionLagSettings& settings, double step_duration);
 
