@@ -276,7 +276,9 @@ def test_every_supported_activation_converts_to_the_same_actions(activation, tmp
     upkie_rl.export_onnx(imported, tmp_path / "policy.onnx")
     session = ort.InferenceSession(str(tmp_path / "policy.onnx"), providers=["CPUExecutionProvider"])
     (onnx_actions,) = session.run(None, {"observation": observations})
-    np.testing.assert_allclose(onnx_actions, expected, atol=1e-5)
+    # onnxruntime computes activations its own way: 1.32's ELU differs from torch's by up to
+    # 1.1e-5 on these weights (one action of 500); a wrong graph is off by 1e-2 or more.
+    np.testing.assert_allclose(onnx_actions, expected, atol=1e-4)
     export_sb3(imported, tmp_path / "back.zip")
     back, _ = sb3.PPO.load(tmp_path / "back.zip", device="cpu").predict(observations, deterministic=True)
     np.testing.assert_allclose(back, expected, atol=1e-5)
