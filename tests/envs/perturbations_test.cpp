@@ -19,6 +19,7 @@
 #include "envs/randomization/residual_lag.hpp"
 #include "envs/registry/env_factory.hpp"
 #include "envs/registry/registry.hpp"
+#include "envs/tasks/velocity_task.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
 #include "sim/servo_command_fields.hpp"
 
@@ -310,6 +311,9 @@ TEST_P(EnginePerturbations, OnASlopeThePolicyReadsThePitchOfARealSlope) {
   // Upright in the floor's frame, the ground truth.
   EXPECT_TRUE(env->full_observation()->sim_base.orientation.isApprox(Eigen::Quaterniond::Identity(),
                                                                      1e-12));
+  // So the velocity task measures 8 deg from gravity and none from the floor.
+  EXPECT_NEAR(VelocityTask::tilt(*env->full_observation()), 8.0 * M_PI / 180.0, 1e-6);
+  EXPECT_NEAR(VelocityTask::floor_tilt(*env->full_observation()), 0.0, 1e-6);
 }
 
 TEST_P(EnginePerturbations, APayloadChangesTheEpisode) {

@@ -230,26 +230,43 @@ TEST(VelocityReward, TiltExcessPenaltyGrowsLinearlyBeyondItsStart) {
   EXPECT_EQ(unweighted.terms()[VelocityReward::kTiltExcess], 0.0);
 }
 
-TEST(VelocityReward, ShinTiltExcessPenaltyGrowsLinearlyBeyondItsStart) {
-  VelocityRewardWeights weights;
-  weights.w_shin_tilt_excess = 10.0;
-  weights.shin_tilt_excess_start = 0.3;
-  VelocityReward reward(weights);
-  VelocityRewardInputs inputs;
-  inputs.shin_tilt = 0.25;  // below the start: free
-  reward(inputs);
-  EXPECT_EQ(reward.terms()[VelocityReward::kShinTiltExcess], 0.0);
-  inputs.shin_tilt = 0.42;
-  reward(inputs);
-  EXPECT_NEAR(reward.terms()[VelocityReward::kShinTiltExcess], -10.0 * 0.12, 1e-9);
-  // The base's own tilt does not enter it: that is w_tilt_excess's (0 here).
-  inputs.gravity_in_base = Eigen::Vector3d(std::sin(0.6), 0.0, -std::cos(0.6));
-  reward(inputs);
-  EXPECT_NEAR(reward.terms()[VelocityReward::kShinTiltExcess], -10.0 * 0.12, 1e-9);
-  EXPECT_EQ(reward.terms()[VelocityReward::kTiltExcess], 0.0);
-  VelocityReward unweighted;  // off by default
-  unweighted(inputs);
-  EXPECT_EQ(unweighted.terms()[VelocityReward::kShinTiltExcess], 0.0);
+/// A tilt penalty of its own angle (the shins', the floor's): its weight, its start, the
+/// input it reads and its term.
+struct TiltPenalty {
+  double VelocityRewardWeights::*weight;
+  double VelocityRewardWeights::*start;
+  double VelocityRewardInputs::*angle;
+  VelocityReward::Term term;
+};
+
+TEST(VelocityReward, ShinAndFloorTiltPenaltiesGrowLinearlyBeyondTheirStart) {
+  for (const TiltPenalty& penalty :
+       {TiltPenalty{&VelocityRewardWeights::w_shin_tilt_excess,
+                    &VelocityRewardWeights::shin_tilt_excess_start,
+                    &VelocityRewardInputs::shin_tilt, VelocityReward::kShinTiltExcess},
+        TiltPenalty{&VelocityRewardWeights::w_floor_tilt_excess,
+                    &VelocityRewardWeights::floor_tilt_excess_start,
+                    &VelocityRewardInputs::floor_tilt, VelocityReward::kFloorTiltExcess}}) {
+    VelocityRewardWeights weights;
+    weights.*penalty.weight = 10.0;
+    weights.*penalty.start = 0.3;
+    VelocityReward reward(weights);
+    VelocityRewardInputs inputs;
+    inputs.*penalty.angle = 0.25;  // below the start: free
+    reward(inputs);
+    EXPECT_EQ(reward.terms()[penalty.term], 0.0);
+    inputs.*penalty.angle = 0.42;
+    reward(inputs);
+    EXPECT_NEAR(reward.terms()[penalty.term], -10.0 * 0.12, 1e-9);
+    // The tilt from gravity does not enter it: that is w_tilt_excess's (0 here).
+    inputs.gravity_in_base = Eigen::Vector3d(std::sin(0.6), 0.0, -std::cos(0.6));
+    reward(inputs);
+    EXPECT_NEAR(reward.terms()[penalty.term], -10.0 * 0.12, 1e-9);
+    EXPECT_EQ(reward.terms()[VelocityReward::kTiltExcess], 0.0);
+    VelocityReward unweighted;  // off by default
+    unweighted(inputs);
+    EXPECT_EQ(unweighted.terms()[penalty.term], 0.0);
+  }
 }
 
 /// An observation of a base rotated by `rotation`, moving at `velocity` in the world.
@@ -319,6 +336,32 @@ TEST(VelocityTask, RewardsTheShinTiltOfTheMeasuredPose) {
   full.servo[kRightHip].position = 0.0;  // the right shin still leans with the base
   task.evaluate(full, {}, action, action);
   EXPECT_NEAR(task.reward().terms()[VelocityReward::kShinTiltExcess], -10.0 * 0.15, 1e-9);
+}
+
+// On a slope the simulation tilts gravity, not the floor: the base upright to gravity leans
+// from the floor's normal by the slope (its ground truth), and the task rewards that lean.
+TEST(VelocityTask, RewardsTheTiltFromTheFloorsNormal) {
+  VelocityTaskConfig config;
+  config.reward.w_floor_tilt_excess = 10.0;
+  config.reward.floor_tilt_excess_start = 0.3;
+  VelocityTask task(*RobotModel::default_model(), config, /*height_command=*/false);
+  const Act action{};
+  const auto pitched = [](double angle) {
+    return Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  };
+  // Leaning 0.25 rad back from gravity, facing down a slope of 0.14 rad: 0.39 rad from the
+  // floor's normal.
+  Observation full = base_state(pitched(-0.25), {}, {});
+  full.sim_base.orientation = Eigen::Quaterniond(pitched(-0.39));
+  EXPECT_NEAR(VelocityTask::tilt(full), 0.25, 1e-12);
+  EXPECT_NEAR(VelocityTask::floor_tilt(full), 0.39, 1e-12);
+  task.evaluate(full, {}, action, action);
+  EXPECT_NEAR(task.reward().terms()[VelocityReward::kFloorTiltExcess], -10.0 * 0.09, 1e-9);
+  // A robot knows no slope: the tilt from gravity.
+  full.has_sim = false;
+  EXPECT_NEAR(VelocityTask::floor_tilt(full), 0.25, 1e-12);
+  task.evaluate(full, {}, action, action);
+  EXPECT_EQ(task.reward().terms()[VelocityReward::kFloorTiltExcess], 0.0);
 }
 
 TEST(VelocityTask, GravityAndPitchOfTheObservation) {

@@ -31,9 +31,10 @@ TEST(EnvBatchVectorEnv, BothKindsForwardToTheirEnvironments) {
     EXPECT_EQ(&venv->observation_space(), &batch->env(0).observation_space());
     EXPECT_EQ(&venv->action_space(), &batch->env(0).action_space());
     EXPECT_EQ(venv->reward_term_names().data(), batch->env(0).reward_term_names().data());
-    EXPECT_EQ(venv->reward_term_names().size(), 11u);  // 5 + track_height, leg_symmetry,
+    EXPECT_EQ(venv->reward_term_names().size(), 12u);  // 5 + track_height, leg_symmetry,
                                                        // height_error, forward_velocity_error,
-                                                       // tilt_excess, shin_tilt_excess
+                                                       // tilt_excess, shin_tilt_excess,
+                                                       // floor_tilt_excess
     for (std::size_t i = 0; i < 3; ++i) {
       EXPECT_EQ(venv->full_observation(i), batch->env(i).full_observation());
     }

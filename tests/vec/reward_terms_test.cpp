@@ -13,8 +13,9 @@ namespace {
 TEST(VectorRewardTerms, EpisodeTermSumsAddUpToTheReturn) {
   auto venv = make_vector_env("Upkie-Mock-Velocity", {{"max_episode_steps", "30"}}, 2, 0);
   const std::size_t num_terms = venv->reward_term_names().size();
-  ASSERT_EQ(num_terms, 11u);  // the velocity task's, with track_height, leg_symmetry,
-                              // height_error, forward_velocity_error, tilt_excess, shin_tilt_excess
+  ASSERT_EQ(num_terms, 12u);  // the velocity task's, with track_height, leg_symmetry,
+                              // height_error, forward_velocity_error, tilt_excess,
+                              // shin_tilt_excess, floor_tilt_excess
   std::vector<float> actions(2 * venv->action_space().size(), 0.3f);
   venv->reset(0);
   int ended = 0;

@@ -60,6 +60,8 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
       -weights_.w_tilt_excess * std::max(0.0, tilt_from_gravity(g) - weights_.tilt_excess_start);
   terms_[kShinTiltExcess] = -weights_.w_shin_tilt_excess *
                             std::max(0.0, inputs.shin_tilt - weights_.shin_tilt_excess_start);
+  terms_[kFloorTiltExcess] = -weights_.w_floor_tilt_excess *
+                             std::max(0.0, inputs.floor_tilt - weights_.floor_tilt_excess_start);
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;
@@ -97,6 +99,12 @@ void VelocityRewardWeights::declare_options(OptionTable& table) {
                  "penalty weight of the larger shin tilt beyond shin_tilt_excess_start [1/rad]");
   table.add_real("shin_tilt_excess_start", &shin_tilt_excess_start, 0.0, 1.5,
                  "shin tilt [rad] from which w_shin_tilt_excess's penalty grows");
+  table.add_real("w_floor_tilt_excess", &w_floor_tilt_excess, 0.0, kOptionHuge,
+                 "penalty weight of the base's tilt from the floor's normal beyond "
+                 "floor_tilt_excess_start [1/rad]");
+  table.add_real("floor_tilt_excess_start", &floor_tilt_excess_start, 0.0, 1.5,
+                 "tilt from the floor's normal [rad] from which w_floor_tilt_excess's penalty "
+                 "grows");
   table.add_real("w_forward_velocity_error", &w_forward_velocity_error, 0.0, kOptionHuge,
                  "penalty weight of the squared forward velocity error [s^2/m^2], capped at 1 m/s");
 }

@@ -151,6 +151,11 @@ double VelocityTask::tilt(const Observation& full) {
   return tilt_from_gravity(gravity_in_base(full));
 }
 
+double VelocityTask::floor_tilt(const Observation& full) {
+  if (!full.has_sim) return tilt(full);
+  return tilt_from_gravity(full.sim_base.orientation.conjugate() * Eigen::Vector3d(0, 0, -1));
+}
+
 BaseVelocity VelocityTask::measured_velocity(const Observation& full) {
   const Eigen::Matrix3d& rotation = full.base_orientation.rotation_base_to_world;
   BaseVelocity velocity;
@@ -251,6 +256,7 @@ StepResult VelocityTask::evaluate(const Observation& full, const VelocityCommand
   inputs.velocity = height_command_ ? measure(full) : measured_velocity(full);
   inputs.track_height = height_command_;
   inputs.gravity_in_base = gravity_in_base(full);
+  inputs.floor_tilt = floor_tilt(full);
   inputs.leg_deviation = leg_deviation(full, command);
   inputs.shin_tilt =
       largest_shin_tilt(pitch_from_gravity(inputs.gravity_in_base), leg_angles(full));

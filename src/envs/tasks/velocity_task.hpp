@@ -202,6 +202,10 @@ class VelocityTask {
   static Eigen::Vector3d gravity_in_base(const Observation& full);
   /// Angle between the base's vertical and the world's [rad].
   static double tilt(const Observation& full);
+  /// Angle between the base's vertical and the floor's normal [rad]: from the simulation's
+  /// ground truth, whose world is the floor's (a slope tilts gravity, not the floor); tilt()
+  /// without it.
+  static double floor_tilt(const Observation& full);
 
   VelocityTermination termination_reason() const { return reason_; }
   const VelocityReward& reward() const { return reward_; }
