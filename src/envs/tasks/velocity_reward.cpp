@@ -16,6 +16,11 @@ constexpr double kPoseWidth = 0.25;
 
 double kernel(double error, double sigma) { return std::exp(-(error * error) / (sigma * sigma)); }
 
+/// The linear penalty of the three tilt terms: -weight x how far `angle` is beyond `start`.
+double excess_penalty(double weight, double angle, double start) {
+  return -weight * std::max(0.0, angle - start);
+}
+
 }  // namespace
 
 double tilt_from_gravity(const Eigen::Vector3d& gravity_in_base) {
@@ -57,11 +62,11 @@ double VelocityReward::operator()(const VelocityRewardInputs& inputs) {
   terms_[kForwardVelocityError] =
       -weights_.w_forward_velocity_error * capped_forward_error * capped_forward_error;
   terms_[kTiltExcess] =
-      -weights_.w_tilt_excess * std::max(0.0, tilt_from_gravity(g) - weights_.tilt_excess_start);
-  terms_[kShinTiltExcess] = -weights_.w_shin_tilt_excess *
-                            std::max(0.0, inputs.shin_tilt - weights_.shin_tilt_excess_start);
-  terms_[kFloorTiltExcess] = -weights_.w_floor_tilt_excess *
-                             std::max(0.0, inputs.floor_tilt - weights_.floor_tilt_excess_start);
+      excess_penalty(weights_.w_tilt_excess, tilt_from_gravity(g), weights_.tilt_excess_start);
+  terms_[kShinTiltExcess] = excess_penalty(weights_.w_shin_tilt_excess, inputs.shin_tilt,
+                                           weights_.shin_tilt_excess_start);
+  terms_[kFloorTiltExcess] = excess_penalty(weights_.w_floor_tilt_excess, inputs.floor_tilt,
+                                            weights_.floor_tilt_excess_start);
   terms_[kLegSymmetry] =
       -weights_.w_leg_symmetry * (hip_asymmetry * hip_asymmetry + knee_asymmetry * knee_asymmetry);
   double sum = 0.0;
