@@ -26,6 +26,11 @@
 namespace upkie_rl {
 namespace {
 
+/// The classical baseline of configs/velocity.yaml, the base of its residual policies.
+const std::string kVelocityBalancer =
+    "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
+    "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+
 /// What an episode of the PD law gives: observations, rewards and base positions.
 struct Trace {
   std::vector<std::vector<float>> observations;
@@ -243,9 +248,7 @@ TEST_P(EnginePerturbations, ActionLagAppliesTheFiltersMeanOverEachStep) {
 TEST_P(EnginePerturbations, AResidualPolicysBaseControllerPassesTheDelayLikeTheBaseline) {
   // A zero residual on the base controller is the baseline controller, and the servos'
   // delay and lag must treat both alike (they lagged the agent's residual only, before).
-  const std::string balancer =
-      "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
-      "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+  const std::string balancer = kVelocityBalancer;
   const EnvOptions actuation = {
       {"action_delay", "2"}, {"action_lag_max", "0.03"}, {"action_lag_min", "0.03"}};
   EnvOptions residual_options = actuation;
@@ -641,9 +644,7 @@ TEST(ResidualLag, DrawsItsTimeConstantPerEpisodeAndFiltersFromZero) {
 }
 
 TEST_P(EnginePerturbations, TheResidualLagLagsThePolicysShareNotTheBase) {
-  const std::string balancer =
-      "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
-      "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+  const std::string balancer = kVelocityBalancer;
   const auto base_position = [&](const EnvOptions& options, float residual) {
     auto env = make_env(id("Velocity"), options);
     std::vector<float> observation(env->observation_space().size());
@@ -678,6 +679,56 @@ TEST_P(EnginePerturbations, TheResidualLagLagsThePolicysShareNotTheBase) {
     EXPECT_NE(std::string(error.what()).find("residual_filter 0.1"), std::string::npos);
     EXPECT_NE(std::string(error.what()).find("residual_lag_max"), std::string::npos);
   }
+}
+
+TEST_P(EnginePerturbations, TheResidualFadesWithTheTiltLeavingTheBaseAlone) {
+  // Facing up a 15 deg slope the robot starts 0.26 rad from gravity, as the IMU reads it.
+  const std::string balancer = kVelocityBalancer;
+  double tilt = 0.0;
+  // The left hip's command sent in the first step (the observation's last action).
+  const auto sent_hip = [&](const EnvOptions& fade, float residual) {
+    EnvOptions options = {
+        {"base_controller", balancer}, {"residual_scale", "0.3"}, {"slope_pitch", "15"}};
+    options.insert(options.end(), fade.begin(), fade.end());
+    auto env = make_env(id("Velocity"), options);
+    std::vector<float> observation(env->observation_space().size());
+    std::vector<float> action(env->action_space().size(), 0.0f);
+    env->reset(2, observation);
+    tilt = VelocityTask::tilt(*env->full_observation());
+    action[kLeftHip] = residual;
+    env->step(action, observation);
+    const std::size_t last_action = 12;  // after 4 legs, 2 wheels, gravity and gyroscope
+    return observation[last_action + kLeftHip];
+  };
+  // The agent's share of the hip command: (sent with 0.5 - sent with 0) / (0.3 x 0.5).
+  const auto share = [&](const EnvOptions& fade) {
+    return (sent_hip(fade, 0.5f) - sent_hip(fade, 0.0f)) / 0.15;
+  };
+  EXPECT_NEAR(share({}), 1.0, 1e-5);
+  ASSERT_NEAR(tilt, 15.0 * M_PI / 180.0, 0.01);
+  // Past the fade's end the base acts alone; within it the share falls linearly.
+  EXPECT_EQ(sent_hip({{"residual_fade_start", "0.1"}, {"residual_fade_end", "0.2"}}, 0.5f),
+            sent_hip({{"residual_fade_start", "0.1"}, {"residual_fade_end", "0.2"}}, 0.0f));
+  EXPECT_NEAR(share({{"residual_fade_start", "0.2"}, {"residual_fade_end", "0.3"}}),
+              (0.3 - tilt) / 0.1, 1e-4);
+  EXPECT_NEAR(share({{"residual_fade_start", "0.3"}, {"residual_fade_end", "0.4"}}), 1.0, 1e-5);
+  // A fade needs a base controller and a start below its end, and says so.
+  const auto message = [&](const EnvOptions& options) {
+    try {
+      make_env(id("Velocity"), options);
+    } catch (const std::invalid_argument& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(
+      message({{"residual_fade_end", "0.3"}}).find("residual_fade_end needs a base_controller"),
+      std::string::npos);
+  EXPECT_NE(message({{"base_controller", balancer},
+                     {"residual_fade_start", "0.3"},
+                     {"residual_fade_end", "0.3"}})
+                .find("residual_fade_start 0.3"),
+            std::string::npos);
 }
 
 TEST(ResidualLag, WithoutADrawFiltersWithTheNominalTimeConstant) {

@@ -61,6 +61,17 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
     residual_lag_.emplace(task.residual_filter, task.residual_lag_max, servos_->timestep(),
                           action_.size());
   }
+  check_residual_fade(task);
+}
+
+void VelocityEnv::check_residual_fade(const VelocityTaskConfig& task) const {
+  if (task.residual_fade_end <= 0.0) return;
+  if (!base_) throw std::invalid_argument("residual_fade_end needs a base_controller");
+  if (task.residual_fade_start >= task.residual_fade_end) {
+    throw std::invalid_argument("residual_fade_start " + std::to_string(task.residual_fade_start) +
+                                " rad must be below residual_fade_end " +
+                                std::to_string(task.residual_fade_end) + " rad");
+  }
 }
 
 void VelocityEnv::set_command_override(const std::optional<VelocityCommand>& command) {
@@ -135,7 +146,7 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   if (base_) {
     base_->act(std::span<const float>(last_observation_).first(task_.observation_size()),
                base_action_);
-    const double scale = task_.config().residual_scale;
+    const double scale = residual_weight(*servos_->full_observation());
     for (std::size_t i = 0; i < action_.size(); ++i) {
       action_[i] =
           std::clamp(static_cast<float>(base_action_[i] + scale * action_[i]), -1.0f, 1.0f);
@@ -151,6 +162,16 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   write_observation(full, observation);
   if (base_) std::copy(observation.begin(), observation.end(), last_observation_.begin());
   return result;
+}
+
+double VelocityEnv::residual_weight(const Observation& full) const {
+  const VelocityTaskConfig& config = task_.config();
+  if (config.residual_fade_end <= 0.0) return config.residual_scale;
+  // The constructor checked residual_fade_start < residual_fade_end.
+  const double share = std::clamp((config.residual_fade_end - VelocityTask::tilt(full)) /
+                                      (config.residual_fade_end - config.residual_fade_start),
+                                  0.0, 1.0);
+  return config.residual_scale * share;
 }
 
 VelocityEnv* find_velocity_env(Env& env) {

@@ -322,6 +322,11 @@ void VelocityTaskConfig::declare_options(OptionTable& table) {
   table.add_real("residual_filter", &residual_filter, 0.0, 1.0,
                  "residual mode: time constant of a first-order filter on the agent's action "
                  "[s], kept wherever the policy runs; 0 for none");
+  table.add_real("residual_fade_start", &residual_fade_start, 0.0, 1.6,
+                 "residual mode: base tilt [rad] from which the agent's share fades");
+  table.add_real("residual_fade_end", &residual_fade_end, 0.0, 1.6,
+                 "residual mode: base tilt [rad] at which the agent's share has faded to none "
+                 "(linearly from residual_fade_start); 0 for no fade");
   reward.declare_options(table);
 }
 
