@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "common/allocation_counter.hpp"
+#include "common/velocity_baseline.hpp"
 
 #include <vector>
 
@@ -65,16 +66,13 @@ TEST(AllocationFree, PerturbedStepsAllocateNothingEither) {
 TEST(AllocationFree, AResidualVelocityPolicysStepsAllocateNothing) {
   // configs/velocity.yaml's way of acting: the classical balancer plus the agent's
   // filtered correction, faded with the tilt, over the last three observations.
-  const EnvOptions residual = {
-      {"base_controller",
-       "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
-       "-0.000164539185,1.00066929,0.0579007226,0.13798033"},
-      {"residual_scale", "0.3"},
-      {"residual_filter", "0.02"},
-      {"residual_fade_start", "0.25"},
-      {"residual_fade_end", "0.35"},
-      {"observe_acceleration", "true"},
-      {"observation_history", "3"}};
+  const EnvOptions residual = {{"base_controller", testing::kVelocityBaseline},
+                               {"residual_scale", "0.3"},
+                               {"residual_filter", "0.02"},
+                               {"residual_fade_start", "0.25"},
+                               {"residual_fade_end", "0.35"},
+                               {"observe_acceleration", "true"},
+                               {"observation_history", "3"}};
   for (const char* id : {"Upkie-Mock-Velocity", "Upkie-MuJoCo-Velocity"}) {
     auto env = make_env(id, residual);
     EXPECT_EQ(allocations_in_100_steps(*env), 0u) << id;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/velocity_baseline.hpp"
 #include "envs/controllers/builtin_controllers.hpp"
 #include "envs/kinds/velocity_env.hpp"
 #include "envs/registry/env_factory.hpp"
@@ -23,9 +24,7 @@ namespace {
 
 /// configs/velocity.yaml's base controller (`--controller lqr` designed on MuJoCo); it
 /// drives Bullet's robot too.
-constexpr const char* kBaseline =
-    "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
-    "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+constexpr const char* kBaseline = testing::kVelocityBaseline;
 
 /// What the tires did on a drive.
 struct Drive {

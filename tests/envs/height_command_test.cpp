@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/temp_files.hpp"
+#include "common/velocity_baseline.hpp"
 #include "envs/controllers/builtin_controllers.hpp"
 #include "envs/kinds/velocity_env.hpp"
 #include "envs/registry/env_factory.hpp"
@@ -33,9 +34,7 @@ std::filesystem::path command_file(const std::string& name, const std::string& b
 }
 
 /// configs/velocity.yaml's base controller: `--controller lqr` designed on MuJoCo.
-constexpr const char* kMujocoBaseline =
-    "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
-    "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+constexpr const char* kMujocoBaseline = testing::kVelocityBaseline;
 
 using Obs = std::array<float, VelocityTask::kHeightObservationSize>;
 using Act = std::array<float, VelocityTask::kActionSize>;

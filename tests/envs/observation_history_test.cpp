@@ -4,6 +4,7 @@
 /// naming the option; it is a task option that rollouts and the runner carry.
 
 #include "envs/wrappers/observation_history.hpp"
+#include "common/velocity_baseline.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,9 +28,7 @@ EnvOptions trained_options(const std::string& history) {
   return {{"nb_substeps", "10"},
           {"height_command", "false"},
           {"leg_action_scale", "0.5"},
-          {"base_controller",
-           "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,"
-           "0.0133529685,-0.000164539185,1.00066929,0.0579007226,0.13798033"},
+          {"base_controller", testing::kVelocityBaseline},
           {"residual_scale", "0.3"},
           {"observation_noise", "0.005"},
           {"imu_gyroscope_noise", "0.01"},

@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/error_message.hpp"
+#include "common/velocity_baseline.hpp"
 #include "envs/controllers/builtin_controllers.hpp"
 #include "envs/kinds/servos_env.hpp"
 #include "envs/randomization/action_lag.hpp"
@@ -25,11 +27,6 @@
 
 namespace upkie_rl {
 namespace {
-
-/// The classical baseline of configs/velocity.yaml, the base of its residual policies.
-const std::string kVelocityBalancer =
-    "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
-    "-0.000164539185,1.00066929,0.0579007226,0.13798033";
 
 /// What an episode of the PD law gives: observations, rewards and base positions.
 struct Trace {
@@ -248,7 +245,7 @@ TEST_P(EnginePerturbations, ActionLagAppliesTheFiltersMeanOverEachStep) {
 TEST_P(EnginePerturbations, AResidualPolicysBaseControllerPassesTheDelayLikeTheBaseline) {
   // A zero residual on the base controller is the baseline controller, and the servos'
   // delay and lag must treat both alike (they lagged the agent's residual only, before).
-  const std::string balancer = kVelocityBalancer;
+  const std::string balancer = testing::kVelocityBaseline;
   const EnvOptions actuation = {
       {"action_delay", "2"}, {"action_lag_max", "0.03"}, {"action_lag_min", "0.03"}};
   EnvOptions residual_options = actuation;
@@ -644,7 +641,7 @@ TEST(ResidualLag, DrawsItsTimeConstantPerEpisodeAndFiltersFromZero) {
 }
 
 TEST_P(EnginePerturbations, TheResidualLagLagsThePolicysShareNotTheBase) {
-  const std::string balancer = kVelocityBalancer;
+  const std::string balancer = testing::kVelocityBaseline;
   const auto base_position = [&](const EnvOptions& options, float residual) {
     auto env = make_env(id("Velocity"), options);
     std::vector<float> observation(env->observation_space().size());
@@ -683,7 +680,7 @@ TEST_P(EnginePerturbations, TheResidualLagLagsThePolicysShareNotTheBase) {
 
 TEST_P(EnginePerturbations, TheResidualFadesWithTheTiltLeavingTheBaseAlone) {
   // Facing up a 15 deg slope the robot starts 0.26 rad from gravity, as the IMU reads it.
-  const std::string balancer = kVelocityBalancer;
+  const std::string balancer = testing::kVelocityBaseline;
   double tilt = 0.0;
   // The left hip's command sent in the first step (the observation's last action).
   const auto sent_hip = [&](const EnvOptions& fade, float residual) {
@@ -714,12 +711,7 @@ TEST_P(EnginePerturbations, TheResidualFadesWithTheTiltLeavingTheBaseAlone) {
   EXPECT_NEAR(share({{"residual_fade_start", "0.3"}, {"residual_fade_end", "0.4"}}), 1.0, 1e-5);
   // A fade needs a base controller and a start below its end, and says so.
   const auto message = [&](const EnvOptions& options) {
-    try {
-      make_env(id("Velocity"), options);
-    } catch (const std::invalid_argument& error) {
-      return std::string(error.what());
-    }
-    return std::string();
+    return testing::error_message([&] { make_env(id("Velocity"), options); });
   };
   EXPECT_NE(
       message({{"residual_fade_end", "0.3"}}).find("residual_fade_end needs a base_controller"),

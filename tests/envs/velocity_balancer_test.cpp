@@ -2,6 +2,7 @@
 /// on MuJoCo, and the residual mode of VelocityEnv that adds a policy to it.
 
 #include "envs/controllers/velocity_balancer.hpp"
+#include "common/velocity_baseline.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,9 +21,7 @@ namespace upkie_rl {
 namespace {
 
 /// configs/velocity.yaml's base controller: `--controller lqr` designed on MuJoCo.
-constexpr const char* kMujocoBaseline =
-    "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,0.0133529685,"
-    "-0.000164539185,1.00066929,0.0579007226,0.13798033";
+constexpr const char* kMujocoBaseline = testing::kVelocityBaseline;
 
 /// A hand-made observation of the task without the height command (the balancer's legs
 /// stay straight).
