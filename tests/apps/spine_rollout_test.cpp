@@ -24,6 +24,8 @@
 #include <thread>
 #include <vector>
 
+#include "common/velocity_baseline.hpp"
+
 extern char** environ;
 
 namespace {
@@ -141,8 +143,7 @@ TEST(SpineRollout, TheSpinesHiddenWorldIsTheEnvironmentsOptions) {
        .env_id = "Upkie-Bullet-Velocity",
        .spine_env_id = "Upkie-Spine-Velocity",
        .nb_substeps = 20,
-       .controller = "balancer:10.3236647,0.264768692,2.80279398,0.601664129,0.0183275488,"
-                     "0.0133529685,-0.000164539185,1.00066929,0.0579007226,0.13798033",
+       .controller = upkie_rl::testing::kVelocityBaseline,
        .max_steps = 150,
        .spine_world = {"--physics-option", "payload_mass=1", "--physics-option",
                        "payload_offset_x=0.04", "--physics-option", "floor_friction=0.6"},
