@@ -723,6 +723,34 @@ TEST_P(EnginePerturbations, TheResidualFadesWithTheTiltLeavingTheBaseAlone) {
             std::string::npos);
 }
 
+TEST_P(EnginePerturbations, TheLegsShareOfTheResidualIsItsGainTimesTheWheels) {
+  // The command sent to `servo` in the first step (the observation's last action) when the
+  // agent asks `residual` of it alone.
+  const auto sent = [&](const std::string& leg_gain, std::size_t servo, float residual) {
+    auto env = make_env(id("Velocity"), {{"base_controller", testing::kVelocityBaseline},
+                                         {"residual_scale", "0.3"},
+                                         {"residual_leg_gain", leg_gain}});
+    std::vector<float> observation(env->observation_space().size());
+    std::vector<float> action(env->action_space().size(), 0.0f);
+    env->reset(2, observation);
+    action[servo] = residual;
+    env->step(action, observation);
+    const std::size_t last_action = 12;  // after 4 legs, 2 wheels, gravity and gyroscope
+    return observation[last_action + servo];
+  };
+  // The agent's share of a command: (sent with 0.5 - sent with 0) / (0.3 x 0.5).
+  const auto share = [&](const std::string& leg_gain, std::size_t servo) {
+    return (sent(leg_gain, servo, 0.5f) - sent(leg_gain, servo, 0.0f)) / 0.15;
+  };
+  EXPECT_NEAR(share("1", kLeftHip), 1.0, 1e-5);
+  EXPECT_NEAR(share("3", kLeftHip), 3.0, 1e-5);
+  EXPECT_NEAR(share("3", kRightKnee), 3.0, 1e-5);
+  EXPECT_NEAR(share("0", kLeftHip), 0.0, 1e-6);
+  // The wheels keep residual_scale whatever the legs' gain.
+  EXPECT_NEAR(share("3", kLeftWheel), 1.0, 1e-5);
+  EXPECT_NEAR(share("0", kRightWheel), 1.0, 1e-5);
+}
+
 TEST(ResidualLag, WithoutADrawFiltersWithTheNominalTimeConstant) {
   ResidualLag lag(0.04, 0.0, 0.02, 1);
   for (std::uint64_t seed = 0; seed < 5; ++seed) {

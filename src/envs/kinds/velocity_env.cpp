@@ -6,6 +6,7 @@
 
 #include "envs/controllers/builtin_controllers.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
+#include "model/joint_order.hpp"
 #include "sim/random_draws.hpp"
 
 namespace upkie_rl {
@@ -146,10 +147,12 @@ StepResult VelocityEnv::step(std::span<const float> action, std::span<float> obs
   if (base_) {
     base_->act(std::span<const float>(last_observation_).first(task_.observation_size()),
                base_action_);
-    const double scale = residual_weight(*servos_->full_observation());
+    const double wheel_weight = residual_weight(*servos_->full_observation());
+    const double leg_weight = wheel_weight * task_.config().residual_leg_gain;
     for (std::size_t i = 0; i < action_.size(); ++i) {
+      const double weight = is_wheel(i) ? wheel_weight : leg_weight;
       action_[i] =
-          std::clamp(static_cast<float>(base_action_[i] + scale * action_[i]), -1.0f, 1.0f);
+          std::clamp(static_cast<float>(base_action_[i] + weight * action_[i]), -1.0f, 1.0f);
     }
   }
   task_.servo_action(action_, *servos_->full_observation(), command(), servo_action_);

@@ -327,6 +327,9 @@ void VelocityTaskConfig::declare_options(OptionTable& table) {
   table.add_real("residual_fade_end", &residual_fade_end, 0.0, 1.6,
                  "residual mode: base tilt [rad] at which the agent's share has faded to none "
                  "(linearly from residual_fade_start); 0 for no fade");
+  table.add_real("residual_leg_gain", &residual_leg_gain, 0.0, 10.0,
+                 "residual mode: the agent's weight on hips and knees over its weight on the "
+                 "wheels");
   reward.declare_options(table);
 }
 

@@ -96,6 +96,11 @@ struct VelocityTaskConfig {
   /// "The residual faded with the lean"): off by default and in configs/velocity.yaml.
   double residual_fade_start = 0.0;
   double residual_fade_end = 0.0;
+  /// Residual mode: the agent's share on the hips and knees is residual_leg_gain times its
+  /// share on the wheels (residual_scale, faded). Part of the policy. 1 by default: at a
+  /// residual of 0.3 the legs move at most 0.15 rad from the base controller's, too little
+  /// for the legs to take part in catching a push.
+  double residual_leg_gain = 1.0;
   VelocityRewardWeights reward;
 
   /// Declares the options of the fields, by their names, then the reward's.
