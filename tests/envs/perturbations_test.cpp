@@ -749,6 +749,11 @@ TEST_P(EnginePerturbations, TheLegsShareOfTheResidualIsItsGainTimesTheWheels) {
   // The wheels keep residual_scale whatever the legs' gain.
   EXPECT_NEAR(share("3", kLeftWheel), 1.0, 1e-5);
   EXPECT_NEAR(share("0", kRightWheel), 1.0, 1e-5);
+  // Without a base controller there is no residual to weigh: refused, naming the option.
+  EXPECT_NE(testing::error_message([&] {
+              make_env(id("Velocity"), {{"residual_leg_gain", "3"}});
+            }).find("residual_leg_gain needs a base_controller"),
+            std::string::npos);
 }
 
 TEST(ResidualLag, WithoutADrawFiltersWithTheNominalTimeConstant) {

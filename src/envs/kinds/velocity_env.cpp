@@ -63,6 +63,9 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
                           action_.size());
   }
   check_residual_fade(task);
+  if (task.residual_leg_gain != 1.0 && !base_) {
+    throw std::invalid_argument("residual_leg_gain needs a base_controller");
+  }
 }
 
 void VelocityEnv::check_residual_fade(const VelocityTaskConfig& task) const {
