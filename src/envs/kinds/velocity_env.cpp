@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "envs/controllers/builtin_controllers.hpp"
 #include "envs/wrappers/env_wrapper.hpp"
@@ -53,25 +54,28 @@ VelocityEnv::VelocityEnv(std::unique_ptr<ServosEnv> servos, const VelocityTaskCo
       throw std::invalid_argument(std::string("base_controller: ") + error.what());
     }
   }
+  check_residual_options(task);
   if (task.residual_filter > 0.0 || task.residual_lag_max > 0.0) {
-    if (!base_) {
-      throw std::invalid_argument(
-          std::string(task.residual_filter > 0.0 ? "residual_filter" : "residual_lag_max") +
-          " needs a base_controller");
-    }
     residual_lag_.emplace(task.residual_filter, task.residual_lag_max, servos_->timestep(),
                           action_.size());
   }
-  check_residual_fade(task);
-  if (task.residual_leg_gain != 1.0 && !base_) {
-    throw std::invalid_argument("residual_leg_gain needs a base_controller");
-  }
 }
 
-void VelocityEnv::check_residual_fade(const VelocityTaskConfig& task) const {
-  if (task.residual_fade_end <= 0.0) return;
-  if (!base_) throw std::invalid_argument("residual_fade_end needs a base_controller");
-  if (task.residual_fade_start >= task.residual_fade_end) {
+void VelocityEnv::check_residual_options(const VelocityTaskConfig& task) const {
+  // Each shapes the agent's residual on top of the base's action: without a base there is
+  // no residual, and a silently ignored option would train something else than asked.
+  const std::pair<const char*, bool> shapes_the_residual[] = {
+      {"residual_filter", task.residual_filter > 0.0},
+      {"residual_lag_max", task.residual_lag_max > 0.0},
+      {"residual_fade_end", task.residual_fade_end > 0.0},
+      {"residual_leg_gain", task.residual_leg_gain != 1.0},
+  };
+  for (const auto& [option, is_set] : shapes_the_residual) {
+    if (is_set && !base_) {
+      throw std::invalid_argument(std::string(option) + " needs a base_controller");
+    }
+  }
+  if (task.residual_fade_end > 0.0 && task.residual_fade_start >= task.residual_fade_end) {
     throw std::invalid_argument("residual_fade_start " + std::to_string(task.residual_fade_start) +
                                 " rad must be below residual_fade_end " +
                                 std::to_string(task.residual_fade_end) + " rad");

@@ -86,8 +86,9 @@ class VelocityEnv final : public ServosWrapperEnv {
   void write_observation(const Observation& full, std::span<float> observation) const;
   void check_crouch_reach(const VelocityTaskConfig& task,
                           const VelocityCommandRanges& commands) const;
-  /// Refuses a fade without a base controller or whose start is not below its end.
-  void check_residual_fade(const VelocityTaskConfig& task) const;
+  /// Refuses an option that shapes the residual (filter, lag, fade, leg gain) without a
+  /// base controller, naming it, and a fade whose start is not below its end.
+  void check_residual_options(const VelocityTaskConfig& task) const;
   /// The target of the next observation: the override, or the sampler's command.
   const VelocityCommand& refresh_target();
   /// Residual mode: the weight of the agent's action at the state `full`, residual_scale
